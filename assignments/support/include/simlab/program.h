@@ -1,0 +1,58 @@
+// What every lab program shares: its command-line options, its error handling, the integrator trade table
+// and the animation.
+#pragma once
+
+#include <functional>
+#include <iosfwd>
+#include <string>
+
+#include "simlab/run_settings.h"
+
+namespace CLI {
+class App;
+}
+namespace SimTK {
+class MultibodySystem;
+}
+
+namespace simlab {
+
+struct ProgramOptions {
+    RunSettings run;
+    std::string output;    ///< results file
+    bool quiet = false;    ///< do not print the table on the screen
+    bool animate = false;  ///< show the motion in Simbody's visualizer
+    bool trade = false;    ///< print digits against cost for every integrator instead of one run
+};
+
+/// Adds --integrator, --accuracy, --dt, --final-time, --fixed-step, --output, --quiet, --animate and --trade,
+/// with `options` holding the defaults, and makes parse errors one line: "<program>: error: ...".
+void addProgramOptions(CLI::App& app, ProgramOptions& options);
+
+/// Parses the command line. Returns -1 to go on; otherwise the program should exit with the returned status:
+/// 0 after --help, 2 after a usage error (already printed as one line).
+int parseCommandLine(CLI::App& app, int argc, char** argv);
+
+/// Runs `body` and returns its exit status. A SIMLAB_TODO that is reached prints where and what is missing and
+/// returns 3; any other exception prints one line "<program>: error: ..." and returns 1.
+int runGuarded(const std::string& program, const std::function<int()>& body);
+
+/// One run of the trade table: the digits it reached and the steps it took.
+struct TradePoint {
+    double digits = 0;
+    int steps = 0;
+    int realizations = 0;
+};
+
+/// For every integrator, run `once` with `base` changed to that integrator `repeats` times and print one row:
+/// digits of `figure`, steps, evaluations of the equations of motion and the median wall time. An integrator
+/// that fails is listed with its error.
+void printTrade(std::ostream& out, const RunSettings& base, const std::string& figure,
+                const std::function<TradePoint(const RunSettings&)>& once, int repeats = 5);
+
+/// Adds a Simbody visualizer to `system` (call before its topology is realized) that draws every body as a
+/// sphere of `radius` m and shows a frame every `frameInterval` s of simulated time, in real time. Needs a
+/// display; throws std::runtime_error saying so if there is none.
+void attachVisualizer(SimTK::MultibodySystem& system, double frameInterval, double radius);
+
+}  // namespace simlab

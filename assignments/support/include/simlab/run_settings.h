@@ -1,0 +1,25 @@
+// How a lab simulation runs: which integrator, how accurately, how often it is sampled and for how long.
+// The lab programs fill these from their command line; the grader varies them.
+#pragma once
+
+#include <string>
+
+namespace simlab {
+
+struct RunSettings {
+    std::string integrator = "RungeKuttaMerson";  ///< one of simlab::integratorNames()
+    double accuracy = 1e-7;  ///< relative accuracy the error-controlled integrators keep each step to
+    double dt = 0.01;        ///< s, interval between samples; also the step of fixed-step integration
+    double finalTime = 4.0;  ///< s, the simulation runs from t = 0 to here
+    bool fixedStep = false;  ///< step at exactly dt with no error control (SemiExplicitEuler always does)
+
+    /// Number of sampling intervals: samples are taken at k = 0, 1, ..., sampleCount().
+    int sampleCount() const;
+    /// Time of sample k: k * dt, except that the last sample is at finalTime exactly.
+    double sampleTime(int k) const;
+};
+
+/// Throws std::invalid_argument, with a message naming the setting, unless the settings are usable.
+void validate(const RunSettings& run);
+
+}  // namespace simlab

@@ -1,0 +1,48 @@
+#include "simlab/integrators.h"
+
+#include <stdexcept>
+
+#include "Simbody.h"
+
+namespace simlab {
+
+const std::vector<std::string>& integratorNames() {
+    static const std::vector<std::string> names = {
+        "RungeKuttaMerson", "RungeKutta3", "RungeKutta2",        "RungeKuttaFeldberg", "ExplicitEuler",
+        "SemiExplicitEuler", "SemiExplicitEuler2", "Verlet", "CPodes"};
+    return names;
+}
+
+void requireIntegratorName(const std::string& name) {
+    std::string list;
+    for (const std::string& known : integratorNames()) {
+        if (known == name) return;
+        list += (list.empty() ? "" : ", ") + known;
+    }
+    throw std::invalid_argument("unknown integrator '" + name + "'; choose one of: " + list);
+}
+
+bool hasErrorControl(const std::string& name) {
+    requireIntegratorName(name);
+    return name != "SemiExplicitEuler";
+}
+
+std::unique_ptr<SimTK::Integrator> integratorNamed(const std::string& name, const SimTK::System& system,
+                                                   double fixedStep) {
+    using namespace SimTK;
+    requireIntegratorName(name);
+    if (name == "RungeKuttaMerson") return std::make_unique<RungeKuttaMersonIntegrator>(system);
+    if (name == "RungeKutta3") return std::make_unique<RungeKutta3Integrator>(system);
+    if (name == "RungeKutta2") return std::make_unique<RungeKutta2Integrator>(system);
+    if (name == "RungeKuttaFeldberg") return std::make_unique<RungeKuttaFeldbergIntegrator>(system);
+    if (name == "ExplicitEuler") return std::make_unique<ExplicitEulerIntegrator>(system);
+    if (name == "SemiExplicitEuler") {
+        if (!(fixedStep > 0)) throw std::invalid_argument("SemiExplicitEuler needs a positive fixed step");
+        return std::make_unique<SemiExplicitEulerIntegrator>(system, fixedStep);
+    }
+    if (name == "SemiExplicitEuler2") return std::make_unique<SemiExplicitEuler2Integrator>(system);
+    if (name == "Verlet") return std::make_unique<VerletIntegrator>(system);
+    return std::make_unique<CPodesIntegrator>(system);  // the list's last name
+}
+
+}  // namespace simlab

@@ -1,0 +1,54 @@
+#include "simlab/results_table.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <ostream>
+#include <stdexcept>
+
+namespace simlab {
+
+namespace {
+constexpr int kScreenWidth = 16;  // characters per column on the screen
+}
+
+ResultsTable::ResultsTable(std::vector<std::string> columns, const std::string& path, std::ostream* screen)
+    : columns_(std::move(columns)), path_(path), screen_(screen) {
+    file_ = std::fopen(path.c_str(), "w");
+    if (!file_) throw std::runtime_error("cannot write results file '" + path + "': " + std::strerror(errno));
+    for (std::size_t i = 0; i < columns_.size(); ++i) {
+        std::fprintf(file_, "%s%s", i ? "\t" : "", columns_[i].c_str());
+    }
+    std::fputc('\n', file_);
+}
+
+ResultsTable::~ResultsTable() {
+    if (file_) std::fclose(file_);
+}
+
+void ResultsTable::add(const std::vector<double>& values) {
+    if (values.size() != columns_.size()) {
+        throw std::logic_error("results row has " + std::to_string(values.size()) + " values for " +
+                               std::to_string(columns_.size()) + " columns");
+    }
+    for (std::size_t i = 0; i < values.size(); ++i) std::fprintf(file_, "%s%.17g", i ? "\t" : "", values[i]);
+    std::fputc('\n', file_);
+    if (std::ferror(file_)) throw std::runtime_error("cannot write results file '" + path_ + "'");
+    if (screen_ && rows_++ == 0) {
+        for (const std::string& c : columns_) {
+            const long pad = kScreenWidth + 1 - static_cast<long>(c.size());
+            *screen_ << std::string(static_cast<std::size_t>(std::max(1L, pad)), ' ') << c;
+        }
+        *screen_ << '\n';
+    }
+    if (screen_) {
+        char cell[64];
+        for (double v : values) {
+            std::snprintf(cell, sizeof cell, " %*.*g", kScreenWidth, kScreenWidth - 7, v);
+            *screen_ << cell;
+        }
+        *screen_ << '\n';
+    }
+}
+
+}  // namespace simlab

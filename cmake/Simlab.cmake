@@ -1,0 +1,163 @@
+# How simlab builds student code, and how an assignment is declared.
+#
+# Student files are compiled by one command line, whatever builds them: the lab programs (`apple`, ...) built
+# here by CMake, and the graders that `simlab check` and `simlab grade` link on the fly. That command line lives
+# in SIMLAB_SUBMISSION_COMMAND below and is written to the build manifest (simlab-build.json) for the engine, so
+# the precompiled Simbody header always matches the flags it is used with.
+
+set(SIMLAB_PCH_DIR ${PROJECT_BINARY_DIR}/pch)
+set(SIMLAB_PCH_HEADER ${SIMLAB_PCH_DIR}/simlab_pch.h)
+set(SIMLAB_MANIFEST ${PROJECT_BINARY_DIR}/simlab-build.json)
+set(SIMLAB_SAMPLE_CLASS_DIR ${PROJECT_BINARY_DIR}/sample-class)
+
+# Flags for student code. -O1 keeps compiles short while the physics runs inside Simbody's optimized libraries.
+set(SIMLAB_SUBMISSION_FLAGS
+    -std=c++17 -O1 -g0 -fPIE -pthread
+    -Wall -Wextra -Wno-unused-parameter -Wno-deprecated-declarations -Winvalid-pch)
+set(SIMLAB_SUBMISSION_INCLUDES
+    -isystem ${Simbody_INCLUDE_DIR}
+    -I${PROJECT_SOURCE_DIR}/assignments/support/include
+    -I${PROJECT_SOURCE_DIR}/assignments)
+set(SIMLAB_SUBMISSION_COMMAND ${CMAKE_CXX_COMPILER} ${SIMLAB_SUBMISSION_FLAGS} ${SIMLAB_SUBMISSION_INCLUDES})
+
+# The precompiled header (GCC's format): Simbody.h and the standard library, built once with exactly the flags
+# above. Other compilers read the headers as they are.
+set(SIMLAB_PCH_DEPENDS "")
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  configure_file(${PROJECT_SOURCE_DIR}/assignments/support/include/simlab/pch.h ${SIMLAB_PCH_HEADER} COPYONLY)
+  add_custom_command(
+    OUTPUT ${SIMLAB_PCH_HEADER}.gch
+    COMMAND ${SIMLAB_SUBMISSION_COMMAND}
+            -x c++-header ${SIMLAB_PCH_HEADER} -o ${SIMLAB_PCH_HEADER}.gch -MD -MF ${SIMLAB_PCH_HEADER}.d
+    DEPFILE ${SIMLAB_PCH_HEADER}.d
+    DEPENDS ${SIMLAB_PCH_HEADER}
+    COMMENT "Precompiling Simbody's headers for student code"
+    VERBATIM)
+  add_custom_target(simlab_pch ALL DEPENDS ${SIMLAB_PCH_HEADER}.gch)
+  list(APPEND SIMLAB_SUBMISSION_COMMAND -include ${SIMLAB_PCH_HEADER})
+  set(SIMLAB_PCH_DEPENDS simlab_pch ${SIMLAB_PCH_HEADER}.gch)
+endif()
+
+# simlab_compile_submission(<object> <source>): compile one student file with the submission command.
+function(simlab_compile_submission object source)
+  add_custom_command(
+    OUTPUT ${object}
+    COMMAND ${SIMLAB_SUBMISSION_COMMAND} -c ${source} -o ${object} -MD -MF ${object}.d
+    DEPFILE ${object}.d
+    DEPENDS ${source} ${SIMLAB_PCH_DEPENDS}
+    COMMENT "Compiling student file ${source}"
+    VERBATIM)
+endfunction()
+
+# JSON list of paths from a CMake list (generator expressions allowed).
+function(_simlab_json_list out)
+  set(${out} "[\"$<JOIN:${ARGN},\",\">\"]" PARENT_SCOPE)
+endfunction()
+
+# simlab_add_assignment(<id>
+#   TITLE <text>             what `simlab` calls it
+#   SOURCE <file name>       the one file a student writes (starter/<id>/<file>, solutions/<id>/<file>)
+#   PROGRAM <name>           the runnable lab program (course main + student file)
+#   MAIN <files...>          the course side of the program
+#   TESTS <files...>         visible grader tests (Catch2)
+#   HIDDEN_TESTS <files...>  hidden grader tests; absent from the student bundle, so optional
+#   RUBRIC <file>)           points and thresholds, one [[test]] per Catch2 test case
+function(simlab_add_assignment id)
+  cmake_parse_arguments(A "" "TITLE;SOURCE;PROGRAM;RUBRIC" "MAIN;TESTS;HIDDEN_TESTS" ${ARGN})
+  foreach(required TITLE SOURCE PROGRAM RUBRIC MAIN TESTS)
+    if(NOT A_${required})
+      message(FATAL_ERROR "simlab_add_assignment(${id}): ${required} is required")
+    endif()
+  endforeach()
+  set(dir ${CMAKE_CURRENT_SOURCE_DIR})
+  set(starter ${PROJECT_SOURCE_DIR}/starter/${id}/${A_SOURCE})
+  set(solution ${PROJECT_SOURCE_DIR}/solutions/${id}/${A_SOURCE})
+  if(NOT EXISTS ${starter})
+    message(FATAL_ERROR "simlab_add_assignment(${id}): no starter file ${starter}")
+  endif()
+
+  set(tests ${A_TESTS})
+  set(hidden_built false)
+  foreach(file IN LISTS A_HIDDEN_TESTS)
+    if(EXISTS ${dir}/${file})
+      list(APPEND tests ${file})
+      set(hidden_built true)
+    endif()
+  endforeach()
+
+  add_library(${id}_program_main OBJECT ${A_MAIN})
+  target_link_libraries(${id}_program_main PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
+
+  # The lab program, built from the student file in this tree (the starter unless told otherwise) ...
+  set(SIMLAB_${id}_SOURCE ${starter} CACHE FILEPATH "Student file the ${A_PROGRAM} program is built from")
+  set(object ${CMAKE_CURRENT_BINARY_DIR}/${A_PROGRAM}_student.o)
+  simlab_compile_submission(${object} ${SIMLAB_${id}_SOURCE})
+  add_executable(${A_PROGRAM} $<TARGET_OBJECTS:${id}_program_main> ${object})
+  target_link_libraries(${A_PROGRAM} PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
+  # ... and from the reference solution, where the tree has one (the student bundle does not).
+  set(reference_program "")
+  if(EXISTS ${solution})
+    set(object ${CMAKE_CURRENT_BINARY_DIR}/${A_PROGRAM}_reference.o)
+    simlab_compile_submission(${object} ${solution})
+    add_executable(${A_PROGRAM}-reference $<TARGET_OBJECTS:${id}_program_main> ${object})
+    target_link_libraries(${A_PROGRAM}-reference PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
+    set(reference_program $<TARGET_FILE:${A_PROGRAM}-reference>)
+  else()
+    set(solution "")
+  endif()
+  if(NOT SIMLAB_GRADER)
+    return()
+  endif()
+
+  # The grader's side, compiled once: the assignment's tests. Object libraries keep every Catch2 TEST_CASE
+  # registration in the link (a static archive would drop the unreferenced ones). The engine links graders on
+  # demand; this target makes sure everything they need is built.
+  add_library(${id}_grader_tests OBJECT ${tests})
+  target_link_libraries(${id}_grader_tests PRIVATE simlab_harness simlab_support Catch2::Catch2 ${Simbody_LIBRARIES})
+  add_custom_target(${id}_grader ALL DEPENDS ${id}_grader_tests ${id}_program_main ${SIMLAB_PCH_DEPENDS})
+
+  _simlab_json_list(grader_objects $<TARGET_OBJECTS:${id}_grader_tests>)
+  _simlab_json_list(program_objects $<TARGET_OBJECTS:${id}_program_main>)
+  set(json "{\"id\": \"${id}\", \"title\": \"${A_TITLE}\", \"source\": \"${A_SOURCE}\",
+    \"program\": \"${A_PROGRAM}\", \"program_path\": \"$<TARGET_FILE:${A_PROGRAM}>\",
+    \"reference_program_path\": \"${reference_program}\",
+    \"dir\": \"${dir}\", \"rubric\": \"${dir}/${A_RUBRIC}\",
+    \"starter\": \"${starter}\", \"solution\": \"${solution}\", \"hidden_tests_built\": ${hidden_built},
+    \"grader_objects\": ${grader_objects}, \"program_objects\": ${program_objects}}")
+  set_property(GLOBAL APPEND PROPERTY SIMLAB_ASSIGNMENTS ${id})
+  set_property(GLOBAL PROPERTY SIMLAB_ASSIGNMENT_${id} "${json}")
+endfunction()
+
+# simlab_write_manifest(): the build manifest the simlab engine reads to compile and link student code.
+function(simlab_write_manifest)
+  get_property(ids GLOBAL PROPERTY SIMLAB_ASSIGNMENTS)
+  set(entries "")
+  foreach(id IN LISTS ids)
+    get_property(json GLOBAL PROPERTY SIMLAB_ASSIGNMENT_${id})
+    list(APPEND entries "${json}")
+  endforeach()
+  list(JOIN entries ",\n    " entries)
+  _simlab_json_list(compile ${SIMLAB_SUBMISSION_COMMAND})
+  # Link order: student object, grader objects, then libraries from most to least dependent.
+  _simlab_json_list(grader_libraries
+    $<TARGET_OBJECTS:simlab_harness> $<TARGET_FILE:simlab_rubric> $<TARGET_FILE:simlab_support>
+    $<TARGET_FILE:Catch2::Catch2WithMain> $<TARGET_FILE:tomlplusplus::tomlplusplus>
+    $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
+  _simlab_json_list(program_libraries
+    $<TARGET_FILE:simlab_program> $<TARGET_FILE:simlab_support>
+    $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
+  file(GENERATE OUTPUT ${SIMLAB_MANIFEST} CONTENT "{
+  \"version\": \"${PROJECT_VERSION}\",
+  \"source_dir\": \"${PROJECT_SOURCE_DIR}\",
+  \"build_dir\": \"${PROJECT_BINARY_DIR}\",
+  \"sample_class\": \"${SIMLAB_SAMPLE_CLASS_DIR}\",
+  \"compile\": ${compile},
+  \"link\": [\"${CMAKE_CXX_COMPILER}\", \"-pthread\"],
+  \"grader_libraries\": ${grader_libraries},
+  \"program_libraries\": ${program_libraries},
+  \"assignments\": [
+    ${entries}
+  ]
+}
+")
+endfunction()

@@ -1,0 +1,54 @@
+// simlab build: the lab program built from any student file, the same way the grader builds it.
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "commands.h"
+#include "simlab/engine/build.h"
+#include "simlab/engine/errors.h"
+#include "simlab/engine/files.h"
+#include "simlab/engine/manifest.h"
+
+namespace simlab::cli {
+
+namespace {
+
+struct BuildOptions {
+    std::string assignment;
+    std::string source;
+    std::string output;
+};
+
+void runBuild(const BuildOptions& o) {
+    using namespace simlab::engine;
+    const Manifest manifest = loadManifest();
+    const Assignment& assignment = manifest.find(o.assignment);
+    const std::string source = o.source.empty() ? assignment.starter : o.source;
+    requireCppSource(source);
+    const std::string output = o.output.empty() ? assignment.program : o.output;
+    const std::filesystem::path parent = std::filesystem::absolute(output).parent_path();
+    if (!std::filesystem::is_directory(parent)) {
+        throw UsageError("cannot write '" + output + "': no directory " + parent.string());
+    }
+    const BuildResult result = Builder(manifest).buildProgram(assignment, source, output);
+    if (!result.ok) {
+        std::cerr << firstLines(result.log, 30);
+        throw UsageError(source + (result.stage == "link" ? " did not link" : " did not compile"));
+    }
+    std::cerr << result.warnings;
+    std::cout << "Built " << output << " from " << source << "; run ./" << output << " --help\n";
+}
+
+}  // namespace
+
+void addBuild(CLI::App& app) {
+    auto options = std::make_shared<BuildOptions>();
+    CLI::App* build = app.add_subcommand("build", "Build an assignment's lab program from a student file.");
+    build->add_option("assignment", options->assignment, "which assignment")->required();
+    build->add_option("source", options->source, "the student file (default: the starter in this tree)");
+    build->add_option("-o,--output", options->output, "the program to write (default: ./<program name>)");
+    build->callback([options] { runBuild(*options); });
+}
+
+}  // namespace simlab::cli

@@ -1,0 +1,74 @@
+// simlab check: a student's self-check on the visible tests (or, for instructors, on all of them).
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <memory>
+
+#include "commands.h"
+#include "simlab/cli_checks.h"
+#include "simlab/engine/errors.h"
+#include "simlab/engine/files.h"
+#include "simlab/engine/grade.h"
+#include "simlab/engine/manifest.h"
+#include "simlab/engine/report.h"
+
+namespace simlab::cli {
+
+namespace {
+
+struct CheckOptions {
+    std::string assignment;
+    std::string source;
+    std::string format = "text";
+    bool all = false;
+    double timeout = 0;
+    std::string rubric;
+};
+
+void runCheck(const CheckOptions& o) {
+    using namespace simlab::engine;
+    const Manifest manifest = loadManifest();
+    const Assignment& assignment = manifest.find(o.assignment);
+    const std::string source = o.source.empty() ? assignment.starter : o.source;
+    requireCppSource(source);
+    if (o.all && !assignment.hiddenTestsBuilt) {
+        throw UsageError("--all needs the hidden tests, which this copy of simlab does not have");
+    }
+    const Rubric rubric = loadRubric(o.rubric.empty() ? assignment.rubric : o.rubric);
+    GradeOptions options;
+    options.includeHidden = o.all;
+    if (o.timeout > 0) {
+        Limits limits = rubric.limits;
+        limits.wallSeconds = limits.cpuSeconds = o.timeout;
+        options.limits = limits;
+    }
+    if (o.format == "text") std::cerr << "Building " << source << " against the " << assignment.id << " grader...\n";
+    const Builder builder(manifest);
+    const GradeReport report = gradeSource(builder, assignment, rubric, source, options);
+    if (o.format == "json") {
+        std::cout << toGradescope(report).dump(2) << '\n';
+    } else {
+        std::cout << renderText(report);
+    }
+}
+
+}  // namespace
+
+void addCheck(CLI::App& app) {
+    auto options = std::make_shared<CheckOptions>();
+    CLI::App* check = app.add_subcommand(
+        "check", "Grade one file on the visible tests: builds it against the grader and runs each test in its own "
+                 "process. Exits 0 whenever grading happened, whatever the score.");
+    check->add_option("assignment", options->assignment, "which assignment (simlab list shows them)")->required();
+    check->add_option("source", options->source, "your file (default: the starter in this tree)");
+    check->add_option("--format", options->format, "text, or json: a Gradescope results.json on stdout")
+        ->check(CLI::IsMember({"text", "json"}))
+        ->capture_default_str();
+    check->add_flag("--all", options->all, "run the hidden tests too (instructors)");
+    check->add_option("--timeout", options->timeout, "seconds each test may run (default: the rubric's)")
+        ->check(simlab::positive());
+    check->add_option("--rubric", options->rubric, "another rubric file (default: the assignment's)")
+        ->check(CLI::ExistingFile);
+    check->callback([options] { runCheck(*options); });
+}
+
+}  // namespace simlab::cli

@@ -1,0 +1,41 @@
+// What a grader test case can say beyond pass or fail: the figure it measured, partial credit, feedback,
+// and the thresholds the rubric sets for it.
+//
+//     TEST_CASE("y at the final time has the target accuracy digits", "[apple]") {
+//         const double digits = ...;
+//         CHECK(grading::atLeast(digits, grading::param("floor"), grading::param("target"), "digits"));
+//     }
+//
+// Each test case runs in its own process under `simlab check` / `simlab grade`; a listener reports its result to
+// the engine through a private channel (see harness.cpp), never through the test's stdout.
+#pragma once
+
+#include <string>
+
+namespace simlab::grading {
+
+/// The rubric's number `key` for the running test (e.g. "target"). Throws if the rubric has none.
+double param(const std::string& key);
+
+/// Record the figure this test measured and the one line that explains it, e.g.
+/// measured(9.8, "digits", "9.8 digits, need 10"). The line is the test's reason in the report.
+void measured(double value, const std::string& unit, const std::string& text);
+
+/// Credit (0 to 1) the test earns if it fails. Without it a failing test earns nothing.
+void partialCredit(double fraction);
+
+/// A further line of feedback for the student, shown under the test.
+void feedback(const std::string& line);
+
+/// A figure that should reach `target` (digits, say): records it ("9.8 digits, need 10") and gives partial
+/// credit in proportion between `floor` (none) and `target` (full). Returns value >= target.
+bool atLeast(double value, double floor, double target, const std::string& unit);
+
+/// A figure that should not exceed `allowed`: records it as "<what> <value>, allowed <allowed>".
+/// Returns value <= allowed (false for NaN).
+bool atMost(double value, double allowed, const std::string& what);
+
+/// Format a number the way reports show it: 3 significant digits, scientific when small or large.
+std::string show(double value);
+
+}  // namespace simlab::grading

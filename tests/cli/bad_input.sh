@@ -1,0 +1,41 @@
+# Bad input to every command: a one-line error on stderr, a non-zero status, nothing on stdout, no hang.
+source "$(dirname "$0")/../smoke/lib.sh"
+
+expect_error() {  # expect_error DESCRIPTION PATTERN COMMAND...
+  local what=$1 pattern=$2; shift 2
+  timeout 60 "$@" >err.out 2>err.err </dev/null
+  local status=$?
+  if [[ $status -eq 0 || $status -eq 124 ]]; then fail "$what: status $status"; return; fi
+  if [[ $(wc -l <err.err) -ne 1 ]]; then fail "$what: stderr is not one line:"; cat err.err; return; fi
+  if ! grep -qE "$pattern" err.err; then fail "$what: stderr does not match '$pattern':"; cat err.err; return; fi
+  if [[ -s err.out ]]; then fail "$what: printed on stdout"; return; fi
+  pass "$what ($(cat err.err))"
+}
+
+echo 'int main() {}' >notes.txt
+mkdir folder
+expect_error "unknown assignment" "unknown assignment 'pear'; available: apple" "$SIMLAB" check pear
+expect_error "missing source file" "source file 'nope.cpp' does not exist" "$SIMLAB" check apple nope.cpp
+expect_error "non-C++ file" "is not a C\+\+ source file" "$SIMLAB" check apple notes.txt
+expect_error "a directory" "is a directory" "$SIMLAB" check apple folder
+expect_error "bad --format" "format" "$SIMLAB" check apple --format xml
+expect_error "bad --timeout" "timeout: must be a positive number, got -3" "$SIMLAB" check apple --timeout -3
+expect_error "no subcommand" "subcommand" "$SIMLAB"
+expect_error "unknown command" "unknown command 'frobnicate'; commands: check" "$SIMLAB" frobnicate
+expect_error "grade: missing folder" "no submissions folder" "$SIMLAB" grade apple no-such-folder
+expect_error "build: unknown assignment" "unknown assignment" "$SIMLAB" build pear
+expect_error "build: output in a missing folder" "no directory" "$SIMLAB" build apple -o no/such/dir/apple
+expect_error "rubric with a syntax error" "error in the rubric: .*bad.toml:1:" \
+  bash -c "echo 'assignment = ' >bad.toml && '$SIMLAB' check apple --rubric bad.toml"
+expect_error "apple: unknown integrator" "unknown integrator 'Euler'; choose one of: RungeKuttaMerson" \
+  "$BIN_DIR/apple-reference" --integrator Euler
+expect_error "apple: negative dt" "dt: must be a positive number, got -1" "$BIN_DIR/apple-reference" --dt -1
+expect_error "apple: dt beyond the final time" "dt must not exceed the final time" \
+  "$BIN_DIR/apple-reference" --dt 5 --final-time 4 --quiet
+expect_error "apple: results file in a missing folder" "cannot write results file" \
+  "$BIN_DIR/apple-reference" --output no/such/dir/results.txt
+if [[ $(id -u) -ne 0 ]]; then
+  echo 'int x;' >locked.cpp && chmod 000 locked.cpp
+  expect_error "unreadable source" "cannot read" "$SIMLAB" check apple locked.cpp
+fi
+finish

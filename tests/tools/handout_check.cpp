@@ -1,0 +1,169 @@
+// handout-check: runs the commands a handout shows and compares their output with what the handout prints, so
+// a handout cannot drift from the programs it describes.
+//
+// In a ```console block, a line "$ command" is a command and the lines after it, up to the next command, are its
+// expected output. A command shown without output is not run (building, opening a plot window). In expected
+// output, a line "..." stands for any number of lines and "..." inside a line for any text; trailing spaces are
+// ignored, and the exit status is not checked (a starter stopping at a TODO is the point of some examples).
+//
+// Commands run in a scratch folder laid out like the top of the simlab tree: build/bin holds the lab programs and
+// simlab, handouts/ is the real one. A block opened as ```console solution runs as if the student had finished:
+// build/bin/<program> is the program built from the reference solution, and the in-tree student file (what
+// `simlab check <id>` grades by default) is a copy of the solution.
+//
+//   handout-check HANDOUT.md
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "simlab/engine/files.h"
+#include "simlab/engine/manifest.h"
+#include "simlab/engine/process.h"
+
+namespace fs = std::filesystem;
+using namespace simlab::engine;
+
+namespace {
+
+struct Example {
+    int line = 0;  // of the command, in the handout
+    bool solution = false;
+    std::string command;
+    std::vector<std::string> expected;
+};
+
+std::string trimRight(std::string s) {
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\r')) s.pop_back();
+    return s;
+}
+
+std::vector<Example> parse(const std::string& path) {
+    std::ifstream in(path);
+    std::vector<Example> examples;
+    std::string line;
+    bool inBlock = false, solution = false;
+    int number = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        if (!inBlock && line.rfind("```console", 0) == 0) {
+            inBlock = true;
+            solution = line.find("solution") != std::string::npos;
+        } else if (inBlock && line.rfind("```", 0) == 0) {
+            inBlock = false;
+        } else if (inBlock && line.rfind("$ ", 0) == 0) {
+            examples.push_back({number, solution, line.substr(2), {}});
+        } else if (inBlock && !examples.empty()) {
+            examples.back().expected.push_back(trimRight(line));
+        }
+    }
+    return examples;
+}
+
+// `text` matches `pattern`, where "..." in the pattern matches any run of characters.
+bool lineMatches(const std::string& pattern, const std::string& text) {
+    const std::size_t wild = pattern.find("...");
+    if (wild == std::string::npos) return pattern == text;
+    if (text.compare(0, wild, pattern, 0, wild) != 0) return false;
+    const std::string rest = pattern.substr(wild + 3);
+    for (std::size_t at = wild; at <= text.size(); ++at) {
+        if (lineMatches(rest, text.substr(at))) return true;
+    }
+    return false;
+}
+
+// The lines match, a pattern line "..." standing for any number of lines.
+bool linesMatch(const std::vector<std::string>& pattern, std::size_t p, const std::vector<std::string>& text,
+                std::size_t t) {
+    if (p == pattern.size()) return t == text.size();
+    if (pattern[p] == "...") {
+        for (std::size_t skip = t; skip <= text.size(); ++skip) {
+            if (linesMatch(pattern, p + 1, text, skip)) return true;
+        }
+        return false;
+    }
+    return t < text.size() && lineMatches(pattern[p], text[t]) && linesMatch(pattern, p + 1, text, t + 1);
+}
+
+std::vector<std::string> splitLines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line)) lines.push_back(trimRight(line));
+    while (!lines.empty() && lines.back().empty()) lines.pop_back();
+    return lines;
+}
+
+// A scratch tree for one mode: build/bin with the programs, handouts/, and a manifest whose student files are
+// the starters (or copies of the solutions).
+void prepare(const Manifest& manifest, const std::string& root, bool solution) {
+    fs::create_directories(root + "/build/bin");
+    fs::create_symlink(manifest.sourceDir + "/handouts", root + "/handouts");
+    fs::create_symlink(manifest.buildDir + "/bin/simlab", root + "/build/bin/simlab");
+    nlohmann::json json = nlohmann::json::parse(readFile(manifest.path));
+    for (nlohmann::json& a : json["assignments"]) {
+        const std::string id = a["id"], program = a["program"], source = a["source"];
+        const std::string built = solution ? a["reference_program_path"] : a["program_path"];
+        if (solution && built.empty()) throw std::runtime_error("no reference solution for " + id);
+        fs::create_symlink(built, root + "/build/bin/" + program);
+        if (solution) {
+            const std::string copy = root + "/starter/" + id + "/" + source;
+            fs::create_directories(fs::path(copy).parent_path());
+            fs::copy_file(a["solution"].get<std::string>(), copy);
+            a["starter"] = copy;
+        }
+    }
+    writeFileAtomically(root + "/manifest.json", json.dump(2));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::cerr << "usage: handout-check HANDOUT.md\n";
+        return 2;
+    }
+    try {
+        const Manifest manifest = loadManifest();
+        const std::vector<Example> examples = parse(argv[1]);
+        TempDir scratch("simlab-handout-");
+        const std::string starterRoot = scratch.path() + "/starter-tree", solutionRoot = scratch.path() + "/solution-tree";
+        prepare(manifest, starterRoot, false);
+        prepare(manifest, solutionRoot, true);
+
+        int run = 0, failed = 0;
+        for (const Example& e : examples) {
+            if (e.expected.empty()) continue;
+            ++run;
+            const std::string root = e.solution ? solutionRoot : starterRoot;
+            ProcessRequest request;
+            request.argv = {"/bin/bash", "-c", e.command};
+            request.env = childEnvironment({"SIMLAB_MANIFEST=" + root + "/manifest.json", "LC_ALL=C"});
+            request.workDir = root;
+            request.limits.wallSeconds = request.limits.cpuSeconds = 120;
+            request.limits.processes = 64;
+            request.limits.memoryMiB = 8192;
+            request.keepOutput = 1 << 20;
+            const ProcessResult result = runProcess(request);
+            std::vector<std::string> expected = e.expected;
+            while (!expected.empty() && expected.back().empty()) expected.pop_back();
+            const std::vector<std::string> actual = splitLines(result.output);
+            if (linesMatch(expected, 0, actual, 0)) {
+                std::cout << "ok: line " << e.line << ": $ " << e.command << "\n";
+                continue;
+            }
+            ++failed;
+            std::cout << "MISMATCH: line " << e.line << ": $ " << e.command << "\n--- the handout shows:\n";
+            for (const std::string& l : expected) std::cout << l << "\n";
+            std::cout << "--- the command printed:\n" << result.output << "---\n";
+        }
+        std::cout << run << " examples run, " << failed << " differ\n";
+        return failed == 0 && run > 0 ? 0 : 1;
+    } catch (const std::exception& e) {
+        std::cerr << "handout-check: error: " << e.what() << '\n';
+        return 2;
+    }
+}

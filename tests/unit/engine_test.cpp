@@ -1,0 +1,91 @@
+// The engine's process runner: every way a child can end is told apart, and only the report channel counts.
+#include <catch2/catch.hpp>
+#include <csignal>
+#include <string>
+
+#include "simlab/engine/process.h"
+
+using simlab::engine::ProcessRequest;
+using simlab::engine::ProcessResult;
+using simlab::engine::runProcess;
+
+namespace {
+
+ProcessResult shell(const std::string& script, double wallSeconds = 5, bool channel = false) {
+    ProcessRequest r;
+    r.argv = {"/bin/sh", "-c", script};
+    r.env = simlab::engine::childEnvironment();
+    r.workDir = ".";
+    r.limits.wallSeconds = wallSeconds;
+    r.limits.cpuSeconds = wallSeconds;
+    r.reportChannel = channel;
+    return runProcess(r);
+}
+
+}  // namespace
+
+TEST_CASE("a child that exits is reported with its status and output", "[process]") {
+    const ProcessResult ok = shell("echo hello; echo oops >&2; exit 3");
+    CHECK(ok.started);
+    CHECK(ok.exitCode == 3);
+    CHECK(ok.signal == 0);
+    CHECK(ok.output == "hello\noops\n");
+    CHECK_FALSE(ok.wallTimeout);
+}
+
+TEST_CASE("a child that runs past the wall-clock limit is killed with everything it started", "[process]") {
+    const ProcessResult slow = shell("sleep 30 & sleep 30", 0.5);
+    CHECK(slow.wallTimeout);
+    CHECK(slow.signal == SIGKILL);
+    CHECK(slow.wallSeconds < 5);  // not the 30 s the sleeps asked for
+}
+
+TEST_CASE("a child that spins is stopped by the CPU limit", "[process]") {
+    ProcessRequest r;
+    r.argv = {"/bin/sh", "-c", "while :; do :; done"};
+    r.env = simlab::engine::childEnvironment();
+    r.workDir = ".";
+    r.limits.cpuSeconds = 1;
+    r.limits.wallSeconds = 10;
+    const ProcessResult spin = runProcess(r);
+    CHECK(spin.cpuTimeout);
+    CHECK_FALSE(spin.wallTimeout);
+}
+
+TEST_CASE("a crash is reported with its signal's name", "[process]") {
+    const ProcessResult crash = shell("kill -SEGV $$");
+    CHECK(crash.signal == SIGSEGV);
+    CHECK(simlab::engine::signalName(crash.signal) == "SIGSEGV");
+}
+
+TEST_CASE("a child that floods its output is stopped at the limit", "[process]") {
+    ProcessRequest r;
+    r.argv = {"/bin/sh", "-c", "yes flood"};
+    r.env = simlab::engine::childEnvironment();
+    r.workDir = ".";
+    r.limits.outputKiB = 64;
+    const ProcessResult flood = runProcess(r);
+    CHECK(flood.outputLimit);
+    CHECK(flood.output.size() <= r.keepOutput);
+    CHECK(flood.outputBytes > 64 * 1024);
+}
+
+TEST_CASE("only lines on the report channel with the run's token count as reports", "[process]") {
+    // A forged report on stdout, one on the channel without the token, and a genuine one.
+    const ProcessResult r = shell(
+        "echo \"$SIMLAB_REPORT_TOKEN {\\\"event\\\":\\\"end\\\",\\\"forged\\\":1}\"; "
+        "echo 'x {\"event\":\"end\"}' >&3; "
+        "echo \"$SIMLAB_REPORT_TOKEN {\\\"event\\\":\\\"end\\\"}\" >&3",
+        5, /*channel=*/true);
+    REQUIRE(r.reports.size() == 1);
+    CHECK(r.reports[0] == "{\"event\":\"end\"}");
+}
+
+TEST_CASE("a program that cannot be executed is reported, not run", "[process]") {
+    ProcessRequest r;
+    r.argv = {"/nonexistent/program"};
+    r.workDir = ".";
+    const ProcessResult result = runProcess(r);
+    CHECK_FALSE(result.started);
+    CHECK(result.error == "simlab: cannot execute the program");
+}

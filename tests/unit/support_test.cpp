@@ -1,0 +1,100 @@
+// The rest of the support library: run settings, the recorder, the results table, SIMLAB_TODO, and the
+// apple's exact solution.
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "apple/exact.h"
+#include "simlab/recorder.h"
+#include "simlab/results_table.h"
+#include "simlab/run_settings.h"
+#include "simlab/todo.h"
+
+TEST_CASE("samples fall on multiples of dt and the last one on the final time", "[settings]") {
+    simlab::RunSettings run;
+    run.finalTime = 4.0;
+    run.dt = 0.01;
+    CHECK(run.sampleCount() == 400);  // not 401, although 4 / 0.01 is 400.00000000000006 in doubles
+    CHECK(run.sampleTime(400) == 4.0);
+    run.finalTime = 5.23;
+    CHECK(run.sampleCount() == 523);
+    run.finalTime = 1.0;
+    run.dt = 0.3;
+    CHECK(run.sampleCount() == 4);
+    CHECK(run.sampleTime(3) == Approx(0.9));
+    CHECK(run.sampleTime(4) == 1.0);
+}
+
+TEST_CASE("unusable settings are refused with a message naming the setting", "[settings]") {
+    simlab::RunSettings run;
+    run.dt = 0;
+    CHECK_THROWS_WITH(simlab::validate(run), "dt must be a positive number of seconds");
+    run = {};
+    run.accuracy = 2;
+    CHECK_THROWS_WITH(simlab::validate(run), Catch::Contains("accuracy must be between 0 and 1"));
+    run = {};
+    run.integrator = "Euler";
+    CHECK_THROWS_WITH(simlab::validate(run), Catch::StartsWith("unknown integrator 'Euler'"));
+    run = {};
+    run.dt = 10;
+    CHECK_THROWS_WITH(simlab::validate(run), "dt must not exceed the final time");
+    CHECK_NOTHROW(simlab::validate(simlab::RunSettings{}));
+}
+
+TEST_CASE("the recorder keeps rows, tells its listener, and stops a loop that does not end", "[recorder]") {
+    int heard = 0;
+    simlab::Recorder<int> recorder([&](const int&) { ++heard; }, 3);
+    recorder.record(1);
+    recorder.record(2);
+    recorder.record(3);
+    CHECK(recorder.rows() == std::vector<int>{1, 2, 3});
+    CHECK(heard == 3);
+    CHECK_THROWS_WITH(recorder.record(4), Catch::Contains("does the stepping loop stop at the final time?"));
+}
+
+TEST_CASE("the results file holds every value at full double precision", "[results]") {
+    const std::string path = "simlab-results-test.txt";
+    std::ostringstream screen;
+    {
+        simlab::ResultsTable table({"time", "yLocation"}, path, &screen);
+        table.add({0.1, -68.40000000000012});
+    }
+    std::ifstream in(path);
+    std::string header, t, y;
+    std::getline(in, header);
+    in >> t >> y;
+    CHECK(header == "time\tyLocation");
+    CHECK(std::stod(y) == -68.40000000000012);  // round-trips exactly
+    CHECK(screen.str().find("yLocation") != std::string::npos);
+    std::remove(path.c_str());
+}
+
+TEST_CASE("a results file that cannot be written is an error saying why", "[results]") {
+    CHECK_THROWS_WITH(simlab::ResultsTable({"time"}, "/nonexistent-dir/results.txt", nullptr),
+                      "cannot write results file '/nonexistent-dir/results.txt': No such file or directory");
+}
+
+TEST_CASE("SIMLAB_TODO stops with the file, the line and the task", "[todo]") {
+    try {
+        SIMLAB_TODO("build the model");
+        FAIL("SIMLAB_TODO returned");
+    } catch (const simlab::NotDoneYet& e) {
+        CHECK(e.file() == "support_test.cpp");
+        CHECK(e.task() == "build the model");
+        CHECK(std::string(e.what()) == "not done yet (support_test.cpp:" + std::to_string(e.line()) + "): build the model");
+    }
+}
+
+TEST_CASE("the apple's exact fall reaches -68.4 m at 4 s with its energy unchanged", "[exact]") {
+    const apple::Scene scene;  // 0.142 kg from 10 m, g = 9.8 m/s^2
+    CHECK(apple::exact::yLocation(scene, 0) == 10.0);
+    CHECK(apple::exact::yLocation(scene, 4) == Approx(-68.4).epsilon(1e-15));
+    CHECK(apple::exact::yVelocity(scene, 4) == Approx(-39.2).epsilon(1e-15));
+    // Energy: m g y + m v^2 / 2 at t = 4 equals m g h.
+    const double y = apple::exact::yLocation(scene, 4), v = apple::exact::yVelocity(scene, 4);
+    CHECK(scene.mass * scene.gravity * y + 0.5 * scene.mass * v * v ==
+          Approx(apple::exact::mechanicalEnergy(scene)).epsilon(1e-14));
+    CHECK(apple::exact::mechanicalEnergy(scene) == Approx(13.916));
+}
