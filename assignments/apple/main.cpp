@@ -39,8 +39,12 @@ int runOnce(const Options& o) {
                 run.finalTime);
     apple::Model model;
     simlab::RunHooks<apple::Model> hooks;
+    std::function<void()> finishAnimation;
     if (o.program.animate) {
-        hooks.afterBuild = [&](apple::Model& m) { simlab::attachVisualizer(m.system, 1.0 / 30, o.scene.radius); };
+        hooks.afterBuild = [&](apple::Model& m) {
+            finishAnimation = simlab::attachVisualizer(m.system, 1.0 / 30, o.scene.radius);
+        };
+        hooks.afterRun = [&](const apple::Model&, const SimTK::Integrator&) { finishAnimation(); };
     }
     const auto result = simlab::run<apple::Sample>(
         o.scene, model, run, [&](const apple::Sample& s) { table.add(resultsRow(o.scene, s)); }, hooks);

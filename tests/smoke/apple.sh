@@ -35,6 +35,13 @@ if command -v gnuplot >/dev/null; then
   check "the handout's gnuplot script plots the results file" test -s apple.png -a "$(status_of plot)" -eq 0
 fi
 
+if command -v xvfb-run >/dev/null; then
+  run_capture animate timeout 120 xvfb-run -a "$apple" --animate --final-time 0.3 --quiet --output animate.txt
+  check "--animate plays the fall in Simbody's visualizer on an off-screen display" test "$(status_of animate)" -eq 0
+fi
+DISPLAY= run_capture no_display "$apple" --animate --quiet --output no-display.txt
+check "--animate without a display is a one-line error" grep -q 'needs a display' no_display.err
+
 run_capture help "$apple" --help
 check "--help works" test "$(status_of help)" -eq 0
 finish

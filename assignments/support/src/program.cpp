@@ -137,10 +137,11 @@ private:
 
 }  // namespace
 
-void attachVisualizer(SimTK::MultibodySystem& system, double frameInterval, double radius) {
-    if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY")) {
-        throw std::runtime_error("--animate needs a display and DISPLAY is not set (over ssh use -X; headless, "
-                                 "run under xvfb-run)");
+std::function<void()> attachVisualizer(SimTK::MultibodySystem& system, double frameInterval, double radius) {
+    const char* display = std::getenv("DISPLAY");
+    if (!display || !*display) {
+        throw std::runtime_error("--animate needs a display and DISPLAY is not set (over ssh use -X; without a "
+                                 "screen, run under xvfb-run)");
     }
     // Debian installs the visualizer as simbody-visualizer; without this Simbody looks for a _d variant.
     setenv("SIMBODY_VISUALIZER_NAME", "simbody-visualizer", /*overwrite=*/0);
@@ -149,6 +150,7 @@ void attachVisualizer(SimTK::MultibodySystem& system, double frameInterval, doub
     visualizer.setShowSimTime(true);
     visualizer.addDecorationGenerator(new BodySpheres(system.getMatterSubsystem(), radius));
     system.addEventReporter(new SimTK::Visualizer::Reporter(visualizer, frameInterval));  // the system adopts it
+    return [visualizer] { visualizer.flushFrames(); };
 }
 
 }  // namespace simlab

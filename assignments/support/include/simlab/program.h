@@ -52,7 +52,9 @@ void printTrade(std::ostream& out, const RunSettings& base, const std::string& f
 
 /// Adds a Simbody visualizer to `system` (call before its topology is realized) that draws every body as a
 /// sphere of `radius` m and shows a frame every `frameInterval` s of simulated time, in real time. Needs a
-/// display; throws std::runtime_error saying so if there is none.
-void attachVisualizer(SimTK::MultibodySystem& system, double frameInterval, double radius);
+/// display; throws std::runtime_error saying so if there is none. The visualizer plays behind the simulation:
+/// call the returned function once the simulation is over to wait for the last frame, while `system` still
+/// exists.
+std::function<void()> attachVisualizer(SimTK::MultibodySystem& system, double frameInterval, double radius);
 
 }  // namespace simlab
