@@ -51,7 +51,11 @@ endfunction()
 
 # JSON list of paths from a CMake list (generator expressions allowed).
 function(_simlab_json_list out)
-  set(${out} "[\"$<JOIN:${ARGN},\",\">\"]" PARENT_SCOPE)
+  if(ARGN)
+    set(${out} "[\"$<JOIN:${ARGN},\",\">\"]" PARENT_SCOPE)
+  else()
+    set(${out} "[]" PARENT_SCOPE)
+  endif()
 endfunction()
 
 # simlab_add_assignment(<id>
@@ -78,7 +82,9 @@ function(simlab_add_assignment id)
 
   set(tests ${A_TESTS})
   set(hidden_built false)
+  set(hidden_paths "")
   foreach(file IN LISTS A_HIDDEN_TESTS)
+    list(APPEND hidden_paths ${dir}/${file})
     if(EXISTS ${dir}/${file})
       list(APPEND tests ${file})
       set(hidden_built true)
@@ -118,11 +124,13 @@ function(simlab_add_assignment id)
 
   _simlab_json_list(grader_objects $<TARGET_OBJECTS:${id}_grader_tests>)
   _simlab_json_list(program_objects $<TARGET_OBJECTS:${id}_program_main>)
+  _simlab_json_list(hidden_tests ${hidden_paths})
   set(json "{\"id\": \"${id}\", \"title\": \"${A_TITLE}\", \"source\": \"${A_SOURCE}\",
     \"program\": \"${A_PROGRAM}\", \"program_path\": \"$<TARGET_FILE:${A_PROGRAM}>\",
     \"reference_program_path\": \"${reference_program}\",
     \"dir\": \"${dir}\", \"rubric\": \"${dir}/${A_RUBRIC}\",
     \"starter\": \"${starter}\", \"solution\": \"${solution}\", \"hidden_tests_built\": ${hidden_built},
+    \"hidden_tests\": ${hidden_tests},
     \"grader_objects\": ${grader_objects}, \"program_objects\": ${program_objects}}")
   set_property(GLOBAL APPEND PROPERTY SIMLAB_ASSIGNMENTS ${id})
   set_property(GLOBAL PROPERTY SIMLAB_ASSIGNMENT_${id} "${json}")

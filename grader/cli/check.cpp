@@ -22,6 +22,7 @@ struct CheckOptions {
     bool all = false;
     double timeout = 0;
     std::string rubric;
+    std::vector<std::string> tests;
 };
 
 void runCheck(const CheckOptions& o) {
@@ -36,10 +37,14 @@ void runCheck(const CheckOptions& o) {
     const Rubric rubric = loadRubric(o.rubric.empty() ? assignment.rubric : o.rubric);
     GradeOptions options;
     options.includeHidden = o.all;
+    options.onlyTests = o.tests;
     if (o.timeout > 0) {
         Limits limits = rubric.limits;
         limits.wallSeconds = limits.cpuSeconds = o.timeout;
         options.limits = limits;
+    }
+    for (const std::string& name : o.tests) {
+        if (!rubric.find(name)) throw UsageError("no test named '" + name + "' in " + rubric.path);
     }
     if (o.format == "text") std::cerr << "Building " << source << " against the " << assignment.id << " grader...\n";
     const Builder builder(manifest);
@@ -66,6 +71,7 @@ void addCheck(CLI::App& app) {
     check->add_flag("--all", options->all, "run the hidden tests too (instructors)");
     check->add_option("--timeout", options->timeout, "seconds each test may run (default: the rubric's)")
         ->check(simlab::positive());
+    check->add_option("--test", options->tests, "run only the test of this name (repeatable)");
     check->add_option("--rubric", options->rubric, "another rubric file (default: the assignment's)")
         ->check(CLI::ExistingFile);
     check->callback([options] { runCheck(*options); });

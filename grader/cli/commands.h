@@ -12,5 +12,7 @@ void addCheck(CLI::App& app);
 void addGrade(CLI::App& app);
 void addBuild(CLI::App& app);
 void addList(CLI::App& app);
+void addPackage(CLI::App& app);
+void addAutograde(CLI::App& app);
 
 }  // namespace simlab::cli

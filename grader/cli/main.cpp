@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
     simlab::cli::addGrade(app);
     simlab::cli::addBuild(app);
     simlab::cli::addList(app);
+    simlab::cli::addPackage(app);
+    simlab::cli::addAutograde(app);
     // CLI11 would call an unknown command a missing one; say what it is.
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;

@@ -79,6 +79,15 @@ std::string Builder::objectKey(const std::string& sourceText) const {
     return h.hex();
 }
 
+std::string Builder::graderKey(const Assignment& assignment) const {
+    Hash h;
+    h.add(objectKey(""));
+    for (const std::string& part : manifest_.link) h.add(part);
+    for (const std::string& file : assignment.graderObjects) h.addFileStamp(file);
+    for (const std::string& file : manifest_.graderLibraries) h.addFileStamp(file);
+    return h.hex();
+}
+
 BuildResult Builder::compile(const std::string& source, const std::string& workDir, std::string* object) const {
     BuildResult result;
     result.stage = "compile";

@@ -1,10 +1,12 @@
 #include "simlab/engine/grade.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/process.h"
 
@@ -79,6 +81,8 @@ TestResult interpret(const RubricTest& test, const ProcessResult& run, const Lim
         } else {
             t.reason = "did not finish: the process exited with status " + std::to_string(run.exitCode) +
                        (reported.started ? " before the test reported its end" : " before the test started");
+            const std::string firstLine = run.output.substr(0, run.output.find('\n'));
+            if (!reported.started && !firstLine.empty()) t.reason += " (" + firstLine + ")";
         }
     } else {
         const nlohmann::json& end = *reported.end;
@@ -112,8 +116,42 @@ std::string outcomeName(Outcome outcome) {
         case Outcome::OutputTruncated: return "output truncated";
         case Outcome::DidNotFinish: return "did not finish";
         case Outcome::DidNotCompile: return "did not compile";
+        case Outcome::MissingFile: return "missing file";
     }
     return "unknown";
+}
+
+Outcome outcomeNamed(const std::string& name) {
+    for (Outcome o : {Outcome::Passed, Outcome::Failed, Outcome::TimedOut, Outcome::OutOfMemory, Outcome::Crashed,
+                      Outcome::OutputTruncated, Outcome::DidNotFinish, Outcome::DidNotCompile, Outcome::MissingFile}) {
+        if (outcomeName(o) == name) return o;
+    }
+    throw std::invalid_argument("unknown outcome '" + name + "'");
+}
+
+GradeReport missingReport(const Assignment& assignment, const Rubric& rubric, const std::string& note,
+                          bool includeHidden) {
+    GradeReport report;
+    report.assignment = assignment.id;
+    report.title = assignment.title;
+    report.status = "missing file";
+    report.note = note;
+    report.build.stage = "missing";
+    for (const RubricTest& test : rubric.tests) {
+        if (!includeHidden && !test.visible()) {
+            ++report.notRunCount;
+            report.notRunPoints += test.points;
+            continue;
+        }
+        TestResult t;
+        t.name = test.name;
+        t.visibility = test.visibility;
+        t.maxScore = test.points;
+        t.outcome = Outcome::MissingFile;
+        t.reason = note;
+        report.tests.push_back(t);
+    }
+    return report;
 }
 
 double roundScore(double points) { return std::round(points * 100.0) / 100.0; }
@@ -139,8 +177,16 @@ GradeReport gradeSource(const Builder& builder, const Assignment& assignment, co
     report.title = assignment.title;
     report.source = source;
 
+    for (const std::string& name : options.onlyTests) {
+        if (!rubric.find(name)) throw UsageError("no test named '" + name + "' in " + rubric.path);
+    }
+    auto wanted = [&](const RubricTest& test) {
+        return options.onlyTests.empty() ||
+               std::find(options.onlyTests.begin(), options.onlyTests.end(), test.name) != options.onlyTests.end();
+    };
     std::vector<const RubricTest*> selected;
     for (const RubricTest& test : rubric.tests) {
+        if (!wanted(test)) continue;
         if (options.includeHidden || test.visible()) {
             selected.push_back(&test);
         } else {
@@ -154,23 +200,32 @@ GradeReport gradeSource(const Builder& builder, const Assignment& assignment, co
     const Limits limits = options.limits.value_or(rubric.limits);
 
     if (report.build.ok) {
+        // The sandbox lends each test the grader and the rubric, read-only, and an empty directory of its own.
         const std::string rubricCopy = work.path() + "/rubric.toml";
         writeFileAtomically(rubricCopy, readFile(rubric.path));
+        fs::permissions(work.path(), fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                         fs::perms::others_read | fs::perms::others_exec);
         int index = 0;
         for (const RubricTest* test : selected) {
-            // Each test case starts in an empty directory of its own.
             const std::string dir = work.path() + "/test" + std::to_string(++index);
             fs::create_directory(dir);
             ProcessRequest request;
             request.argv = {report.build.binary, test->name, "--use-colour", "no"};
-            request.env = childEnvironment({"SIMLAB_RUBRIC=" + rubricCopy});
+            request.env = {"PATH=/usr/bin:/bin", "HOME=" + dir, "TMPDIR=/tmp", "LC_ALL=C",
+                           "SIMLAB_RUBRIC=" + rubricCopy};
             request.workDir = dir;
             request.limits = limits;
             request.reportChannel = true;
-            report.tests.push_back(interpret(*test, runProcess(request), limits));
+            request.isolate = true;
+            request.readOnlyPaths = {work.path()};
+            request.slot = options.slot;
+            const ProcessResult run = runProcess(request);
+            if (run.interrupted) throw Interrupted();
+            report.tests.push_back(interpret(*test, run, limits));
         }
     } else {
         const std::string reason = report.build.stage == "link" ? "did not link" : "did not compile";
+        report.status = reason;
         for (const RubricTest* test : selected) {
             TestResult t;
             t.name = test->name;

@@ -58,6 +58,7 @@ Manifest loadManifest(const std::string& path) {
             x.starter = a.at("starter");
             x.solution = a.at("solution");
             x.hiddenTestsBuilt = a.at("hidden_tests_built");
+            x.hiddenTests = a.at("hidden_tests").get<std::vector<std::string>>();
             x.graderObjects = a.at("grader_objects").get<std::vector<std::string>>();
             x.programObjects = a.at("program_objects").get<std::vector<std::string>>();
             m.assignments.push_back(std::move(x));

@@ -10,7 +10,9 @@ namespace {
 
 std::string buildLine(const BuildResult& b) {
     char text[160];
-    if (!b.ok) {
+    if (b.stage == "missing") {
+        std::snprintf(text, sizeof text, "nothing to build");
+    } else if (!b.ok) {
         std::snprintf(text, sizeof text, "%s", b.stage == "link" ? "did not link" : "did not compile");
     } else if (b.cached) {
         std::snprintf(text, sizeof text, "compiled (unchanged since last time), linked in %.1f s", b.linkSeconds);
@@ -49,7 +51,8 @@ std::string points(double value) {
 
 std::string renderText(const GradeReport& r) {
     std::ostringstream out;
-    out << r.title << " (" << r.assignment << "): " << r.source << "\n";
+    out << r.title << " (" << r.assignment << "): " << (r.source.empty() ? "no file" : r.source) << "\n";
+    if (!r.note.empty()) out << "  " << r.note << "\n";
     out << "  " << buildLine(r.build) << "\n";
     if (!r.build.ok) out << indent(firstLines(r.build.log, 12), "    | ");
     const std::string* previous = nullptr;
@@ -59,11 +62,10 @@ std::string renderText(const GradeReport& r) {
                       outcomeName(t.outcome).c_str());
         out << head << t.name;
         // A failure that stops every test (a SIMLAB_TODO in buildModel, say) is spelled out once.
-        if (!t.reason.empty() && t.outcome != Outcome::DidNotCompile && t.outcome != Outcome::Passed) {
-            out << ": " << (previous && *previous == t.reason ? "(the same)" : t.reason);
-            previous = &t.reason;
-        } else if (!t.reason.empty() && t.outcome == Outcome::Passed) {
-            out << ": " << t.reason;
+        if (!t.reason.empty() && t.outcome != Outcome::DidNotCompile) {
+            const bool repeated = t.outcome != Outcome::Passed && previous && *previous == t.reason;
+            out << ": " << (repeated ? "(the same)" : t.reason);
+            if (t.outcome != Outcome::Passed) previous = &t.reason;
         }
         out << "\n";
         for (const std::string& line : t.feedback) out << "                            - " << line << "\n";
@@ -94,7 +96,8 @@ nlohmann::json toGradescope(const GradeReport& r) {
         }
         tests.push_back(test);
     }
-    std::string output = buildLine(r.build) + "\n";
+    std::string output = r.note.empty() ? "" : r.note + "\n";
+    output += buildLine(r.build) + "\n";
     if (!r.build.ok) output += firstLines(r.build.log, 20);
     const std::string left = notRunLine(r);
     if (!left.empty()) output += left + "\n";
@@ -105,6 +108,7 @@ nlohmann::json toGradescope(const GradeReport& r) {
             {"tests", tests},
             {"extra_data",
              {{"assignment", r.assignment},
+              {"status", r.status},
               {"max_score", r.maxScore()},
               {"hidden_tests_not_run", r.notRunCount},
               {"hidden_points_not_run", r.notRunPoints}}}};

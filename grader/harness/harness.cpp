@@ -1,13 +1,15 @@
 // The grader's side of every test process: the grading API and the Catch2 listener that reports results.
 //
-// The report channel. The engine starts each test case as its own process with two environment variables:
-// SIMLAB_REPORT_FD, a pipe only the engine reads, and SIMLAB_REPORT_TOKEN, a random string. Before any test
-// runs, the listener moves the pipe to a high descriptor, marks it close-on-exec and erases both variables.
-// It writes one line per event, "<token> <json>": "start" when the test case begins and "end", with the verdict,
-// when Catch2 has finished it. Student code shares the process, but nothing it prints reaches the pipe, a file
-// it writes is never read, and exiting early - exit(0) inside a student function, say - leaves the test without
-// its "end" line, which the engine scores as not finished. Run by hand, without the variables, the test binary
-// is an ordinary Catch2 program.
+// The report channel. The engine starts each test case as its own process with a pipe only the engine reads
+// (descriptor SIMLAB_REPORT_FD) and a second pipe carrying a random token (descriptor SIMLAB_TOKEN_FD). A
+// constructor that runs before any other static initializer - before any of the student's code - reads the
+// token, closes its pipe, and moves the report pipe to a high close-on-exec descriptor. The harness then writes
+// one line per event, "<token> <json>": "start" when a test case begins and "end", with the verdict, when Catch2
+// has finished it. Student code shares the process, but nothing it prints reaches the pipe, a file it writes is
+// never read, and exiting early - exit(0) inside a student function, say - leaves the test without its "end"
+// line, which the engine scores as not finished. (Code that searches the process's memory for the token is a
+// deliberate attack, out of reach of any in-process harness; that is what hidden variants and reading the code
+// are for.) Run by hand, without the pipes, the test binary is an ordinary Catch2 program.
 // Listeners are part of Catch2's "external interfaces", declared only on request.
 #define CATCH_CONFIG_EXTERNAL_INTERFACES
 #include <catch2/catch.hpp>
@@ -69,18 +71,27 @@ void onOutOfMemory() {
     std::_Exit(137);
 }
 
-void openChannel() {
-    const char* fd = std::getenv("SIMLAB_REPORT_FD");
-    const char* token = std::getenv("SIMLAB_REPORT_TOKEN");
-    if (!fd || !token) return;
-    const int inherited = std::atoi(fd);
+std::string readToken(int fd) {
+    std::string token;
+    char c = 0;
+    while (token.size() < 128 && ::read(fd, &c, 1) == 1 && c != '\n') token += c;
+    ::close(fd);
+    return token;
+}
+
+// Runs before the default-priority static initializers of every translation unit, the student's included.
+__attribute__((constructor(101))) void openChannel() {
+    const char* reportFd = std::getenv("SIMLAB_REPORT_FD");
+    const char* tokenFd = std::getenv("SIMLAB_TOKEN_FD");
+    if (!reportFd || !tokenFd) return;
+    const int inherited = std::atoi(reportFd);
     Channel& c = channel();
+    c.token = readToken(std::atoi(tokenFd));
     c.fd = ::fcntl(inherited, F_DUPFD_CLOEXEC, 200);
     if (inherited != c.fd) ::close(inherited);
-    c.token = token;
     c.memoryLine = c.token + " {\"event\":\"memory\"}\n";
     ::unsetenv("SIMLAB_REPORT_FD");
-    ::unsetenv("SIMLAB_REPORT_TOKEN");
+    ::unsetenv("SIMLAB_TOKEN_FD");
     std::set_new_handler(onOutOfMemory);
 }
 
@@ -165,11 +176,6 @@ namespace {
 
 struct Listener : Catch::TestEventListenerBase {
     using TestEventListenerBase::TestEventListenerBase;
-
-    void testRunStarting(const Catch::TestRunInfo& info) override {
-        openChannel();
-        TestEventListenerBase::testRunStarting(info);
-    }
 
     void testCaseStarting(const Catch::TestCaseInfo& info) override {
         verdict() = Verdict{};

@@ -25,6 +25,7 @@ TEST_CASE("digits are capped at double precision", "[digits]") {
 
 TEST_CASE("digits are never negative and NaN scores none", "[digits]") {
     CHECK(accuracyDigits(88.4, -68.4) == 0.0);  // gravity with the wrong sign
+    CHECK_FALSE(std::signbit(accuracyDigits(2.0, 1.0)));  // an error as large as the value: 0, not -0
     CHECK(accuracyDigits(std::nan(""), -68.4) == 0.0);
     CHECK(accuracyDigits(std::numeric_limits<double>::infinity(), 1.0) == 0.0);
 }

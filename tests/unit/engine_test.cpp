@@ -71,11 +71,12 @@ TEST_CASE("a child that floods its output is stopped at the limit", "[process]")
 }
 
 TEST_CASE("only lines on the report channel with the run's token count as reports", "[process]") {
-    // A forged report on stdout, one on the channel without the token, and a genuine one.
+    // The token comes on fd 4. A forged report on stdout, one on the channel without the token, and a genuine one.
     const ProcessResult r = shell(
-        "echo \"$SIMLAB_REPORT_TOKEN {\\\"event\\\":\\\"end\\\",\\\"forged\\\":1}\"; "
+        "read token <&4; "
+        "echo \"$token {\\\"event\\\":\\\"end\\\",\\\"forged\\\":1}\"; "
         "echo 'x {\"event\":\"end\"}' >&3; "
-        "echo \"$SIMLAB_REPORT_TOKEN {\\\"event\\\":\\\"end\\\"}\" >&3",
+        "echo \"$token {\\\"event\\\":\\\"end\\\"}\" >&3",
         5, /*channel=*/true);
     REQUIRE(r.reports.size() == 1);
     CHECK(r.reports[0] == "{\"event\":\"end\"}");

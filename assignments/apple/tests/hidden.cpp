@@ -46,7 +46,7 @@ TEST_CASE("hidden: other masses keep the energy at m g h", "[apple][hidden]") {
         worst = std::max(worst, energyDrift(s, simulate(s)));
     }
     CHECK(grading::atMost(worst, grading::param("tolerance") * defaultRunSettings().accuracy,
-                          "relative drift from m g h"));
+                          "relative energy drift"));
 }
 
 TEST_CASE("hidden: extreme settings keep the fall accurate", "[apple][hidden]") {

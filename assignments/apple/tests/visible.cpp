@@ -85,7 +85,7 @@ TEST_CASE("the mechanical energy stays at m g h", "[apple][energy]") {
     const Run run = simulate(scene, settings);
     finalSample(run, settings);
     const double allowed = grading::param("tolerance") * settings.accuracy;
-    CHECK(grading::atMost(energyDrift(scene, run), allowed, "relative drift from m g h"));
+    CHECK(grading::atMost(energyDrift(scene, run), allowed, "relative energy drift"));
 }
 
 TEST_CASE("the model has only the one degree of freedom a fall needs", "[apple][model]") {

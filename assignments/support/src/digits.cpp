@@ -14,7 +14,8 @@ double accuracyDigits(double simulated, double exact, double scale) {
     if (error == 0.0) return kMaxDigits;
     const double reference = std::max(std::abs(exact), std::abs(scale));
     if (reference == 0.0) return 0.0;
-    return std::clamp(-std::log10(error / reference), 0.0, kMaxDigits);
+    const double digits = -std::log10(error / reference);
+    return digits > 0 ? std::min(digits, kMaxDigits) : 0.0;  // never -0
 }
 
 }  // namespace simlab

@@ -30,6 +30,9 @@ public:
     BuildResult buildProgram(const Assignment& assignment, const std::string& source, const std::string& output) const;
     /// Key of a source file's object in the cache: its content, the compile command and the precompiled header.
     std::string objectKey(const std::string& sourceText) const;
+    /// Changes whenever the grader a submission is linked with might: the compile and link commands, the
+    /// precompiled header, the assignment's test objects and the libraries (by path, size and time stamp).
+    std::string graderKey(const Assignment& assignment) const;
 
 private:
     BuildResult compile(const std::string& source, const std::string& workDir, std::string* object) const;

@@ -12,4 +12,10 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+/// Grading was interrupted (Ctrl-C, SIGTERM) before it finished; nothing of the unfinished submission is kept.
+class Interrupted : public std::runtime_error {
+public:
+    Interrupted() : std::runtime_error("interrupted") {}
+};
+
 }  // namespace simlab::engine

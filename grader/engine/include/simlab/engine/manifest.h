@@ -19,6 +19,7 @@ struct Assignment {
     std::string starter;
     std::string solution;          ///< empty in the student bundle
     bool hiddenTestsBuilt = false;
+    std::vector<std::string> hiddenTests;  ///< the hidden tests' source files (absent from the student bundle)
     std::vector<std::string> graderObjects;
     std::vector<std::string> programObjects;
 };

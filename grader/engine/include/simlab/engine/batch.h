@@ -1,0 +1,87 @@
+// Grading a class: every student's folder, in parallel, resumable, with a gradebook and a summary.
+//
+// Output folder layout:
+//     gradebook.csv                  student, score, max, status, then the points of each test
+//     summary.csv                    per test: pass rate and the spread of what it measured
+//     students/<id>/results.json     Gradescope's schema
+//     students/<id>/feedback.md      what the student reads
+//     students/<id>/record.json      what simlab keeps to resume: the grade and the key it was made with
+// Each student's files are written atomically as they finish, record.json last, and gradebook.csv is rewritten
+// (atomically) from the records after each one. A run killed at any moment loses at most the students being
+// graded; the next run regrades exactly those whose record is missing or whose key changed (the submission's
+// content, the grader, the rubric or the limits).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "simlab/engine/grade.h"
+
+namespace simlab::engine {
+
+/// Which file of a student's folder is graded.
+struct Submission {
+    std::string file;    ///< empty when none was found
+    std::string status;  ///< "graded", "misnamed file" (the one C++ file there is graded) or "missing file"
+    std::string note;    ///< e.g. "graded apple.cpp; expected NewtonsApple.cpp"
+};
+
+/// Look for `expected` in `folder` (and its subfolders when `recursive`); failing that, a lone C++ file.
+Submission findSubmission(const std::string& folder, const std::string& expected, bool recursive);
+
+/// A student's grade as kept in record.json and shown in the gradebook.
+struct StudentRecord {
+    std::string id;
+    std::string key;     ///< what the grade was made from; a different key means regrade
+    std::string status;  ///< graded, misnamed file, missing file, did not compile, did not link
+    std::string note;
+    std::string file;    ///< the file graded, relative to the student's folder
+    double score = 0;
+    double maxScore = 0;
+    double seconds = 0;
+    std::vector<TestResult> tests;
+};
+
+struct ClassProgress {
+    int done = 0;     ///< students finished, reused ones included
+    int total = 0;
+    int reused = 0;   ///< unchanged since the last run: not regraded
+    double elapsed = 0;
+    double eta = -1;  ///< seconds left, once it can be estimated
+    const StudentRecord* last = nullptr;  ///< the student just finished
+    bool lastReused = false;
+};
+
+struct ClassOptions {
+    int jobs = 1;
+    std::vector<std::string> only;  ///< regrade just these students; keep everyone else's row
+    GradeOptions grade;             ///< per submission (limits, work folder)
+};
+
+/// Grade every student folder of `submissionsDir` into `outDir`. Returns the records of every student in the
+/// folder, sorted by id, including those reused from an earlier run. Throws Interrupted after writing what
+/// finished if interruptChildren() was called.
+std::vector<StudentRecord> gradeClass(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
+                                      const std::string& submissionsDir, const std::string& outDir,
+                                      const ClassOptions& options,
+                                      const std::function<void(const ClassProgress&)>& onProgress);
+
+/// The class summary, per test: pass rate and median, min and max of its measured figure. As a text table and
+/// as CSV (what summary.csv holds).
+std::string summaryTable(const Rubric& rubric, const std::vector<StudentRecord>& records);
+std::string summaryCsv(const Rubric& rubric, const std::vector<StudentRecord>& records);
+
+/// JUnit XML: one test suite per student, one test case per test.
+std::string junitXml(const Assignment& assignment, const std::vector<StudentRecord>& records);
+
+/// What a student reads: each test with its points, outcome and reason, and how to reproduce it.
+std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& record);
+
+/// Grade one student folder the way gradeClass does (used by Gradescope's run_autograder, where the folder is
+/// the uploaded submission): find the file, grade it on every test, or report it missing.
+GradeReport gradeFolder(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
+                        const std::string& folder, bool recursive, const GradeOptions& options);
+
+}  // namespace simlab::engine

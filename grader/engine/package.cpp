@@ -1,0 +1,170 @@
+#include "simlab/engine/package.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <functional>
+#include <set>
+#include <sstream>
+
+#include "simlab/engine/build.h"
+#include "simlab/engine/errors.h"
+#include "simlab/engine/files.h"
+#include "simlab/engine/process.h"
+
+namespace fs = std::filesystem;
+
+namespace simlab::engine {
+
+namespace {
+
+bool startsWith(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
+
+// Runs a trusted tool to completion; its output, or throws with it.
+std::string runTool(const std::vector<std::string>& argv, const std::string& dir) {
+    ProcessRequest r;
+    r.argv = argv;
+    r.env = childEnvironment({"LC_ALL=C"});
+    r.workDir = dir;
+    r.limits.wallSeconds = r.limits.cpuSeconds = 300;
+    r.limits.fileMiB = 4096;
+    r.limits.outputKiB = 64 * 1024;
+    r.keepOutput = 64 << 20;
+    const ProcessResult result = runProcess(r);
+    if (!result.exitedCleanly()) {
+        throw std::runtime_error(argv[0] + " failed: " + (result.started ? firstLines(result.output, 3) : result.error));
+    }
+    return result.output;
+}
+
+std::string relativeTo(const std::string& path, const std::string& base) {
+    return fs::relative(path, base).generic_string();
+}
+
+// Files left out of a package, by the rule that leaves them out.
+struct Rule {
+    std::string description;
+    std::function<bool(const std::string&)> matches;
+};
+
+PackageSummary copyFiles(const Manifest& manifest, const std::vector<Rule>& rules, const std::string& outDir) {
+    PackageSummary summary;
+    std::vector<int> counts(rules.size(), 0);
+    for (const std::string& file : projectFiles(manifest.sourceDir)) {
+        bool left = false;
+        for (std::size_t i = 0; i < rules.size() && !left; ++i) {
+            if (rules[i].matches(file)) {
+                ++counts[i];
+                left = true;
+            }
+        }
+        if (left) continue;
+        const fs::path target = fs::path(outDir) / file;
+        fs::create_directories(target.parent_path());
+        fs::copy_file(fs::path(manifest.sourceDir) / file, target, fs::copy_options::overwrite_existing);
+        ++summary.files;
+    }
+    for (std::size_t i = 0; i < rules.size(); ++i) {
+        if (counts[i] > 0) summary.left.push_back(rules[i].description + " (" + std::to_string(counts[i]) + (counts[i] == 1 ? " file)" : " files)"));
+    }
+    return summary;
+}
+
+std::vector<Rule> instructorOnly() {
+    return {
+        {"solutions/", [](const std::string& f) { return startsWith(f, "solutions/"); }},
+        {"tests/: the corpus is made from the solutions and holds expected scores",
+         [](const std::string& f) { return startsWith(f, "tests/"); }},
+        {".ci/ and bench/", [](const std::string& f) { return startsWith(f, ".ci/") || startsWith(f, "bench/"); }},
+    };
+}
+
+void makeExecutable(const std::string& path) {
+    fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
+                    fs::perm_options::add);
+}
+
+}  // namespace
+
+std::vector<std::string> projectFiles(const std::string& sourceDir) {
+    std::vector<std::string> files;
+    if (fs::exists(fs::path(sourceDir) / ".git") && fs::exists("/usr/bin/git")) {
+        std::istringstream list(runTool({"/usr/bin/git", "-C", sourceDir, "ls-files", "--cached", "--others",
+                                         "--exclude-standard"},
+                                        sourceDir));
+        std::string file;
+        while (std::getline(list, file)) {
+            if (fs::is_regular_file(fs::path(sourceDir) / file)) files.push_back(file);  // not deleted since
+        }
+    } else {
+        auto it = fs::recursive_directory_iterator(sourceDir);
+        for (; it != fs::recursive_directory_iterator(); ++it) {
+            const fs::path& p = it->path();
+            if (it->is_directory() && (p.filename() == ".git" || fs::exists(p / "CMakeCache.txt"))) {
+                it.disable_recursion_pending();
+            } else if (it->is_regular_file()) {
+                files.push_back(relativeTo(p.string(), sourceDir));
+            }
+        }
+    }
+    std::sort(files.begin(), files.end());
+    files.erase(std::unique(files.begin(), files.end()), files.end());
+    return files;
+}
+
+PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& outDir) {
+    if (fs::exists(outDir) && !fs::is_empty(outDir)) {
+        throw UsageError("'" + outDir + "' exists and is not empty; name a new folder");
+    }
+    std::set<std::string> hidden;
+    for (const Assignment& a : manifest.assignments) {
+        for (const std::string& h : a.hiddenTests) hidden.insert(relativeTo(h, manifest.sourceDir));
+    }
+    std::vector<Rule> rules = instructorOnly();
+    rules.push_back({"hidden tests", [hidden](const std::string& f) { return hidden.count(f) > 0; }});
+    rules.push_back({"README.md: replaced by handouts/README-student.md",
+                     [](const std::string& f) { return f == "README.md"; }});
+    fs::create_directories(outDir);
+    PackageSummary summary = copyFiles(manifest, rules, outDir);
+    fs::copy_file(manifest.sourceDir + "/handouts/README-student.md", outDir + "/README.md");
+    ++summary.files;
+    return summary;
+}
+
+PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& assignment, const std::string& zip) {
+    if (!fs::exists("/usr/bin/zip")) throw UsageError("zip is not installed (apt-get install zip)");
+    if (!assignment.hiddenTestsBuilt) {
+        throw UsageError("the autograder needs the hidden tests, which this copy of simlab does not have");
+    }
+    const fs::path target = fs::absolute(zip);
+    if (!fs::is_directory(target.parent_path())) {
+        throw UsageError("cannot write '" + zip + "': no directory " + target.parent_path().string());
+    }
+    TempDir staging("simlab-gradescope-");
+    PackageSummary summary = copyFiles(manifest, instructorOnly(), staging.path());
+
+    writeFileAtomically(staging.path() + "/setup.sh",
+        "#!/usr/bin/env bash\n"
+        "# Gradescope runs this once, as root, to build the autograder image. Choose an Ubuntu 24.04 (or newer)\n"
+        "# base image: simlab needs CMake 3.25 and libtomlplusplus-dev.\n"
+        "set -euo pipefail\n"
+        "source_dir=$(cd \"$(dirname \"${BASH_SOURCE[0]}\")\" && pwd)\n"
+        "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF\" \"$source_dir/scripts/setup\"\n");
+    writeFileAtomically(staging.path() + "/run_autograder",
+        "#!/usr/bin/env bash\n"
+        "# Gradescope runs this for every submission: it grades /autograder/submission on every test of the\n"
+        "# " + assignment.id + " assignment and writes /autograder/results/results.json.\n"
+        "# AUTOGRADER_ROOT replaces /autograder (for testing).\n"
+        "root=${AUTOGRADER_ROOT:-/autograder}\n"
+        "exec \"$root/source/build/bin/simlab\" autograde " + assignment.id +
+            " --submission \"$root/submission\" --results \"$root/results/results.json\"\n");
+    makeExecutable(staging.path() + "/setup.sh");
+    makeExecutable(staging.path() + "/run_autograder");
+    summary.files += 2;
+
+    std::error_code ignored;
+    fs::remove(target, ignored);
+    runTool({"/usr/bin/zip", "-q", "-r", "-X", target.string(), "."}, staging.path());
+    return summary;
+}
+
+}  // namespace simlab::engine

@@ -1,0 +1,32 @@
+# simlab package student: the bundle holds no solution, hidden test or expected value, builds from scratch with
+# its own scripts/setup, and self-checks: the starter low, a finished file full marks on the visible tests.
+source "$(dirname "$0")/../smoke/lib.sh"
+
+run_capture package "$SIMLAB" package student -o bundle
+check "package student succeeds" test "$(status_of package)" -eq 0
+check "the bundle has no solutions/" test ! -e bundle/solutions
+check "the bundle has no hidden tests" test ! -e bundle/assignments/apple/tests/hidden.cpp
+check "the bundle has no corpus or CI" test ! -e bundle/tests -a ! -e bundle/.ci
+check "the bundle keeps the starter and the handout" test -f bundle/starter/apple/NewtonsApple.cpp -a -f bundle/handouts/apple.md
+# Nothing of the solution's code or of the hidden variants' values is anywhere in it.
+check "no line of the solution's model" bash -c "! grep -rqF 'model.apple.setOneQ(state, 0, scene.dropHeight);' bundle"
+check "no hidden variant's values (Jupiter's gravity, the long fall)" bash -c "! grep -rqE '24\.79|50000' bundle"
+check "the student README replaces the instructors'" grep -q 'Fill in the .SIMLAB_TODO' bundle/README.md
+run_capture again "$SIMLAB" package student -o bundle
+check "it refuses to write into a folder that is not empty" test "$(status_of again)" -eq 2
+
+# Build it as a student would, from nothing (packages are already installed here).
+SIMLAB_SKIP_APT=1 SIMLAB_JOBS=2 bundle/scripts/setup >build.log 2>&1
+check "the bundle builds with its own scripts/setup" test $? -eq 0 || tail -20 build.log
+bundled=bundle/build/bin/simlab
+run_capture starter "$bundled" check apple
+check "the bundle's simlab checks its starter: 0/80" grep -q '^Score: 0/80$' starter.out
+cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" finished.cpp
+run_capture finished "$bundled" check apple finished.cpp
+check "a finished file scores 80/80 on the visible tests" grep -q '^Score: 80/80$' finished.out
+check "and 4 hidden tests worth 20 points are left" grep -q '4 hidden tests worth 20 points are left' finished.out
+run_capture all "$bundled" check apple finished.cpp --all
+check "--all is refused: the bundle has no hidden tests" grep -q 'does not have' all.err
+run_capture grade "$bundled" grade apple
+check "grading is refused in the bundle" test "$(status_of grade)" -eq 2
+finish
