@@ -160,15 +160,15 @@ void Builder::link(const std::vector<std::string>& inputs, const std::string& ou
     }
 }
 
-BuildResult Builder::buildGrader(const Assignment& assignment, const std::string& source,
-                                 const std::string& outDir) const {
+BuildResult Builder::buildGrader(const Assignment& assignment, const std::string& source, const std::string& workDir,
+                                 const std::string& binary) const {
     std::string object;
-    BuildResult result = compile(source, outDir, &object);
+    BuildResult result = compile(source, workDir, &object);
     if (!result.ok) return result;
     std::vector<std::string> inputs = {object};
     inputs.insert(inputs.end(), assignment.graderObjects.begin(), assignment.graderObjects.end());
     inputs.insert(inputs.end(), manifest_.graderLibraries.begin(), manifest_.graderLibraries.end());
-    link(inputs, outDir + "/grader", result);
+    link(inputs, binary, result);
     return result;
 }
 

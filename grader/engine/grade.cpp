@@ -195,16 +195,23 @@ GradeReport gradeSource(const Builder& builder, const Assignment& assignment, co
         }
     }
 
+    // work/build: the student's file and its object; work/grader: the grader and the rubric, which the sandbox
+    // lends each test read-only (nothing else: not even the student's own source); work/testN: each test's
+    // empty working directory.
     TempDir work("simlab-" + assignment.id + "-", options.workRoot);
-    report.build = builder.buildGrader(assignment, source, work.path());
+    const std::string buildDir = work.path() + "/build", graderDir = work.path() + "/grader";
+    fs::create_directory(buildDir);
+    fs::create_directory(graderDir);
+    report.build = builder.buildGrader(assignment, source, buildDir, graderDir + "/grader");
     const Limits limits = options.limits.value_or(rubric.limits);
 
     if (report.build.ok) {
-        // The sandbox lends each test the grader and the rubric, read-only, and an empty directory of its own.
-        const std::string rubricCopy = work.path() + "/rubric.toml";
+        const std::string rubricCopy = graderDir + "/rubric.toml";
         writeFileAtomically(rubricCopy, readFile(rubric.path));
-        fs::permissions(work.path(), fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
-                                         fs::perms::others_read | fs::perms::others_exec);
+        const fs::perms readable = fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                   fs::perms::others_read | fs::perms::others_exec;
+        fs::permissions(work.path(), readable);
+        fs::permissions(graderDir, readable);
         int index = 0;
         for (const RubricTest* test : selected) {
             const std::string dir = work.path() + "/test" + std::to_string(++index);
@@ -217,7 +224,7 @@ GradeReport gradeSource(const Builder& builder, const Assignment& assignment, co
             request.limits = limits;
             request.reportChannel = true;
             request.isolate = true;
-            request.readOnlyPaths = {work.path()};
+            request.readOnlyPaths = {graderDir};
             request.slot = options.slot;
             const ProcessResult run = runProcess(request);
             if (run.interrupted) throw Interrupted();

@@ -117,6 +117,9 @@ void setLimit(int resource, rlim_t value) {
     ::dup2(outWrite, 2);
     if (reportWrite >= 0) ::dup2(reportWrite, 3);  // dup2 clears close-on-exec on the copy
     if (tokenRead >= 0) ::dup2(tokenRead, 4);
+    // Nothing else simlab holds, or inherited from whoever started it (a terminal, a CI runner's pipes), may
+    // reach the child.
+    ::close_range(reportWrite >= 0 ? 5 : 3, ~0U, 0);
     if (::chdir(r.workDir.c_str()) != 0) {
         const char message[] = "simlab: cannot enter the test's working directory\n";
         (void)!::write(2, message, sizeof message - 1);

@@ -15,8 +15,22 @@
 //
 //   simlab-corpus materialize <assignment> <case.toml>... --out DIR   write DIR/<case>/<submission file>
 //   simlab-corpus check <assignment> <case.toml>                      grade it and compare; exit 1 on a mismatch
+//   simlab-corpus class <assignment> <case.toml>... --simlab PATH     grade them all as one class with
+//       `simlab grade`, while listening on 127.0.0.1:47810, and compare every student; also check that each
+//       student has one gradebook row, that nobody connected to the listener, and that no student's report
+//       holds another student's file
 #include <CLI/CLI.hpp>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <thread>
 #include <iostream>
 #include <map>
 #include <toml++/toml.h>
@@ -25,6 +39,7 @@
 #include "simlab/engine/files.h"
 #include "simlab/engine/grade.h"
 #include "simlab/engine/manifest.h"
+#include "simlab/engine/process.h"
 #include "simlab/engine/report.h"
 
 namespace fs = std::filesystem;
@@ -99,6 +114,26 @@ int materialize(const Assignment& assignment, const std::vector<std::string>& ca
     return 0;
 }
 
+// What differs between a case's expectations and a grade: outcomes, the score, texts the report must show.
+std::vector<std::string> compare(const Case& c, const std::vector<TestResult>& tests, double score,
+                                 const std::string& text) {
+    std::vector<std::string> mismatches;
+    for (const TestResult& t : tests) {
+        const auto listed = c.outcomes.find(t.name);
+        const std::string expected = listed == c.outcomes.end() ? "passed" : listed->second;
+        if (outcomeName(t.outcome) != expected) {
+            mismatches.push_back("'" + t.name + "' " + outcomeName(t.outcome) + ", expected " + expected);
+        }
+    }
+    if (std::abs(score - c.score) > 0.005) {
+        mismatches.push_back("score " + points(score) + ", expected " + points(c.score));
+    }
+    for (const std::string& needle : c.reportContains) {
+        if (text.find(needle) == std::string::npos) mismatches.push_back("the report does not say '" + needle + "'");
+    }
+    return mismatches;
+}
+
 int check(const Manifest& manifest, const Assignment& assignment, const std::string& path) {
     const Case c = loadCase(assignment, path);
     const simlab::Rubric rubric = simlab::loadRubric(assignment.rubric);
@@ -114,23 +149,128 @@ int check(const Manifest& manifest, const Assignment& assignment, const std::str
     const std::string text = renderText(report);
     std::cout << c.name << ": " << c.description << "\n" << text;
 
-    std::vector<std::string> mismatches;
-    for (const TestResult& t : report.tests) {
-        const auto listed = c.outcomes.find(t.name);
-        const std::string expected = listed == c.outcomes.end() ? "passed" : listed->second;
-        if (outcomeName(t.outcome) != expected) {
-            mismatches.push_back("'" + t.name + "' " + outcomeName(t.outcome) + ", expected " + expected);
-        }
-    }
-    if (std::abs(report.score() - c.score) > 0.005) {
-        mismatches.push_back("score " + points(report.score()) + ", expected " + points(c.score));
-    }
-    for (const std::string& needle : c.reportContains) {
-        if (text.find(needle) == std::string::npos) mismatches.push_back("the report does not say '" + needle + "'");
-    }
+    const std::vector<std::string> mismatches = compare(c, report.tests, report.score(), text);
     for (const std::string& m : mismatches) std::cout << "MISMATCH: " << m << "\n";
     std::cout << (mismatches.empty() ? "OK: as expected\n" : "FAILED\n");
     return mismatches.empty() ? 0 : 1;
+}
+
+// Counts connections to 127.0.0.1:port while it lives.
+class Listener {
+public:
+    explicit Listener(int port) {
+        fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
+        const int yes = 1;
+        ::setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+        sockaddr_in address{};
+        address.sin_family = AF_INET;
+        address.sin_port = htons(static_cast<uint16_t>(port));
+        address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        if (::bind(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0 || ::listen(fd_, 16) != 0) {
+            throw std::runtime_error("cannot listen on 127.0.0.1:" + std::to_string(port));
+        }
+        thread_ = std::thread([this] {
+            while (!stop_) {
+                pollfd p{fd_, POLLIN, 0};
+                if (::poll(&p, 1, 100) > 0) {
+                    const int client = ::accept(fd_, nullptr, nullptr);
+                    if (client >= 0) {
+                        ++connections_;
+                        ::close(client);
+                    }
+                }
+            }
+        });
+    }
+    ~Listener() {
+        stop_ = true;
+        thread_.join();
+        ::close(fd_);
+    }
+    int connections() const { return connections_; }
+
+private:
+    int fd_ = -1;
+    std::atomic<bool> stop_{false};
+    std::atomic<int> connections_{0};
+    std::thread thread_;
+};
+
+std::string marker(const std::string& student) { return "corpus student " + student + " wrote this file"; }
+
+int gradeAsClass(const Assignment& assignment, const std::vector<std::string>& paths, const std::string& simlab,
+                 int jobs) {
+    std::vector<Case> cases;
+    for (const std::string& path : paths) cases.push_back(loadCase(assignment, path));
+    TempDir dir("simlab-class-");
+    const std::string submissions = dir.path() + "/submissions", out = dir.path() + "/grades";
+    for (const Case& c : cases) {
+        fs::create_directories(submissions + "/" + c.name);
+        writeFileAtomically(submissions + "/" + c.name + "/" + assignment.source,
+                            c.source + "\n// " + marker(c.name) + "\n");
+    }
+
+    Listener listener(47810);
+    ProcessRequest request;
+    request.argv = {simlab, "grade", assignment.id, submissions, "--out", out, "--jobs", std::to_string(jobs)};
+    request.env = childEnvironment();
+    request.workDir = dir.path();
+    request.limits.wallSeconds = request.limits.cpuSeconds = 1800;
+    request.limits.memoryMiB = 1 << 20;
+    request.limits.processes = 4096;
+    request.limits.fileMiB = 4096;
+    request.limits.outputKiB = 16 * 1024;
+    request.keepOutput = 1 << 20;
+    const ProcessResult batch = runProcess(request);
+    std::cout << batch.output;
+
+    std::vector<std::string> problems;
+    if (!batch.exitedCleanly()) problems.push_back("simlab grade did not complete (status " + std::to_string(batch.exitCode) + ")");
+    if (listener.connections() > 0) {
+        problems.push_back(std::to_string(listener.connections()) + " connection(s) reached 127.0.0.1:47810");
+    }
+    // One gradebook row per student, none twice.
+    std::ifstream gradebook(out + "/gradebook.csv");
+    std::string row;
+    std::getline(gradebook, row);
+    std::multiset<std::string> rows;
+    while (std::getline(gradebook, row)) rows.insert(row.substr(0, row.find(',')));
+    for (const Case& c : cases) {
+        if (rows.count(c.name) != 1) {
+            problems.push_back(c.name + ": " + std::to_string(rows.count(c.name)) + " gradebook rows");
+        }
+    }
+    if (rows.size() != cases.size()) problems.push_back("the gradebook has " + std::to_string(rows.size()) + " rows");
+
+    for (const Case& c : cases) {
+        const std::string student = out + "/students/" + c.name;
+        if (!fs::exists(student + "/results.json")) {
+            problems.push_back(c.name + ": no results.json");
+            continue;
+        }
+        const std::string results = readFile(student + "/results.json");
+        const std::string feedback = readFile(student + "/feedback.md");
+        const nlohmann::json json = nlohmann::json::parse(results);
+        std::vector<TestResult> tests;
+        for (const nlohmann::json& t : json.at("tests")) {
+            TestResult r;
+            r.name = t.at("name");
+            r.outcome = outcomeNamed(t.at("extra_data").at("outcome"));
+            tests.push_back(r);
+        }
+        std::vector<std::string> mismatches = compare(c, tests, json.at("score"), results + feedback);
+        for (const Case& other : cases) {
+            if (other.name != c.name && (results + feedback).find(marker(other.name)) != std::string::npos) {
+                mismatches.push_back("its report holds " + other.name + "'s file");
+            }
+        }
+        std::cout << (mismatches.empty() ? "OK       " : "MISMATCH ") << c.name << ": " << points(json.at("score"))
+                  << " (expected " << points(c.score) << ")\n";
+        for (const std::string& m : mismatches) problems.push_back(c.name + ": " + m);
+    }
+    for (const std::string& p : problems) std::cout << "MISMATCH: " << p << "\n";
+    std::cout << (problems.empty() ? "OK: every student as expected\n" : "FAILED\n");
+    return problems.empty() ? 0 : 1;
 }
 
 }  // namespace
@@ -147,11 +287,19 @@ int main(int argc, char** argv) {
     CLI::App* checkCommand = app.add_subcommand("check", "Grade one case and compare with its expectations.");
     checkCommand->add_option("assignment", assignmentId)->required();
     checkCommand->add_option("case", cases)->required()->expected(1)->check(CLI::ExistingFile);
+    std::string simlab;
+    int jobs = 2;
+    CLI::App* classCommand = app.add_subcommand("class", "Grade the cases as one class with simlab grade and compare.");
+    classCommand->add_option("assignment", assignmentId)->required();
+    classCommand->add_option("cases", cases)->required()->check(CLI::ExistingFile);
+    classCommand->add_option("--simlab", simlab)->required()->check(CLI::ExistingFile);
+    classCommand->add_option("--jobs", jobs);
     CLI11_PARSE(app, argc, argv);
     try {
         const Manifest manifest = loadManifest();
         const Assignment& assignment = manifest.find(assignmentId);
         if (materializeCommand->parsed()) return materialize(assignment, cases, out);
+        if (classCommand->parsed()) return gradeAsClass(assignment, cases, simlab, jobs);
         return check(manifest, assignment, cases.front());
     } catch (const std::exception& e) {
         std::cerr << "simlab-corpus: error: " << e.what() << '\n';

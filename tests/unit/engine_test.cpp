@@ -1,6 +1,8 @@
 // The engine's process runner: every way a child can end is told apart, and only the report channel counts.
 #include <catch2/catch.hpp>
 #include <csignal>
+#include <fcntl.h>
+#include <unistd.h>
 #include <string>
 
 #include "simlab/engine/process.h"
@@ -80,6 +82,19 @@ TEST_CASE("only lines on the report channel with the run's token count as report
         5, /*channel=*/true);
     REQUIRE(r.reports.size() == 1);
     CHECK(r.reports[0] == "{\"event\":\"end\"}");
+}
+
+TEST_CASE("a child sees none of simlab's other file descriptors", "[process]") {
+    // Opened without close-on-exec, as a terminal or a CI runner's pipe would be inherited.
+    const int opened = ::open("/dev/null", O_RDONLY);
+    const int leaked = ::fcntl(opened, F_DUPFD, 50);
+    ::close(opened);
+    REQUIRE(leaked >= 50);
+    const ProcessResult r = shell("for f in /proc/$$/fd/*; do echo ${f##*/}; done", 5, /*channel=*/true);
+    ::close(leaked);
+    // stdin, stdout, stderr, the report pipe, the token pipe (and the directory the shell's glob is reading).
+    CHECK(r.output.rfind("0\n1\n2\n3\n4\n", 0) == 0);
+    CHECK(r.output.find("\n" + std::to_string(leaked) + "\n") == std::string::npos);
 }
 
 TEST_CASE("a program that cannot be executed is reported, not run", "[process]") {

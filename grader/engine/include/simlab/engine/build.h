@@ -24,8 +24,9 @@ public:
     /// Objects are cached in <build>/cache/objects.
     explicit Builder(const Manifest& manifest);
 
-    /// Compile `source` and link it with `assignment`'s grader into `outDir`/grader.
-    BuildResult buildGrader(const Assignment& assignment, const std::string& source, const std::string& outDir) const;
+    /// Compile `source` in `workDir` and link it with `assignment`'s grader into the program `binary`.
+    BuildResult buildGrader(const Assignment& assignment, const std::string& source, const std::string& workDir,
+                            const std::string& binary) const;
     /// Compile `source` and link it with the course's main into the lab program at `output`.
     BuildResult buildProgram(const Assignment& assignment, const std::string& source, const std::string& output) const;
     /// Key of a source file's object in the cache: its content, the compile command and the precompiled header.
