@@ -1,5 +1,6 @@
 #include "simlab/engine/build.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -65,6 +66,7 @@ std::string firstLines(const std::string& text, int maxLines) {
 }
 
 Builder::Builder(const Manifest& manifest) : manifest_(manifest), cacheDir_(manifest.buildDir + "/cache/objects") {
+    if (const char* dir = std::getenv("SIMLAB_CACHE"); dir && *dir) cacheDir_ = dir;
     std::error_code ignored;
     fs::create_directories(cacheDir_, ignored);
 }

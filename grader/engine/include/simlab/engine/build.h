@@ -21,7 +21,7 @@ struct BuildResult {
 
 class Builder {
 public:
-    /// Objects are cached in <build>/cache/objects.
+    /// Objects are cached in <build>/cache/objects, or in $SIMLAB_CACHE.
     explicit Builder(const Manifest& manifest);
 
     /// Compile `source` in `workDir` and link it with `assignment`'s grader into the program `binary`.
