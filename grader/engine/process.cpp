@@ -327,6 +327,14 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
         closeAll();
         return result;
     }
+    if (tokenPipe[1] >= 0) {
+        // The token travels by pipe, not environment: the harness reads it before any student code runs. It is
+        // written now, while we hold the read end, so a child that dies unread cannot SIGPIPE simlab.
+        const std::string line = token + "\n";
+        (void)!::write(tokenPipe[1], line.data(), line.size());
+        ::close(tokenPipe[1]);
+        tokenPipe[1] = -1;
+    }
 
     becomeSubreaper();
     const auto start = Clock::now();
@@ -349,12 +357,6 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
     ::close(out[1]);
     if (report[1] >= 0) ::close(report[1]);
     if (tokenPipe[0] >= 0) ::close(tokenPipe[0]);
-    if (tokenPipe[1] >= 0) {
-        // The token travels by pipe, not environment: the harness reads it before any student code runs.
-        const std::string line = token + "\n";
-        (void)!::write(tokenPipe[1], line.data(), line.size());
-        ::close(tokenPipe[1]);
-    }
     int outRead = out[0], reportRead = report[0];
     for (int fd : {outRead, reportRead}) {
         if (fd >= 0) ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
