@@ -10,7 +10,6 @@
 #include "simlab/digits.h"
 #include "simlab/driver.h"
 #include "simlab/program.h"
-#include "simlab/results_table.h"
 
 namespace {
 
@@ -32,26 +31,21 @@ double finalDigits(const apple::Scene& scene, const std::vector<apple::Sample>& 
 
 int runOnce(const Options& o) {
     const simlab::RunSettings& run = o.program.run;
-    simlab::ResultsTable table({"time", "yLocation", "yVelocity", "mechanicalEnergy", "yDifferenceFromExact"},
-                               o.program.output, o.program.quiet ? nullptr : &std::cout);
-    std::printf("Newton's apple: %g kg dropped from %g m, g = %g m/s^2; %s, accuracy %g, dt %g s, 0 <= t <= %g s\n",
-                o.scene.mass, o.scene.dropHeight, o.scene.gravity, run.integrator.c_str(), run.accuracy, run.dt,
-                run.finalTime);
+    char banner[256];
+    std::snprintf(banner, sizeof banner,
+                  "Newton's apple: %g kg dropped from %g m, g = %g m/s^2; %s, accuracy %g, dt %g s, 0 <= t <= %g s",
+                  o.scene.mass, o.scene.dropHeight, o.scene.gravity, run.integrator.c_str(), run.accuracy, run.dt,
+                  run.finalTime);
+    simlab::Tabulation<apple::Sample> tabulation;
+    tabulation.columns = {"time", "yLocation", "yVelocity", "mechanicalEnergy", "yDifferenceFromExact"};
+    tabulation.row = [&](const apple::Sample& s) { return resultsRow(o.scene, s); };
+    tabulation.banner = banner;
+    tabulation.bodyRadius = o.scene.radius;
     apple::Model model;
-    simlab::RunHooks<apple::Model> hooks;
-    std::function<void()> finishAnimation;
-    if (o.program.animate) {
-        hooks.afterBuild = [&](apple::Model& m) {
-            finishAnimation = simlab::attachVisualizer(m.system, 1.0 / 30, o.scene.radius);
-        };
-        hooks.afterRun = [&](const apple::Model&, const SimTK::Integrator&) { finishAnimation(); };
-    }
-    const auto result = simlab::run<apple::Sample>(
-        o.scene, model, run, [&](const apple::Sample& s) { table.add(resultsRow(o.scene, s)); }, hooks);
+    const auto result = simlab::runTabulated(o.scene, model, o.program, tabulation);
 
     const double digits = finalDigits(o.scene, result.samples);
     const apple::Sample& last = result.samples.back();
-    std::printf("\nResults written to %s\n", table.path().c_str());
     std::printf("y(%g s) = %.15g m; exact %.15g m: %.1f accurate digits (%s, %d steps)\n", last.time, last.yLocation,
                 apple::exact::yLocation(o.scene, last.time), digits, result.integrator.method.c_str(),
                 result.integrator.stepsTaken);

@@ -1,56 +1,33 @@
 // What the apple's visible and hidden tests share: running a student's simulation and measuring it.
 #pragma once
 
-#include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
-#include <string>
 #include <vector>
 
 #include "apple/NewtonsApple.h"
 #include "apple/exact.h"
 #include "simlab/digits.h"
-#include "simlab/driver.h"
-#include "simlab/grading.h"
+#include "simlab/testing.h"
 
 namespace apple::testing {
 
 namespace grading = simlab::grading;
+using namespace simlab::testing;
 using Run = simlab::RunResult<Sample>;
 
-/// The student's simulation of `scene`, driven as the apple program drives it.
 inline Run simulate(const Scene& scene, const simlab::RunSettings& settings = defaultRunSettings()) {
-    Model model;
-    return simlab::run<Sample>(scene, model, settings);
+    return simlab::testing::simulate<Model, Sample>(scene, settings);
 }
 
 inline simlab::RunSettings settingsFor(double finalTime, double dt, double accuracy = 1e-7) {
-    simlab::RunSettings run = defaultRunSettings();
-    run.finalTime = finalTime;
-    run.dt = dt;
-    run.accuracy = accuracy;
-    return run;
-}
-
-/// Fails the test unless the simulation recorded something.
-inline void requireSamples(const Run& run) {
-    INFO("the simulation recorded no samples");
-    REQUIRE_FALSE(run.samples.empty());
-}
-
-/// The last sample; fails the test if there is none or it is not at the final time.
-inline const Sample& finalSample(const Run& run, const simlab::RunSettings& settings) {
-    requireSamples(run);
-    const Sample& last = run.samples.back();
-    INFO("the last sample is at t = " << last.time << " s, not at the final time " << settings.finalTime << " s");
-    REQUIRE(last.time == Approx(settings.finalTime).epsilon(1e-9));
-    return last;
+    return simlab::testing::settingsFor(defaultRunSettings(), finalTime, dt, accuracy);
 }
 
 /// Digits of y at the final time against y = h - g t^2/2.
 inline double finalDigits(const Scene& scene, const simlab::RunSettings& settings) {
     const Run run = simulate(scene, settings);
-    const Sample& last = finalSample(run, settings);
+    const Sample& last = lastSample(run, settings.finalTime);
     return simlab::accuracyDigits(last.yLocation, exact::yLocation(scene, last.time));
 }
 

@@ -16,44 +16,13 @@ TEST_CASE("the apple starts at rest at the drop height", "[apple][initial]") {
 }
 
 TEST_CASE("samples run from t = 0 to the final time every dt", "[apple][sampling]") {
-    const Scene scene;
     const simlab::RunSettings settings = settingsFor(/*finalTime=*/2.0, /*dt=*/0.25);
-    const Run run = simulate(scene, settings);
-    const std::size_t expected = settings.sampleCount() + 1;
-    INFO("with dt = 0.25 s and a final time of 2 s there should be " << expected << " samples, at t = 0, 0.25, "
-         "..., 2 s; there were " << run.samples.size());
-    REQUIRE(run.samples.size() == expected);
-    for (std::size_t k = 0; k < run.samples.size(); ++k) {
-        INFO("sample " << k << " is at t = " << run.samples[k].time << " s, expected " << settings.sampleTime(k));
-        CHECK(run.samples[k].time == Approx(settings.sampleTime(k)).margin(1e-9));
-    }
+    checkSampleTimes(simulate(Scene{}, settings), settings);
 }
 
 TEST_CASE("the integrator is the one asked for at the accuracy asked for", "[apple][integrator]") {
-    const Scene scene;
-    struct Request {
-        const char* name;
-        double accuracy;
-    };
-    for (const Request& request : {Request{"RungeKutta3", 1e-9}, Request{"Verlet", 1e-5}, Request{"CPodes", 1e-6}}) {
-        simlab::RunSettings settings = settingsFor(1.0, 0.1, request.accuracy);
-        settings.integrator = request.name;
-        const Run run = simulate(scene, settings);
-        const std::string& method = run.integrator.method;
-        const bool sameMethod = method == request.name || (std::string(request.name) == "CPodes" &&
-                                                           method.rfind("CPodes", 0) == 0);
-        INFO("asked for " << request.name << " at accuracy " << request.accuracy << ", got " << method
-                          << " at accuracy " << run.integrator.accuracyInUse);
-        CHECK(sameMethod);
-        CHECK(run.integrator.accuracyInUse == Approx(request.accuracy));
-    }
-    // Fixed steps: one step per sampling interval.
-    simlab::RunSettings fixed = settingsFor(1.0, 0.05);
-    fixed.integrator = "RungeKutta2";
-    fixed.fixedStep = true;
-    const Run run = simulate(scene, fixed);
-    INFO("asked for fixed steps of 0.05 s over 1 s (20 steps), the integrator took " << run.integrator.stepsTaken);
-    CHECK(run.integrator.stepsTaken == fixed.sampleCount());
+    // One second, sampled every 0.05 s: 20 steps when fixed.
+    checkIntegratorRequests<Model, Sample>(Scene{}, settingsFor(1.0, 0.05));
 }
 
 TEST_CASE("y at the final time has the target accuracy digits", "[apple][accuracy]") {
@@ -67,7 +36,7 @@ TEST_CASE("the velocity follows v = -g t at every sample", "[apple][velocity]") 
     const Scene scene;
     const simlab::RunSettings settings = defaultRunSettings();
     const Run run = simulate(scene, settings);
-    finalSample(run, settings);
+    lastSample(run, settings.finalTime);
     // Errors relative to the final speed g T, so the sample at rest (v = 0) counts like the others.
     const double scale = scene.gravity * settings.finalTime;
     double worst = simlab::kMaxDigits;
@@ -83,7 +52,7 @@ TEST_CASE("the mechanical energy stays at m g h", "[apple][energy]") {
     const Scene scene;
     const simlab::RunSettings settings = defaultRunSettings();
     const Run run = simulate(scene, settings);
-    finalSample(run, settings);
+    lastSample(run, settings.finalTime);
     const double allowed = grading::param("tolerance") * settings.accuracy;
     CHECK(grading::atMost(energyDrift(scene, run), allowed, "relative energy drift"));
 }
@@ -92,16 +61,8 @@ TEST_CASE("the model has only the one degree of freedom a fall needs", "[apple][
     const Scene scene;
     Model model;
     buildModel(scene, model);
-    const simlab::ModelInfo info = simlab::describeModel(model.matter, initialState(scene, model));
-    grading::measured(info.degreesOfFreedom(), "degrees of freedom", info.summary());
-    if (info.uses("Free") || info.uses("Translation")) {
-        grading::feedback("a " + std::string(info.uses("Free") ? "Free" : "Translation (Cartesian)") +
-                          " mobilizer lets the apple move in ways the scene never asks for; a Slider along Ground's y "
-                          "gives it exactly its one motion");
-    }
-    INFO(info.summary() << "; the fall needs one body with one translational degree of freedom");
-    CHECK(info.bodies == 1);
-    CHECK(info.degreesOfFreedom() == 1);
+    checkDegreesOfFreedom(simlab::describeModel(model.matter, initialState(scene, model)), 1, "a fall along y",
+                          "a Slider along Ground's y gives the apple exactly its one motion");
 }
 
 }  // namespace apple::testing

@@ -41,7 +41,7 @@ ModelInfo describeModel(const SimTK::SimbodyMatterSubsystem& matter, const SimTK
     info.constraintEquations = s.getNUErr();
     for (int i = 1; i < matter.getNumBodies(); ++i) {
         const SimTK::MobilizedBody& b = matter.getMobilizedBody(SimTK::MobilizedBodyIndex(i));
-        info.mobilizers.push_back({i, mobilizerKind(matter, i), b.getNumQ(s), b.getNumU(s)});
+        info.mobilizers.push_back({i, mobilizerKind(matter, i), b.getNumQ(s), b.getNumU(s), b.getBodyMass(s)});
     }
     return info;
 }
@@ -51,12 +51,19 @@ std::string ModelInfo::summary() const {
     out << bodies << (bodies == 1 ? " body" : " bodies");
     const char* separator = ": ";
     for (const MobilizerInfo& m : mobilizers) {
-        out << separator << "body " << m.body << " on a " << m.kind << " mobilizer (" << m.nu << " dof)";
+        out << separator << (m.mass > 0 ? "body " : "massless body ") << m.body << " on a " << m.kind
+            << " mobilizer (" << m.nu << " dof)";
         separator = ", ";
     }
     if (constraintEquations > 0) out << "; " << constraintEquations << " constraint equations";
     out << "; " << degreesOfFreedom() << (degreesOfFreedom() == 1 ? " degree" : " degrees") << " of freedom";
     return out.str();
+}
+
+int ModelInfo::massiveBodies() const {
+    int count = 0;
+    for (const MobilizerInfo& m : mobilizers) count += m.mass > 0;
+    return count;
 }
 
 bool ModelInfo::uses(const std::string& kind) const {

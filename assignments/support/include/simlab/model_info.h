@@ -16,6 +16,7 @@ struct MobilizerInfo {
     std::string kind;  ///< "Slider", "Free", "Planar", ...
     int nq = 0;        ///< generalized coordinates
     int nu = 0;        ///< generalized speeds (mobilities)
+    double mass = 0;   ///< kg; 0 for a massless body (an intermediate frame between mobilizers)
 };
 
 struct ModelInfo {
@@ -26,6 +27,8 @@ struct ModelInfo {
 
     /// Independent motions the model allows: mobilities minus constraint equations.
     int degreesOfFreedom() const { return mobilities - constraintEquations; }
+    /// Bodies with mass (massless ones only join mobilizers together).
+    int massiveBodies() const;
     /// One line, e.g. "1 body: body 1 on a Free mobilizer (6 dof)".
     std::string summary() const;
     /// True if some body is on a mobilizer of this kind.

@@ -3,16 +3,17 @@
 #pragma once
 
 #include <functional>
-#include <iosfwd>
+#include <iostream>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "simlab/driver.h"
+#include "simlab/results_table.h"
 #include "simlab/run_settings.h"
 
 namespace CLI {
 class App;
-}
-namespace SimTK {
-class MultibodySystem;
 }
 
 namespace simlab {
@@ -56,5 +57,37 @@ void printTrade(std::ostream& out, const RunSettings& base, const std::string& f
 /// call the returned function once the simulation is over to wait for the last frame, while `system` still
 /// exists.
 std::function<void()> attachVisualizer(SimTK::MultibodySystem& system, double frameInterval, double radius);
+
+/// How a lab program shows a run.
+template <class Sample>
+struct Tabulation {
+    std::vector<std::string> columns;                         ///< the results file's header
+    std::function<std::vector<double>(const Sample&)> row;    ///< one value per column
+    std::string banner;                                       ///< one line saying what runs
+    double bodyRadius = 0.05;                                 ///< m, the spheres --animate draws
+};
+
+/// One run of a lab program: open the results file (an unwritable path fails before anything runs), print the
+/// banner, simulate with the course's driver while printing and saving each row, animate with --animate, and
+/// say where the results went.
+template <class Sample, class Scene, class Model>
+RunResult<Sample> runTabulated(const Scene& scene, Model& model, const ProgramOptions& options,
+                               const Tabulation<Sample>& tabulation) {
+    ResultsTable table(tabulation.columns, options.output, options.quiet ? nullptr : &std::cout);
+    std::cout << tabulation.banner << std::endl;
+    RunHooks<Model> hooks;
+    std::function<void()> finishAnimation;
+    if (options.animate) {
+        hooks.afterBuild = [&](Model& m) {
+            finishAnimation = attachVisualizer(m.system, 1.0 / 30, tabulation.bodyRadius);
+        };
+        hooks.afterRun = [&](const Model&, const SimTK::Integrator&) { finishAnimation(); };
+    }
+    RunResult<Sample> result = run<Sample>(
+        scene, model, options.run, [&](const Sample& s) { table.add(tabulation.row(s)); }, hooks);
+    if (result.samples.empty()) throw std::runtime_error("the simulation recorded no samples");
+    std::cout << "\nResults written to " << table.path() << '\n';
+    return result;
+}
 
 }  // namespace simlab

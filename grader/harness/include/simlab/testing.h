@@ -1,0 +1,119 @@
+// What every assignment's grader tests share: driving a student's simulation, and the checks that are the
+// same from one lab to the next (samples present, the integrator honoured, the degrees of freedom the scene
+// needs). Each assignment's tests call these inside their own TEST_CASEs, under their own names.
+#pragma once
+
+#include <catch2/catch.hpp>
+#include <string>
+#include <vector>
+
+#include "simlab/driver.h"
+#include "simlab/grading.h"
+#include "simlab/run_settings.h"
+
+namespace simlab::testing {
+
+/// The student's simulation of `scene`, driven as the lab program drives it.
+template <class Model, class Sample, class Scene>
+RunResult<Sample> simulate(const Scene& scene, const RunSettings& settings) {
+    Model model;
+    return run<Sample>(scene, model, settings);
+}
+
+/// `base` with another final time, sampling interval and accuracy.
+inline RunSettings settingsFor(RunSettings base, double finalTime, double dt, double accuracy) {
+    base.finalTime = finalTime;
+    base.dt = dt;
+    base.accuracy = accuracy;
+    return base;
+}
+
+/// Fails the test unless the simulation recorded something.
+template <class Sample>
+void requireSamples(const RunResult<Sample>& run) {
+    INFO("the simulation recorded no samples");
+    REQUIRE_FALSE(run.samples.empty());
+}
+
+/// The last sample; fails the test if there is none or it is not at `time`.
+template <class Sample>
+const Sample& lastSample(const RunResult<Sample>& run, double time) {
+    requireSamples(run);
+    const Sample& last = run.samples.back();
+    INFO("the last sample is at t = " << last.time << " s, not at " << time << " s");
+    REQUIRE(last.time == Approx(time).epsilon(1e-9));
+    return last;
+}
+
+/// The sample at `time` (to within a nanosecond); fails the test if there is none.
+template <class Sample>
+const Sample& sampleAt(const RunResult<Sample>& run, double time) {
+    requireSamples(run);
+    for (const Sample& s : run.samples) {
+        if (std::abs(s.time - time) < 1e-9) return s;
+    }
+    INFO("no sample at t = " << time << " s");
+    FAIL();
+    return run.samples.front();
+}
+
+/// Samples at t = 0 and at every settings.sampleTime(k), up to the final time.
+template <class Sample>
+void checkSampleTimes(const RunResult<Sample>& run, const RunSettings& settings) {
+    const std::size_t expected = settings.sampleCount() + 1;
+    INFO("with dt = " << settings.dt << " s and a final time of " << settings.finalTime << " s there should be "
+                      << expected << " samples; there were " << run.samples.size());
+    REQUIRE(run.samples.size() == expected);
+    for (std::size_t k = 0; k < run.samples.size(); ++k) {
+        INFO("sample " << k << " is at t = " << run.samples[k].time << " s, expected " << settings.sampleTime(k));
+        CHECK(run.samples[k].time == Approx(settings.sampleTime(k)).margin(1e-9));
+    }
+}
+
+/// makeIntegrator gives the integrator asked for at the accuracy asked for, and takes fixed steps when asked.
+template <class Model, class Sample, class Scene>
+void checkIntegratorRequests(const Scene& scene, const RunSettings& base) {
+    struct Request {
+        const char* name;
+        double accuracy;
+    };
+    for (const Request& request : {Request{"RungeKutta3", 1e-9}, Request{"Verlet", 1e-5}, Request{"CPodes", 1e-6}}) {
+        RunSettings settings = base;
+        settings.integrator = request.name;
+        settings.accuracy = request.accuracy;
+        const RunResult<Sample> run = simulate<Model, Sample>(scene, settings);
+        const std::string& method = run.integrator.method;
+        const bool sameMethod =
+            method == request.name || (std::string(request.name) == "CPodes" && method.rfind("CPodes", 0) == 0);
+        INFO("asked for " << request.name << " at accuracy " << request.accuracy << ", got " << method
+                          << " at accuracy " << run.integrator.accuracyInUse);
+        CHECK(sameMethod);
+        CHECK(run.integrator.accuracyInUse == Approx(request.accuracy));
+    }
+    RunSettings fixed = base;
+    fixed.integrator = "RungeKutta2";
+    fixed.fixedStep = true;
+    const RunResult<Sample> run = simulate<Model, Sample>(scene, fixed);
+    INFO("asked for fixed steps of " << fixed.dt << " s over " << fixed.finalTime << " s (" << fixed.sampleCount()
+                                     << " steps), the integrator took " << run.integrator.stepsTaken);
+    CHECK(run.integrator.stepsTaken == fixed.sampleCount());
+}
+
+/// The model has `dof` degrees of freedom and one body with mass. `scene` says what the motion is ("a fall
+/// along y"); `advice` what models exactly that. A Free, Translation or Planar mobilizer gets a feedback line.
+inline void checkDegreesOfFreedom(const ModelInfo& info, int dof, const std::string& scene, const std::string& advice) {
+    grading::measured(info.degreesOfFreedom(), "degrees of freedom", info.summary());
+    for (const char* kind : {"Free", "Translation", "Planar", "Gimbal", "Ball"}) {
+        if (info.uses(kind) && info.degreesOfFreedom() != dof) {
+            grading::feedback(std::string("a ") + kind + " mobilizer allows motions " + scene +
+                              " never calls for; " + advice);
+            break;
+        }
+    }
+    INFO(info.summary() << "; " << scene << " needs one body with " << dof
+                        << (dof == 1 ? " degree" : " degrees") << " of freedom");
+    CHECK(info.massiveBodies() == 1);
+    CHECK(info.degreesOfFreedom() == dof);
+}
+
+}  // namespace simlab::testing
