@@ -14,7 +14,7 @@ expect_error() {  # expect_error DESCRIPTION PATTERN COMMAND...
 
 echo 'int main() {}' >notes.txt
 mkdir folder
-expect_error "unknown assignment" "unknown assignment 'pear'; available: apple" "$SIMLAB" check pear
+expect_error "unknown assignment" "unknown assignment 'pear'; available: apple, projectile" "$SIMLAB" check pear
 expect_error "missing source file" "source file 'nope.cpp' does not exist" "$SIMLAB" check apple nope.cpp
 expect_error "non-C++ file" "is not a C\+\+ source file" "$SIMLAB" check apple notes.txt
 expect_error "a directory" "is a directory" "$SIMLAB" check apple folder
@@ -34,6 +34,13 @@ expect_error "apple: dt beyond the final time" "dt must not exceed the final tim
   "$BIN_DIR/apple-reference" --dt 5 --final-time 4 --quiet
 expect_error "apple: results file in a missing folder" "cannot write results file" \
   "$BIN_DIR/apple-reference" --output no/such/dir/results.txt
+expect_error "projectile: angle beyond 90 degrees" "angle: must be in \(0, 90\] degrees, got 95" \
+  "$BIN_DIR/projectile-reference" --angle 95
+expect_error "projectile: angle of 0" "must be in \(0, 90\] degrees, got 0" "$BIN_DIR/projectile-reference" --angle 0
+expect_error "projectile: negative speed" "speed: must be a positive number, got -3" \
+  "$BIN_DIR/projectile-reference" --speed -3
+expect_error "projectile: no gravity" "gravity: must be a positive number, got 0" \
+  "$BIN_DIR/projectile-reference" --gravity 0
 if [[ $(id -u) -ne 0 ]]; then
   echo 'int x;' >locked.cpp && chmod 000 locked.cpp
   expect_error "unreadable source" "cannot read" "$SIMLAB" check apple locked.cpp

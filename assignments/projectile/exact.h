@@ -1,0 +1,37 @@
+// Projectile motion, solved by hand.
+//
+// With gravity g along -y and no air, the ball launched from the origin at speed v0 and angle theta has
+//     x(t) = v0 cos(theta) t,          y(t) = v0 sin(theta) t - g t^2 / 2,
+// so its path is the parabola y(x) = tan(theta) x - g x^2 / (2 v0^2 cos^2(theta)). It is back at y = 0 at
+//     t* = 2 v0 sin(theta) / g,        x* = v0 cos(theta) t*,
+// 5.232422 s and 191.5909 m for the lab's 44.7 m/s at 35 degrees. Kinetic plus potential energy (zero at y = 0)
+// keeps its launch value m v0^2 / 2.
+#pragma once
+
+#include <cmath>
+
+#include "projectile/ProjectileMotion.h"
+
+namespace projectile::exact {
+
+inline double launchAngle(const Scene& s) { return s.launchAngleDegrees * M_PI / 180.0; }  ///< radians
+inline double xVelocity0(const Scene& s) { return s.launchSpeed * std::cos(launchAngle(s)); }
+inline double yVelocity0(const Scene& s) { return s.launchSpeed * std::sin(launchAngle(s)); }
+
+inline double x(const Scene& s, double t) { return xVelocity0(s) * t; }
+inline double y(const Scene& s, double t) { return yVelocity0(s) * t - 0.5 * s.gravity * t * t; }
+inline double xVelocity(const Scene& s, double) { return xVelocity0(s); }
+inline double yVelocity(const Scene& s, double t) { return yVelocity0(s) - s.gravity * t; }
+
+/// Height on the parabola at range x (not defined for a vertical launch).
+inline double yOfX(const Scene& s, double x) {
+    const double vx = xVelocity0(s);
+    return std::tan(launchAngle(s)) * x - s.gravity * x * x / (2 * vx * vx);
+}
+
+inline double flightTime(const Scene& s) { return 2 * yVelocity0(s) / s.gravity; }  ///< t*
+inline double range(const Scene& s) { return xVelocity0(s) * flightTime(s); }         ///< x*
+inline double maxHeight(const Scene& s) { return yVelocity0(s) * yVelocity0(s) / (2 * s.gravity); }
+inline double mechanicalEnergy(const Scene& s) { return 0.5 * s.mass * s.launchSpeed * s.launchSpeed; }
+
+}  // namespace projectile::exact

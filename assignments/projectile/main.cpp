@@ -1,0 +1,152 @@
+// The `projectile` lab program (the course's side): runs the simulation written in ProjectileMotion.cpp, prints
+// and saves its trajectory, then runs it again until the ball lands and reports the ground hit its event handler
+// found, against t* = 2 v0 sin(theta) / g and x* = v0 cos(theta) t*.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+#include "projectile/ProjectileMotion.h"
+#include "projectile/exact.h"
+#include "projectile/landing.h"
+#include "simlab/cli_checks.h"
+#include "simlab/digits.h"
+#include "simlab/program.h"
+
+namespace {
+
+using projectile::Sample;
+using projectile::Scene;
+
+struct Options {
+    Scene scene;
+    simlab::ProgramOptions program;
+};
+
+std::vector<double> resultsRow(const Scene& scene, const Sample& s) {
+    return {s.time, s.x, s.y, s.xVelocity, s.yVelocity, s.mechanicalEnergy, s.y - projectile::exact::y(scene, s.time)};
+}
+
+struct HitDigits {
+    double time = 0, range = 0;
+};
+
+// Digits of the hit's time and range; the range relative to v0 t* so that a vertical launch (x* = 0) counts too.
+HitDigits hitDigits(const Scene& scene, const projectile::GroundHit& hit) {
+    if (!hit.found) return {};
+    const double tStar = projectile::exact::flightTime(scene);
+    return {simlab::accuracyDigits(hit.time, tStar),
+            simlab::accuracyDigits(hit.x, projectile::exact::range(scene), scene.launchSpeed * tStar)};
+}
+
+void reportLanding(const Options& o) {
+    const projectile::Landing landing = projectile::simulateLanding(o.scene, o.program.run);
+    const double tStar = projectile::exact::flightTime(o.scene), xStar = projectile::exact::range(o.scene);
+    if (!landing.hit.found) {
+        std::printf("No ground hit: the simulation ran to t = %g s and nothing recorded the ball coming back to "
+                    "y = 0 (exact: t* = %.10g s). Does buildModel add an event handler that records it?\n",
+                    landing.endTime, tStar);
+        return;
+    }
+    const HitDigits digits = hitDigits(o.scene, landing.hit);
+    std::printf("Ground hit (event window %g s): t = %.12g s, x = %.12g m (%s, %d steps)\n",
+                o.scene.groundHitWindow, landing.hit.time, landing.hit.x, landing.integrator.method.c_str(),
+                landing.integrator.stepsTaken);
+    std::printf("  exact t* = 2 v0 sin(theta)/g = %.12g s: %.1f accurate digits\n", tStar, digits.time);
+    std::printf("  exact x* = v0 cos(theta) t*  = %.12g m: %.1f accurate digits\n", xStar, digits.range);
+}
+
+int runOnce(const Options& o) {
+    const simlab::RunSettings& run = o.program.run;
+    char banner[320];
+    std::snprintf(banner, sizeof banner,
+                  "Projectile: a %g kg baseball at %g m/s, %g degrees, g = %g m/s^2; %s, accuracy %g, dt %g s, "
+                  "0 <= t <= %g s",
+                  o.scene.mass, o.scene.launchSpeed, o.scene.launchAngleDegrees, o.scene.gravity,
+                  run.integrator.c_str(), run.accuracy, run.dt, run.finalTime);
+    simlab::Tabulation<Sample> tabulation;
+    tabulation.columns = {"time", "x", "y", "xVelocity", "yVelocity", "mechanicalEnergy", "yDifferenceFromExact"};
+    tabulation.row = [&](const Sample& s) { return resultsRow(o.scene, s); };
+    tabulation.banner = banner;
+    tabulation.bodyRadius = 1.0;  // drawn large: the flight is 190 m long
+    projectile::Model model;
+    const auto result = simlab::runTabulated(o.scene, model, o.program, tabulation);
+
+    const Sample& last = result.samples.back();
+    std::printf("y(%g s) = %.15g m; exact %.15g m: %.1f accurate digits\n", last.time, last.y,
+                projectile::exact::y(o.scene, last.time),
+                simlab::accuracyDigits(last.y, projectile::exact::y(o.scene, last.time)));
+    std::printf("x(%g s) = %.15g m; exact %.15g m: %.1f accurate digits\n", last.time, last.x,
+                projectile::exact::x(o.scene, last.time),
+                simlab::accuracyDigits(last.x, projectile::exact::x(o.scene, last.time)));
+    reportLanding(o);
+    return 0;
+}
+
+// The ground hit's digits against the integrator's accuracy and the event's localization window.
+int runTrade(const Options& o) {
+    std::printf("Digits of the ground hit against cost, %s, dt %g s, median of 3 runs\n",
+                o.program.run.integrator.c_str(), o.program.run.dt);
+    std::printf("%10s %10s %10s %10s %8s %12s %10s\n", "accuracy", "window s", "digits t*", "digits x*", "steps",
+                "evaluations", "median ms");
+    for (const double accuracy : {1e-3, 1e-5, 1e-7, 1e-9, 1e-11}) {
+        for (const double window : {1e-1, 1e-3, 1e-6, 1e-9}) {
+            Scene scene = o.scene;
+            scene.groundHitWindow = window;
+            simlab::RunSettings run = o.program.run;
+            run.accuracy = accuracy;
+            std::vector<double> ms;
+            projectile::Landing landing;
+            for (int r = 0; r < 3; ++r) {
+                const auto start = std::chrono::steady_clock::now();
+                landing = projectile::simulateLanding(scene, run);
+                ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+            }
+            std::sort(ms.begin(), ms.end());
+            const HitDigits digits = hitDigits(scene, landing.hit);
+            std::printf("%10g %10g %10.2f %10.2f %8d %12d %10.1f\n", accuracy, window, digits.time, digits.range,
+                        landing.integrator.stepsTaken, landing.integrator.realizations, ms[1]);
+        }
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    o.program.run = projectile::defaultRunSettings();
+    o.program.output = "ProjectileMotionResults.txt";
+
+    CLI::App app{"Projectile motion: a baseball launched from the ground, its trajectory, and the ground hit found by "
+                 "Simbody's event handling.",
+                 "projectile"};
+    simlab::addProgramOptions(app, o.program);
+    app.add_option("--angle", o.scene.launchAngleDegrees, "launch angle above the horizontal, degrees, in (0, 90]")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                double angle = 0;
+                if (!CLI::detail::lexical_cast(text, angle) || !(angle > 0 && angle <= 90)) {
+                    return "must be in (0, 90] degrees, got " + text;
+                }
+                return std::string();
+            },
+            "DEGREES"))
+        ->capture_default_str();
+    app.add_option("--speed", o.scene.launchSpeed, "launch speed, m/s")->check(simlab::positive())->capture_default_str();
+    app.add_option("--gravity", o.scene.gravity, "m/s^2, pulling along -y")->check(simlab::positive())->capture_default_str();
+    app.add_option("--mass", o.scene.mass, "kg, mass of the ball")->check(simlab::positive())->capture_default_str();
+    app.add_option("--event-window", o.scene.groundHitWindow,
+                   "s: the time window Simbody must localize the ground hit to")
+        ->check(simlab::positive())
+        ->capture_default_str();
+    app.get_option("--trade")->description("instead of one run, print the ground hit's digits against the "
+                                           "accuracy and the event window");
+    if (const int status = simlab::parseCommandLine(app, argc, argv); status >= 0) return status;
+
+    return simlab::runGuarded("projectile", [&] {
+        simlab::validate(o.program.run);
+        return o.program.trade ? runTrade(o) : runOnce(o);
+    });
+}

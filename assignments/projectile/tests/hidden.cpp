@@ -1,0 +1,31 @@
+// Projectile motion: the tests only an instructor's grading runs. Other launches, so a file that types in the
+// lab's numbers passes the visible tests and fails these.
+#include "projectile_testing.h"
+
+namespace projectile::testing {
+
+TEST_CASE("hidden: launches from shallow to straight up land where they should", "[projectile][hidden]") {
+    // A gentle 20-degree hit at 25 m/s, a line drive at 5 degrees, a pop-up at 75, and straight up.
+    double worst = simlab::kMaxDigits;
+    for (const Scene& scene : {launch(20, 25), launch(5, 44.7), launch(75, 44.7), launch(90, 30)}) {
+        const HitDigits digits = groundHitDigits(scene, 0.25);
+        INFO(scene.launchAngleDegrees << " degrees at " << scene.launchSpeed << " m/s: " << digits.time
+                                      << " digits of t*, " << digits.range << " of x*");
+        worst = std::min({worst, digits.time, digits.range});
+    }
+    CHECK(grading::atLeast(worst, grading::param("floor"), grading::param("target"), "digits at the worst launch"));
+}
+
+TEST_CASE("hidden: other speeds and gravity fly the right parabola", "[projectile][hidden]") {
+    // A soft throw on the Moon and a hard one on Jupiter, each sampled to just before it lands.
+    double worst = simlab::kMaxDigits;
+    for (const Scene& scene : {launch(35, 10, 1.62), launch(50, 120, 24.79)}) {
+        const double flight = exact::flightTime(scene);
+        const double digits = parabolaDigits(scene, simulate(scene, settingsFor(0.95 * flight, flight / 200)));
+        INFO(scene.launchSpeed << " m/s with g = " << scene.gravity << ": " << digits << " digits");
+        worst = std::min(worst, digits);
+    }
+    CHECK(grading::atLeast(worst, grading::param("floor"), grading::param("target"), "digits at the worst launch"));
+}
+
+}  // namespace projectile::testing

@@ -1,0 +1,86 @@
+// Projectile motion: the tests a student's self-check runs. Points and thresholds are in ../rubric.toml.
+#include "projectile_testing.h"
+
+namespace projectile::testing {
+
+TEST_CASE("the ball starts at the origin with the launch velocity", "[projectile][initial]") {
+    const Scene scene;  // 44.7 m/s at 35 degrees: 36.6 m/s along x, 25.6 m/s along y
+    const Run run = simulate(scene);
+    requireSamples(run);
+    const Sample& first = run.samples.front();
+    INFO("first sample: t = " << first.time << " s, (x, y) = (" << first.x << ", " << first.y << ") m, velocity ("
+                              << first.xVelocity << ", " << first.yVelocity << ") m/s; expected t = 0 at (0, 0) with ("
+                              << exact::xVelocity0(scene) << ", " << exact::yVelocity0(scene) << ") m/s");
+    CHECK(first.time == 0.0);
+    CHECK(first.x == Approx(0.0).margin(1e-12));
+    CHECK(first.y == Approx(0.0).margin(1e-12));
+    CHECK(first.xVelocity == Approx(exact::xVelocity0(scene)).epsilon(1e-12));
+    CHECK(first.yVelocity == Approx(exact::yVelocity0(scene)).epsilon(1e-12));
+}
+
+TEST_CASE("samples run from t = 0 to the final time every dt", "[projectile][sampling]") {
+    const simlab::RunSettings settings = settingsFor(/*finalTime=*/2.0, /*dt=*/0.25);
+    checkSampleTimes(simulate(Scene{}, settings), settings);
+}
+
+TEST_CASE("the integrator is the one asked for at the accuracy asked for", "[projectile][integrator]") {
+    checkIntegratorRequests<Model, Sample>(Scene{}, settingsFor(1.0, 0.05));
+}
+
+TEST_CASE("y at 5.2 s has the target accuracy digits", "[projectile][accuracy]") {
+    // y(5.2) = 44.7 sin(35 deg) 5.2 - 4.9 * 5.2^2 = 0.8316 m: the ball is nearly down again.
+    const Scene scene;
+    const Sample& s = sampleAt(simulate(scene), 5.2);
+    const double digits = simlab::accuracyDigits(s.y, exact::y(scene, 5.2));
+    CHECK(grading::atLeast(digits, grading::param("floor"), grading::param("target"), "digits"));
+}
+
+TEST_CASE("x at 5.2 s has the target accuracy digits", "[projectile][accuracy]") {
+    const Scene scene;
+    const Sample& s = sampleAt(simulate(scene), 5.2);
+    const double digits = simlab::accuracyDigits(s.x, exact::x(scene, 5.2));
+    CHECK(grading::atLeast(digits, grading::param("floor"), grading::param("target"), "digits"));
+}
+
+TEST_CASE("the trajectory follows the parabola y(x) at every sample", "[projectile][trajectory]") {
+    const Scene scene;
+    const double digits = parabolaDigits(scene, simulate(scene));
+    CHECK(grading::atLeast(digits, grading::param("floor"), grading::param("target"), "digits at the worst sample"));
+}
+
+TEST_CASE("the ground hit time comes from an event to the target digits", "[projectile][ground]") {
+    // Sampled only every 0.25 s: an event handler localizes the hit whatever the sampling; a scan of the samples
+    // cannot.
+    const HitDigits digits = groundHitDigits(Scene{}, 0.25);
+    CHECK(grading::atLeast(digits.time, grading::param("floor"), grading::param("target"), "digits of t*"));
+}
+
+TEST_CASE("the ground hit range comes from an event to the target digits", "[projectile][ground]") {
+    const HitDigits digits = groundHitDigits(Scene{}, 0.25);
+    CHECK(grading::atLeast(digits.range, grading::param("floor"), grading::param("target"), "digits of x*"));
+}
+
+TEST_CASE("the mechanical energy stays at its launch value", "[projectile][energy]") {
+    // Only gravity acts: kinetic + potential energy stays at m v0^2 / 2, to about the integrator's accuracy.
+    const Scene scene;
+    const simlab::RunSettings settings = defaultRunSettings();
+    const Run run = simulate(scene, settings);
+    requireSamples(run);
+    double drift = 0;
+    for (const Sample& s : run.samples) {
+        const double relative = std::abs(s.mechanicalEnergy / exact::mechanicalEnergy(scene) - 1);
+        drift = std::isnan(relative) ? INFINITY : std::max(drift, relative);
+    }
+    CHECK(grading::atMost(drift, grading::param("tolerance") * settings.accuracy, "relative energy drift"));
+}
+
+TEST_CASE("the model has only the two degrees of freedom a flight in a plane needs", "[projectile][model]") {
+    const Scene scene;
+    Model model;
+    buildModel(scene, model);
+    checkDegreesOfFreedom(simlab::describeModel(model.matter, initialState(scene, model)), 2,
+                          "a flight in the x-y plane",
+                          "two Sliders in series (along x, then along y) give the ball exactly x and y");
+}
+
+}  // namespace projectile::testing
