@@ -60,7 +60,7 @@ int runTrade(const Options& o) {
         const auto result = simlab::run<apple::Sample>(o.scene, model, run);
         return simlab::TradePoint{finalDigits(o.scene, result.samples), result.integrator.stepsTaken,
                                   result.integrator.realizations};
-    });
+    }, o.program.repeats);
     return 0;
 }
 

@@ -86,8 +86,8 @@ int runOnce(const Options& o) {
 
 // The ground hit's digits against the integrator's accuracy and the event's localization window.
 int runTrade(const Options& o) {
-    std::printf("Digits of the ground hit against cost, %s, dt %g s, median of 3 runs\n",
-                o.program.run.integrator.c_str(), o.program.run.dt);
+    std::printf("Digits of the ground hit against cost, %s, dt %g s, median of %d runs\n",
+                o.program.run.integrator.c_str(), o.program.run.dt, o.program.repeats);
     std::printf("%10s %10s %10s %10s %8s %12s %10s\n", "accuracy", "window s", "digits t*", "digits x*", "steps",
                 "evaluations", "median ms");
     for (const double accuracy : {1e-3, 1e-5, 1e-7, 1e-9, 1e-11}) {
@@ -98,7 +98,7 @@ int runTrade(const Options& o) {
             run.accuracy = accuracy;
             std::vector<double> ms;
             projectile::Landing landing;
-            for (int r = 0; r < 3; ++r) {
+            for (int r = 0; r < o.program.repeats; ++r) {
                 const auto start = std::chrono::steady_clock::now();
                 landing = projectile::simulateLanding(scene, run);
                 ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
@@ -106,7 +106,7 @@ int runTrade(const Options& o) {
             std::sort(ms.begin(), ms.end());
             const HitDigits digits = hitDigits(scene, landing.hit);
             std::printf("%10g %10g %10.2f %10.2f %8d %12d %10.1f\n", accuracy, window, digits.time, digits.range,
-                        landing.integrator.stepsTaken, landing.integrator.realizations, ms[1]);
+                        landing.integrator.stepsTaken, landing.integrator.realizations, ms[ms.size() / 2]);
         }
     }
     return 0;

@@ -276,7 +276,13 @@ std::vector<StudentRecord> gradeClass(const Builder& builder, const Assignment& 
         const Submission found = findSubmission(folder, rubric.submission, false);
         Hash key = base;
         key.add(found.status).add(found.file.empty() ? found.note : fs::path(found.file).filename().string());
-        if (!found.file.empty()) key.add(readFile(found.file));
+        if (!found.file.empty()) {
+            key.add(readFile(found.file));
+            for (const std::string& name : rubric.extraFiles) {
+                const fs::path extra = fs::path(found.file).parent_path() / name;
+                key.add(fs::is_regular_file(extra) ? readFile(extra.string()) : "(none)");
+            }
+        }
         const std::string recordPath = outDir + "/students/" + id + "/record.json";
         const bool wanted = options.only.empty() || std::count(options.only.begin(), options.only.end(), id);
         std::optional<StudentRecord> kept;

@@ -208,10 +208,18 @@ GradeReport gradeSource(const Builder& builder, const Assignment& assignment, co
     if (report.build.ok) {
         const std::string rubricCopy = graderDir + "/rubric.toml";
         writeFileAtomically(rubricCopy, readFile(rubric.path));
+        // Files handed in beside the source (answers, say), for the tests to read.
+        const std::string handedIn = graderDir + "/submission";
+        fs::create_directory(handedIn);
+        for (const std::string& name : rubric.extraFiles) {
+            const fs::path file = fs::path(source).parent_path() / name;
+            if (fs::is_regular_file(file)) writeFileAtomically(handedIn + "/" + name, readFile(file.string()));
+        }
         const fs::perms readable = fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
                                    fs::perms::others_read | fs::perms::others_exec;
         fs::permissions(work.path(), readable);
         fs::permissions(graderDir, readable);
+        fs::permissions(handedIn, readable);
         int index = 0;
         for (const RubricTest* test : selected) {
             const std::string dir = work.path() + "/test" + std::to_string(++index);
@@ -219,7 +227,7 @@ GradeReport gradeSource(const Builder& builder, const Assignment& assignment, co
             ProcessRequest request;
             request.argv = {report.build.binary, test->name, "--use-colour", "no"};
             request.env = {"PATH=/usr/bin:/bin", "HOME=" + dir, "TMPDIR=/tmp", "LC_ALL=C",
-                           "SIMLAB_RUBRIC=" + rubricCopy};
+                           "SIMLAB_RUBRIC=" + rubricCopy, "SIMLAB_SUBMISSION_DIR=" + handedIn};
             request.workDir = dir;
             request.limits = limits;
             request.reportChannel = true;

@@ -141,6 +141,15 @@ double param(const std::string& key) {
     return found->second;
 }
 
+std::string submissionFile(const std::string& name) {
+    const char* dir = std::getenv("SIMLAB_SUBMISSION_DIR");
+    const std::string path = std::string(dir ? dir : ".") + "/" + name;
+    if (::access(path.c_str(), R_OK) != 0) {
+        throw std::runtime_error("the submission has no " + name + " (it goes beside your source file)");
+    }
+    return path;
+}
+
 std::string show(double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%.3g", value);

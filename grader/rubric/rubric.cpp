@@ -122,6 +122,17 @@ Rubric loadRubric(const std::string& path) {
         if (k == "assignment") rubric.assignment = text(path, node, k);
         else if (k == "title") rubric.title = text(path, node, k);
         else if (k == "submission") rubric.submission = text(path, node, k);
+        else if (k == "extra_files") {
+            const toml::array* files = node.as_array();
+            if (!files) fail(path, node, "'extra_files' must be a list of file names");
+            for (const toml::node& f : *files) {
+                const std::string name = text(path, f, "extra_files");
+                if (name.empty() || name.find('/') != std::string::npos) {
+                    fail(path, f, "an extra file is a plain file name, not '" + name + "'");
+                }
+                rubric.extraFiles.push_back(name);
+            }
+        }
         else if (k == "limits") {
             if (!node.is_table()) fail(path, node, "'limits' must be a table: [limits]");
             readLimits(path, *node.as_table(), rubric.limits);
@@ -136,7 +147,8 @@ Rubric loadRubric(const std::string& path) {
             }
             hasTests = true;
         } else {
-            fail(path, node, "unknown key '" + k + "' (known: assignment, title, submission, [limits], [[test]])");
+            fail(path, node,
+                 "unknown key '" + k + "' (known: assignment, title, submission, extra_files, [limits], [[test]])");
         }
     }
     if (rubric.assignment.empty()) throw RubricError(path + ": 'assignment' is missing");

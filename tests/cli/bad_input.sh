@@ -14,7 +14,7 @@ expect_error() {  # expect_error DESCRIPTION PATTERN COMMAND...
 
 echo 'int main() {}' >notes.txt
 mkdir folder
-expect_error "unknown assignment" "unknown assignment 'pear'; available: apple, projectile" "$SIMLAB" check pear
+expect_error "unknown assignment" "unknown assignment 'pear'; available: apple, projectile, book" "$SIMLAB" check pear
 expect_error "missing source file" "source file 'nope.cpp' does not exist" "$SIMLAB" check apple nope.cpp
 expect_error "non-C++ file" "is not a C\+\+ source file" "$SIMLAB" check apple notes.txt
 expect_error "a directory" "is a directory" "$SIMLAB" check apple folder
@@ -41,6 +41,11 @@ expect_error "projectile: negative speed" "speed: must be a positive number, got
   "$BIN_DIR/projectile-reference" --speed -3
 expect_error "projectile: no gravity" "gravity: must be a positive number, got 0" \
   "$BIN_DIR/projectile-reference" --gravity 0
+expect_error "book: unknown spin" "spin: sideways not in" "$BIN_DIR/book-reference" --spin sideways
+expect_error "book: --spin with --omega" "excludes" "$BIN_DIR/book-reference" --spin min --omega 1,2,3
+expect_error "book: two components" "omega" "$BIN_DIR/book-reference" --omega 1,2
+expect_error "book: a negative dimension" "dimensions: must be a positive number, got -0.3" \
+  "$BIN_DIR/book-reference" --dimensions 0.2,-0.3,0.05
 if [[ $(id -u) -ne 0 ]]; then
   echo 'int x;' >locked.cpp && chmod 000 locked.cpp
   expect_error "unreadable source" "cannot read" "$SIMLAB" check apple locked.cpp

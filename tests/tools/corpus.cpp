@@ -10,6 +10,7 @@
 //     [[edit]]                                 # `find` must occur exactly once in the base
 //     find = "Vec3(0, -scene.gravity, 0)"
 //     replace = "Vec3(0, scene.gravity, 0)"
+//     file = "BookAnswers.toml"                # optional: edit one of the rubric's extra files instead
 //     [outcomes]                               # every test not listed must pass
 //     "y at the final time has the target accuracy digits" = "failed"
 //
@@ -50,7 +51,7 @@ namespace {
 struct Case {
     std::string name;
     std::string description;
-    std::string source;  // the submission's text
+    std::map<std::string, std::string> files;  // what the student hands in: the submission and its extra files
     double score = 0;
     std::vector<std::string> reportContains;
     std::map<std::string, std::string> outcomes;
@@ -60,7 +61,7 @@ struct Case {
     throw std::runtime_error(path + ": " + what);
 }
 
-Case loadCase(const Assignment& assignment, const std::string& path) {
+Case loadCase(const Assignment& assignment, const simlab::Rubric& rubric, const std::string& path) {
     toml::table t;
     try {
         t = toml::parse_file(path);
@@ -74,7 +75,11 @@ Case loadCase(const Assignment& assignment, const std::string& path) {
     if (base != "solution" && base != "starter") fail(path, "base must be \"solution\" or \"starter\"");
     const std::string basePath = base == "solution" ? assignment.solution : assignment.starter;
     if (basePath.empty()) fail(path, "this tree has no solution for " + assignment.id);
-    c.source = readFile(basePath);
+    c.files[assignment.source] = readFile(basePath);
+    for (const std::string& extra : rubric.extraFiles) {
+        const fs::path file = fs::path(basePath).parent_path() / extra;
+        if (fs::exists(file)) c.files[extra] = readFile(file.string());
+    }
     const auto score = t["score"].value<double>();
     if (!score) fail(path, "score is missing");
     c.score = *score;
@@ -84,11 +89,14 @@ Case loadCase(const Assignment& assignment, const std::string& path) {
             const auto find = edit ? (*edit)["find"].value<std::string>() : std::nullopt;
             const auto replace = edit ? (*edit)["replace"].value<std::string>() : std::nullopt;
             if (!find || !replace) fail(path, "each [[edit]] needs find and replace");
-            const std::size_t at = c.source.find(*find);
-            if (at == std::string::npos || c.source.find(*find, at + 1) != std::string::npos) {
-                fail(path, "edit must match exactly once in the " + base + ", and does not: " + *find);
+            const std::string file = (*edit)["file"].value_or(assignment.source);
+            if (!c.files.count(file)) fail(path, "the " + base + " has no " + file + " to edit");
+            std::string& text = c.files[file];
+            const std::size_t at = text.find(*find);
+            if (at == std::string::npos || text.find(*find, at + 1) != std::string::npos) {
+                fail(path, "edit must match exactly once in the " + base + "'s " + file + ", and does not: " + *find);
             }
-            c.source.replace(at, find->size(), *replace);
+            text.replace(at, find->size(), *replace);
         }
     }
     if (const toml::array* texts = t["report_contains"].as_array()) {
@@ -100,16 +108,20 @@ Case loadCase(const Assignment& assignment, const std::string& path) {
     return c;
 }
 
-std::string submissionName(const Assignment& assignment) { return assignment.source; }
+// Write a case's files into `dir`; a file is rewritten only when it changed, so it keeps its time stamp.
+void writeCase(const Case& c, const fs::path& dir) {
+    fs::create_directories(dir);
+    for (const auto& [name, text] : c.files) {
+        const fs::path file = dir / name;
+        if (!fs::exists(file) || readFile(file.string()) != text) writeFileAtomically(file.string(), text);
+    }
+}
 
-int materialize(const Assignment& assignment, const std::vector<std::string>& cases, const std::string& out) {
+int materialize(const Assignment& assignment, const simlab::Rubric& rubric, const std::vector<std::string>& cases,
+                const std::string& out) {
     for (const std::string& path : cases) {
-        const Case c = loadCase(assignment, path);
-        const fs::path dir = fs::path(out) / c.name;
-        fs::create_directories(dir);
-        const fs::path file = dir / submissionName(assignment);
-        // Rewrite only on change, so the file keeps its time stamp and nothing downstream rebuilds for nothing.
-        if (!fs::exists(file) || readFile(file.string()) != c.source) writeFileAtomically(file.string(), c.source);
+        const Case c = loadCase(assignment, rubric, path);
+        writeCase(c, fs::path(out) / c.name);
     }
     return 0;
 }
@@ -134,15 +146,15 @@ std::vector<std::string> compare(const Case& c, const std::vector<TestResult>& t
     return mismatches;
 }
 
-int check(const Manifest& manifest, const Assignment& assignment, const std::string& path) {
-    const Case c = loadCase(assignment, path);
-    const simlab::Rubric rubric = simlab::loadRubric(assignment.rubric);
+int check(const Manifest& manifest, const Assignment& assignment, const simlab::Rubric& rubric,
+          const std::string& path) {
+    const Case c = loadCase(assignment, rubric, path);
     for (const auto& [test, outcome] : c.outcomes) {
         if (!rubric.find(test)) fail(path, "no test named '" + test + "' in " + assignment.rubric);
     }
     TempDir dir("simlab-corpus-");
-    const std::string file = dir.path() + "/" + submissionName(assignment);
-    writeFileAtomically(file, c.source);
+    writeCase(c, dir.path());
+    const std::string file = dir.path() + "/" + assignment.source;
     GradeOptions options;
     options.includeHidden = true;
     const GradeReport report = gradeSource(Builder(manifest), assignment, rubric, file, options);
@@ -198,16 +210,16 @@ private:
 
 std::string marker(const std::string& student) { return "corpus student " + student + " wrote this file"; }
 
-int gradeAsClass(const Assignment& assignment, const std::vector<std::string>& paths, const std::string& simlab,
-                 int jobs) {
+int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, const std::vector<std::string>& paths,
+                 const std::string& simlab, int jobs) {
     std::vector<Case> cases;
-    for (const std::string& path : paths) cases.push_back(loadCase(assignment, path));
+    for (const std::string& path : paths) cases.push_back(loadCase(assignment, rubric, path));
     TempDir dir("simlab-class-");
     const std::string submissions = dir.path() + "/submissions", out = dir.path() + "/grades";
     for (const Case& c : cases) {
-        fs::create_directories(submissions + "/" + c.name);
-        writeFileAtomically(submissions + "/" + c.name + "/" + assignment.source,
-                            c.source + "\n// " + marker(c.name) + "\n");
+        Case marked = c;
+        marked.files[assignment.source] += "\n// " + marker(c.name) + "\n";
+        writeCase(marked, submissions + "/" + c.name);
     }
 
     Listener listener(47810);
@@ -298,9 +310,10 @@ int main(int argc, char** argv) {
     try {
         const Manifest manifest = loadManifest();
         const Assignment& assignment = manifest.find(assignmentId);
-        if (materializeCommand->parsed()) return materialize(assignment, cases, out);
-        if (classCommand->parsed()) return gradeAsClass(assignment, cases, simlab, jobs);
-        return check(manifest, assignment, cases.front());
+        const simlab::Rubric rubric = simlab::loadRubric(assignment.rubric);
+        if (materializeCommand->parsed()) return materialize(assignment, rubric, cases, out);
+        if (classCommand->parsed()) return gradeAsClass(assignment, rubric, cases, simlab, jobs);
+        return check(manifest, assignment, rubric, cases.front());
     } catch (const std::exception& e) {
         std::cerr << "simlab-corpus: error: " << e.what() << '\n';
         return 2;

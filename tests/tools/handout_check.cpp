@@ -8,8 +8,8 @@
 //
 // Commands run in a scratch folder laid out like the top of the simlab tree: build/bin holds the lab programs and
 // simlab, handouts/ is the real one. A block opened as ```console solution runs as if the student had finished:
-// build/bin/<program> is the program built from the reference solution, and the in-tree student file (what
-// `simlab check <id>` grades by default) is a copy of the solution.
+// build/bin/<program> is the program built from the reference solution, and the in-tree student folder (what
+// `simlab check <id>` grades by default) holds a copy of the solution's folder.
 //
 //   handout-check HANDOUT.md
 #include <filesystem>
@@ -110,10 +110,14 @@ void prepare(const Manifest& manifest, const std::string& root, bool solution) {
         if (solution && built.empty()) throw std::runtime_error("no reference solution for " + id);
         fs::create_symlink(built, root + "/build/bin/" + program);
         if (solution) {
-            const std::string copy = root + "/starter/" + id + "/" + source;
-            fs::create_directories(fs::path(copy).parent_path());
-            fs::copy_file(a["solution"].get<std::string>(), copy);
-            a["starter"] = copy;
+            // The whole finished folder: the solution and what is handed in beside it (answers, say).
+            const fs::path finished = fs::path(a["solution"].get<std::string>()).parent_path();
+            const fs::path copy = fs::path(root) / "starter" / id;
+            fs::create_directories(copy);
+            for (const fs::directory_entry& file : fs::directory_iterator(finished)) {
+                if (file.is_regular_file()) fs::copy_file(file.path(), copy / file.path().filename());
+            }
+            a["starter"] = (copy / source).string();
         }
     }
     writeFileAtomically(root + "/manifest.json", json.dump(2));

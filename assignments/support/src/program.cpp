@@ -48,6 +48,9 @@ void addProgramOptions(CLI::App& app, ProgramOptions& options) {
     app.add_flag("--animate", options.animate, "show the motion in Simbody's visualizer (needs a display)");
     app.add_flag("--trade", options.trade,
                  "instead of one run, print accuracy digits against cost for every integrator");
+    app.add_option("--repeats", options.repeats, "with --trade: runs per row; the median time is shown")
+        ->check(CLI::Range(1, 100))
+        ->capture_default_str();
 
     const std::string program = app.get_name();
     app.failure_message([program](const CLI::App*, const CLI::Error& e) {

@@ -24,9 +24,10 @@ struct ProgramOptions {
     bool quiet = false;    ///< do not print the table on the screen
     bool animate = false;  ///< show the motion in Simbody's visualizer
     bool trade = false;    ///< print digits against cost for every integrator instead of one run
+    int repeats = 5;       ///< runs per row of the trade table (the median time is shown)
 };
 
-/// Adds --integrator, --accuracy, --dt, --final-time, --fixed-step, --output, --quiet, --animate and --trade,
+/// Adds --integrator, --accuracy, --dt, --final-time, --fixed-step, --output, --quiet, --animate, --trade and --repeats,
 /// with `options` holding the defaults, and makes parse errors one line: "<program>: error: ...".
 void addProgramOptions(CLI::App& app, ProgramOptions& options);
 

@@ -35,6 +35,10 @@ bool atLeast(double value, double floor, double target, const std::string& unit)
 /// Returns value <= allowed (false for NaN).
 bool atMost(double value, double allowed, const std::string& what);
 
+/// The path of a file the student handed in beside their source (one of the rubric's extra_files). Throws,
+/// saying where the file belongs, if they did not.
+std::string submissionFile(const std::string& name);
+
 /// Format a number the way reports show it: 3 significant digits, scientific when small or large.
 std::string show(double value);
 

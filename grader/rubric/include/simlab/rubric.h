@@ -3,6 +3,7 @@
 //     assignment = "apple"
 //     title = "Newton's apple"
 //     submission = "NewtonsApple.cpp"      # the file each student hands in
+//     extra_files = ["BookAnswers.toml"]   # optional: more files handed in beside it, which tests may read
 //
 //     [limits]                             # per test case, each in its own process
 //     wall_seconds = 5
@@ -54,6 +55,7 @@ struct Rubric {
     std::string assignment;
     std::string title;
     std::string submission;
+    std::vector<std::string> extraFiles;  ///< handed in beside the submission; tests read them by name
     Limits limits;
     std::vector<RubricTest> tests;
 

@@ -1,0 +1,191 @@
+// The spinning book: the tests a student's self-check runs. Points and thresholds are in ../rubric.toml.
+#include "book_testing.h"
+
+namespace book::testing {
+
+TEST_CASE("the principal moments of inertia come from the book's dimensions", "[book][inertia]") {
+    // A uniform 0.4 kg book, 20 x 30 x 5 cm: Ixx = m (Ly^2 + Lz^2)/12 = 3.083e-3, Iyy = 1.417e-3, Izz = 4.333e-3.
+    const Scene scene;
+    Model model;
+    buildModel(scene, model);
+    SimTK::State state = initialState(scene, model);
+    model.system.realize(state, SimTK::Stage::Instance);
+    const SimTK::MassProperties props = model.book.getBodyMassProperties(state);
+    const SimTK::Vec3 moments = props.getInertia().getMoments(), products = props.getInertia().getProducts();
+    const SimTK::Vec3 expected = exact::principalMoments(scene);
+    if (std::abs(moments[0] / expected[0] - 4) < 1e-6) {
+        grading::feedback("every moment is 4 times too large: UnitInertia::brick takes half the edge lengths");
+    }
+    INFO("the book's inertia about its center is (" << moments << ") kg m^2 with products (" << products
+                                                    << "), mass " << props.getMass() << " kg, center " << props.getMassCenter()
+                                                    << "; expected (" << expected << ") kg m^2 about its x, y, z");
+    CHECK(props.getMass() == Approx(scene.mass).epsilon(1e-12));
+    CHECK(props.getMassCenter().norm() < 1e-12);
+    for (int i = 0; i < 3; ++i) {
+        CHECK(moments[i] == Approx(expected[i]).epsilon(1e-9));
+        CHECK(products[i] == Approx(0.0).margin(1e-15));
+    }
+}
+
+TEST_CASE("the book starts with the spin asked for", "[book][initial]") {
+    const Scene scene = spun(Scene{}, "intermediate");
+    const Run run = simulate(scene);
+    requireSamples(run);
+    const Sample& first = run.samples.front();
+    INFO("w at t = " << first.time << " s is (" << first.w_B << ") rad/s; expected (" << scene.w_B0 << ")");
+    CHECK(first.time == 0.0);
+    CHECK((first.w_B - scene.w_B0).norm() < 1e-12);
+}
+
+TEST_CASE("samples run from t = 0 to the final time every dt", "[book][sampling]") {
+    const simlab::RunSettings settings = settingsFor(/*finalTime=*/2.0, /*dt=*/0.25);
+    checkSampleTimes(simulate(Scene{}, settings), settings);
+}
+
+TEST_CASE("the integrator is the one asked for at the accuracy asked for", "[book][integrator]") {
+    checkIntegratorRequests<Model, Sample>(Scene{}, settingsFor(1.0, 0.05));
+}
+
+TEST_CASE("omega at 4 s matches the exact solution for all three spins", "[book][accuracy]") {
+    // The exact solution is in Jacobi elliptic functions (exact.h).
+    double worst = simlab::kMaxDigits;
+    for (const std::string& axis : axisNames()) {
+        const Scene scene = spun(Scene{}, axis);
+        const double digits = finalDigits(scene, simulate(scene));
+        INFO("spin about the " << axis << " axis: " << digits << " digits");
+        worst = std::min(worst, digits);
+    }
+    CHECK(grading::atLeast(worst, grading::param("floor"), grading::param("target"), "digits at the worst spin"));
+}
+
+TEST_CASE("K and |H| stay constant and so does H in Ground", "[book][conservation]") {
+    // No torque: kinetic energy and the angular momentum vector (seen from Ground) do not change.
+    const double allowed = grading::param("tolerance") * defaultRunSettings().accuracy;
+    double worst = 0;
+    for (const std::string& axis : axisNames()) {
+        const Run run = simulate(spun(Scene{}, axis));
+        for (const char* name : {"K", "Hmag", "HG"}) {
+            for (const auto& [quantity, read] : quantities()) {
+                if (quantity == name) worst = std::max(worst, relativeChange(run, read));
+            }
+        }
+    }
+    CHECK(grading::atMost(worst, allowed, "largest relative change"));
+}
+
+TEST_CASE("the body components of omega and H change", "[book][conservation]") {
+    // Seen from the turning book, H's components (and w's) do change: checked on the student's own output.
+    std::vector<std::string> constant;
+    for (const char* name : {"wx", "wy", "wz", "Hx", "Hy", "Hz"}) {
+        double largest = 0;
+        for (const std::string& axis : axisNames()) {
+            const Run run = simulate(spun(Scene{}, axis));
+            for (const auto& [quantity, read] : quantities()) {
+                if (quantity == name) largest = std::max(largest, relativeChange(run, read));
+            }
+        }
+        if (!(largest > 1e-3)) constant.push_back(name);
+    }
+    std::string list;
+    for (const std::string& c : constant) list += (list.empty() ? "" : ", ") + c;
+    INFO("in the simulation's own output these body components stay constant: " << list
+                                                                              << "; are they expressed in the book?");
+    CHECK(constant.empty());
+}
+
+TEST_CASE("the answers say which quantities are conserved", "[book][answers]") {
+    const Answers answers = readAnswers();
+    const std::map<std::string, std::string> truth = {{"wx", "no"}, {"wy", "no"},   {"wz", "no"},
+                                                      {"K", "yes"}, {"Hx", "no"},   {"Hy", "no"},
+                                                      {"Hz", "no"}, {"Hmag", "yes"}, {"HG", "yes"}};
+    int right = 0;
+    std::string wrong;
+    for (const auto& [quantity, answer] : truth) {
+        const auto given = answers.conserved.find(quantity);
+        if (given != answers.conserved.end() && given->second == answer) ++right;
+        else wrong += (wrong.empty() ? "" : ", ") + quantity + " is '" + (given == answers.conserved.end() ? "missing" : given->second) + "'";
+    }
+    grading::measured(right, "right", std::to_string(right) + " of " + std::to_string(truth.size()) + " right" +
+                                          (wrong.empty() ? "" : ": " + wrong));
+    grading::partialCredit(double(right) / truth.size());
+    CHECK(right == static_cast<int>(truth.size()));
+}
+
+TEST_CASE("the answers say which spins are stable", "[book][answers]") {
+    // Spin about the minimum and maximum axes is stable (a linear analysis says neutrally stable: both are
+    // accepted); about the intermediate axis it is unstable.
+    const Answers answers = readAnswers();
+    const std::map<std::string, std::vector<std::string>> truth = {{"minimum", {"stable", "neutrally stable"}},
+                                                                   {"intermediate", {"unstable"}},
+                                                                   {"maximum", {"stable", "neutrally stable"}}};
+    int right = 0;
+    std::string wrong;
+    for (const auto& [axis, accepted] : truth) {
+        const auto given = answers.stability.find(axis);
+        const std::string value = given == answers.stability.end() ? "missing" : given->second;
+        if (std::count(accepted.begin(), accepted.end(), value)) ++right;
+        else wrong += (wrong.empty() ? "" : ", ") + axis + " is '" + value + "'";
+    }
+    grading::measured(right, "right", std::to_string(right) + " of 3 right" + (wrong.empty() ? "" : ": " + wrong));
+    grading::partialCredit(right / 3.0);
+    CHECK(right == 3);
+}
+
+TEST_CASE("the answers agree with the student's own simulation", "[book][answers]") {
+    // What the student's own numbers show: a quantity that changes by less than a millionth is constant, by more
+    // than a thousandth is not; a spin that reverses is unstable, one whose wobble stays under 1 rad/s is not.
+    const Answers answers = readAnswers();
+    std::map<std::string, Run> runs;
+    for (const std::string& axis : axisNames()) runs.emplace(axis, simulate(spun(Scene{}, axis)));
+    std::string disagreements;
+    for (const auto& [quantity, read] : quantities()) {
+        double largest = 0;
+        for (const auto& [axis, run] : runs) largest = std::max(largest, relativeChange(run, read));
+        const std::string shown = largest < 1e-6 ? "yes" : largest > 1e-3 ? "no" : "";
+        const auto given = answers.conserved.find(quantity);
+        if (!shown.empty() && (given == answers.conserved.end() || given->second != shown)) {
+            disagreements += (disagreements.empty() ? "" : "; ") + quantity + ": your numbers say " + shown;
+        }
+    }
+    const std::map<std::string, std::string> label = {{"min", "minimum"}, {"intermediate", "intermediate"}, {"max", "maximum"}};
+    for (const auto& [axis, run] : runs) {
+        const Wobble w = wobbleOf(spun(Scene{}, axis), axis, run);
+        const auto given = answers.stability.find(label.at(axis));
+        const std::string value = given == answers.stability.end() ? "missing" : given->second;
+        const bool saysUnstable = value == "unstable", saysSteady = value == "stable" || value == "neutrally stable";
+        if ((w.spinReverses && !saysUnstable) || (!w.spinReverses && w.largestWobble < 1 && !saysSteady)) {
+            disagreements += (disagreements.empty() ? "" : "; ") + label.at(axis) + " axis: your numbers say " +
+                             (w.spinReverses ? "unstable" : "stable");
+        }
+    }
+    INFO(disagreements);
+    CHECK(disagreements.empty());
+}
+
+TEST_CASE("spin about the intermediate axis tumbles while the others hold steady", "[book][stability]") {
+    // Measured on the student's simulation: within 4 s the intermediate-axis spin reverses; about the minimum and
+    // maximum axes the 0.2 rad/s wobble stays under 1 rad/s.
+    std::string problems;
+    for (const std::string& axis : axisNames()) {
+        const Scene scene = spun(Scene{}, axis);
+        const Wobble w = wobbleOf(scene, axis, simulate(scene));
+        if (axis == "intermediate" && !w.spinReverses) problems += "the intermediate-axis spin never reverses; ";
+        if (axis != "intermediate" && (w.spinReverses || w.largestWobble >= 1)) {
+            problems += "about the " + axis + " axis the wobble grows to " + grading::show(w.largestWobble) + " rad/s; ";
+        }
+    }
+    INFO(problems);
+    CHECK(problems.empty());
+}
+
+TEST_CASE("the model has only the three rotational degrees of freedom a spin about a fixed point needs",
+          "[book][model]") {
+    const Scene scene;
+    Model model;
+    buildModel(scene, model);
+    checkDegreesOfFreedom(simlab::describeModel(model.matter, initialState(scene, model)), 3,
+                          "a rotation about the book's center",
+                          "a Ball mobilizer at its center gives the book exactly its three rotations");
+}
+
+}  // namespace book::testing
