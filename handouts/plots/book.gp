@@ -5,8 +5,8 @@
 if (!exists("results")) results = "BookSpinResults.txt"
 if (exists("out")) { set terminal pngcairo size 900,700; set output out }
 
-stats results using 9 every ::0::0 nooutput name "K"   # the first row: K(0)
-stats results using 8 every ::0::0 nooutput name "H"   # and |H|(0)
+stats results using 9 every ::1::1 nooutput name "K"   # the first row after the header: K(0)
+stats results using 8 every ::1::1 nooutput name "H"   # and |H|(0)
 set key autotitle columnhead
 set grid
 set multiplot layout 2,1 title "The spinning book"
