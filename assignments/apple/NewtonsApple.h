@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "Simbody.h"
+#include "simlab/multibody_model.h"
 #include "simlab/recorder.h"
 #include "simlab/run_settings.h"
 
@@ -36,17 +37,11 @@ struct Sample {
     double mechanicalEnergy = 0;  ///< J, kinetic plus gravitational potential energy (zero at y = 0)
 };
 
-/// The Simbody model. The course makes the system and its two subsystems; buildModel adds the apple (a body
-/// with its mass properties, on a mobilizer that connects it to Ground) to `matter`, and gravity to `forces`.
-struct Model {
-    SimTK::MultibodySystem system;
-    SimTK::SimbodyMatterSubsystem matter{system};
-    SimTK::GeneralForceSubsystem forces{system};
+/// The Simbody model. The course makes the system and its two subsystems (`system`, `matter`, `forces`);
+/// buildModel adds the apple (a body with its mass properties, on a mobilizer that connects it to Ground) to
+/// `matter`, and gravity to `forces`.
+struct Model : simlab::MultibodyModel {
     SimTK::MobilizedBody apple;  ///< the apple's mobilized body; buildModel sets it
-
-    Model() = default;
-    Model(const Model&) = delete;
-    Model& operator=(const Model&) = delete;
 };
 
 /// The apple program's defaults: RungeKuttaMerson at accuracy 1e-7, sampled every 0.01 s for 4 s.

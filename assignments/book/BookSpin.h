@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "Simbody.h"
+#include "simlab/multibody_model.h"
 #include "simlab/recorder.h"
 #include "simlab/run_settings.h"
 
@@ -39,15 +40,8 @@ struct Sample {
 /// The Simbody model. buildModel adds the book (a body with the mass properties of a uniform brick, on a
 /// mobilizer that lets it turn about its center) to `matter`. Nothing needs adding to `forces`: the book is
 /// torque-free.
-struct Model {
-    SimTK::MultibodySystem system;
-    SimTK::SimbodyMatterSubsystem matter{system};
-    SimTK::GeneralForceSubsystem forces{system};
+struct Model : simlab::MultibodyModel {
     SimTK::MobilizedBody book;  ///< the book's mobilized body; buildModel sets it
-
-    Model() = default;
-    Model(const Model&) = delete;
-    Model& operator=(const Model&) = delete;
 };
 
 /// The book program's defaults: RungeKuttaMerson at accuracy 1e-10 (enough for 8 digits of w(4) in every spin),

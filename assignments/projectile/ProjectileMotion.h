@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "Simbody.h"
+#include "simlab/multibody_model.h"
 #include "simlab/recorder.h"
 #include "simlab/run_settings.h"
 
@@ -47,16 +48,9 @@ struct GroundHit {
 
 /// The Simbody model. buildModel adds the ball and its mobilizers to `matter`, gravity to `forces`, and the
 /// ground-hit event handler to `system`; the handler writes to `groundHit`.
-struct Model {
-    SimTK::MultibodySystem system;
-    SimTK::SimbodyMatterSubsystem matter{system};
-    SimTK::GeneralForceSubsystem forces{system};
+struct Model : simlab::MultibodyModel {
     SimTK::MobilizedBody ball;  ///< the ball's mobilized body; buildModel sets it
     GroundHit groundHit;        ///< filled in by the event handler when the ball lands
-
-    Model() = default;
-    Model(const Model&) = delete;
-    Model& operator=(const Model&) = delete;
 };
 
 /// The projectile program's defaults: RungeKuttaMerson at accuracy 1e-7, sampled every 0.01 s for 5.23 s.

@@ -36,7 +36,7 @@ struct GradeCommandOptions {
     std::string rubric;
 };
 
-std::string clock(double seconds) {
+std::string minutesAndSeconds(double seconds) {
     char text[32];
     const int s = static_cast<int>(seconds + 0.5);
     if (s >= 60) std::snprintf(text, sizeof text, "%dm%02ds", s / 60, s % 60);
@@ -95,8 +95,8 @@ void runGrade(const GradeCommandOptions& o) {
         std::printf("%s\n", studentLine(*p.last, p.lastReused).c_str());
         std::fflush(stdout);
         if (live) {
-            std::fprintf(stderr, "  [%d/%d] %s elapsed%s", p.done, p.total, clock(p.elapsed).c_str(),
-                         p.eta >= 0 && p.done < p.total ? (", about " + clock(p.eta) + " left").c_str() : "");
+            std::fprintf(stderr, "  [%d/%d] %s elapsed%s", p.done, p.total, minutesAndSeconds(p.elapsed).c_str(),
+                         p.eta >= 0 && p.done < p.total ? (", about " + minutesAndSeconds(p.eta) + " left").c_str() : "");
             std::fflush(stderr);
         }
     };
