@@ -1,5 +1,6 @@
 #include "simlab/engine/build.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <set>
@@ -45,6 +46,22 @@ std::string linkSummary(const std::string& log) {
         }
     }
     return summary.empty() ? log : summary;
+}
+
+// The folders a compile command reads headers from: -I and -isystem folders, and the folder of an -include.
+std::vector<std::string> includeFolders(const std::vector<std::string>& command) {
+    std::vector<std::string> folders;
+    for (std::size_t i = 0; i < command.size(); ++i) {
+        const std::string& arg = command[i];
+        if (arg.rfind("-I", 0) == 0 && arg.size() > 2) folders.push_back(arg.substr(2));
+        if ((arg == "-isystem" || arg == "-I") && i + 1 < command.size()) folders.push_back(command[i + 1]);
+        if (arg == "-include" && i + 1 < command.size()) folders.push_back(fs::path(command[i + 1]).parent_path());
+    }
+    // Folders under /usr are in the sandbox already.
+    folders.erase(std::remove_if(folders.begin(), folders.end(),
+                                 [](const std::string& f) { return f.rfind("/usr/", 0) == 0; }),
+                  folders.end());
+    return folders;
 }
 
 }  // namespace
@@ -119,6 +136,11 @@ BuildResult Builder::compile(const std::string& source, const std::string& workD
     request.workDir = workDir;
     request.limits = toolLimits();
     request.keepOutput = 64 * 1024;
+    // The compiler reads what the student's #include lines name, and its messages come back in their report: it
+    // sees only the system and the include folders on its command line, nothing of other students' or simlab's.
+    request.isolate = true;
+    request.ownUser = false;
+    request.readOnlyPaths = includeFolders(manifest_.compile);
     const ProcessResult run = runProcess(request);
     result.compileSeconds = run.wallSeconds;
     result.ok = run.exitedCleanly() && fs::exists(output);

@@ -269,7 +269,7 @@ ProcessResult runProcess(const ProcessRequest& r) {
     launch.tasks = taskLimitFor(r.limits.processes);
     if (r.isolate) {
         const SandboxSupport& support = sandboxSupport();
-        if (support.ownUser) {
+        if (support.ownUser && r.ownUser) {
             launch.dropUser = true;
             launch.uid = sandboxUid(r.slot);
             launch.tasks = static_cast<rlim_t>(r.limits.processes);  // the user is ours alone

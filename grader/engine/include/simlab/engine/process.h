@@ -24,6 +24,8 @@ struct ProcessRequest {
     std::size_t keepOutput = 16 * 1024;  ///< bytes of output kept for the report (all of it is counted)
     bool isolate = false;           ///< run in the sandbox (see above)
     std::vector<std::string> readOnlyPaths;  ///< with isolate: what the child may read, at the same paths
+    bool ownUser = true;            ///< with isolate as root: run as a throwaway user (false: a trusted tool
+                                    ///< that needs only the private filesystem, such as the compiler)
     int slot = 0;                   ///< with isolate as root: which throwaway user (one per concurrent child)
 };
 
