@@ -159,6 +159,7 @@ function(simlab_write_manifest)
   \"source_dir\": \"${PROJECT_SOURCE_DIR}\",
   \"build_dir\": \"${PROJECT_BINARY_DIR}\",
   \"sample_class\": \"${SIMLAB_SAMPLE_CLASS_DIR}\",
+  \"catch2_include\": \"$<TARGET_PROPERTY:Catch2::Catch2,INTERFACE_INCLUDE_DIRECTORIES>\",
   \"compile\": ${compile},
   \"link\": [\"${CMAKE_CXX_COMPILER}\", \"-pthread\"],
   \"grader_libraries\": ${grader_libraries},

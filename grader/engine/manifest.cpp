@@ -41,6 +41,7 @@ Manifest loadManifest(const std::string& path) {
         m.sourceDir = j.at("source_dir");
         m.buildDir = j.at("build_dir");
         m.sampleClass = j.at("sample_class");
+        m.catch2Include = j.at("catch2_include");
         m.compile = j.at("compile").get<std::vector<std::string>>();
         m.link = j.at("link").get<std::vector<std::string>>();
         m.graderLibraries = j.at("grader_libraries").get<std::vector<std::string>>();

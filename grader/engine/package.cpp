@@ -78,6 +78,19 @@ std::vector<Rule> instructorOnly() {
     };
 }
 
+// Catch2 2.13's single header from this system (Boost Software License; the notice is at its top) and a main
+// for it, in third_party/catch2: CMakeLists.txt builds the grader with them where the system's Catch2 is not 2.13
+// (Ubuntu 24.04 ships Catch2 3).
+void addCatch2(const Manifest& manifest, const std::string& dir, PackageSummary& summary) {
+    fs::create_directories(dir + "/third_party/catch2");
+    fs::copy_file(manifest.catch2Include + "/catch2/catch.hpp", dir + "/third_party/catch2/catch.hpp",
+                  fs::copy_options::overwrite_existing);
+    writeFileAtomically(dir + "/third_party/catch2/catch_main.cpp",
+                        "// Catch2's main, for systems without Catch2 2.13 (see CMakeLists.txt).\n"
+                        "#define CATCH_CONFIG_MAIN\n#include \"catch2/catch.hpp\"\n");
+    summary.files += 2;
+}
+
 void makeExecutable(const std::string& path) {
     fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
                     fs::perm_options::add);
@@ -127,6 +140,7 @@ PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& o
     PackageSummary summary = copyFiles(manifest, rules, outDir);
     fs::copy_file(manifest.sourceDir + "/handouts/README-student.md", outDir + "/README.md");
     ++summary.files;
+    addCatch2(manifest, outDir, summary);
     return summary;
 }
 
@@ -148,7 +162,7 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
         "# base image: simlab needs CMake 3.25 and libtomlplusplus-dev.\n"
         "set -euo pipefail\n"
         "source_dir=$(cd \"$(dirname \"${BASH_SOURCE[0]}\")\" && pwd)\n"
-        "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF\" \"$source_dir/scripts/setup\"\n");
+        "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" \"$source_dir/scripts/setup\"\n");
     writeFileAtomically(staging.path() + "/run_autograder",
         "#!/usr/bin/env bash\n"
         "# Gradescope runs this for every submission: it grades /autograder/submission on every test of the\n"
@@ -157,6 +171,7 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
         "root=${AUTOGRADER_ROOT:-/autograder}\n"
         "exec \"$root/source/build/bin/simlab\" autograde " + assignment.id +
             " --submission \"$root/submission\" --results \"$root/results/results.json\"\n");
+    addCatch2(manifest, staging.path(), summary);
     makeExecutable(staging.path() + "/setup.sh");
     makeExecutable(staging.path() + "/run_autograder");
     summary.files += 2;

@@ -12,8 +12,13 @@ check "and no solutions" bash -c "! unzip -Z1 autograder.zip | grep -q '^solutio
 root=$PWD/autograder
 mkdir -p "$root/source" "$root/submission" "$root/results"
 unzip -q autograder.zip -d "$root/source"
-SIMLAB_SKIP_APT=1 SIMLAB_JOBS=2 "$root/source/setup.sh" >setup.log 2>&1
-check "setup.sh builds the autograder from the archive" test $? -eq 0 || tail -20 setup.log
+check "the archive carries Catch2 2.13's header, for images that ship Catch2 3" \
+  bash -c "unzip -Z1 autograder.zip | grep -qx third_party/catch2/catch.hpp"
+# Build as on an image without Catch2 2 (Gradescope's Ubuntu 24.04 ships Catch2 3): from the carried header.
+SIMLAB_SKIP_APT=1 SIMLAB_JOBS=2 SIMLAB_CMAKE_ARGS=-DCMAKE_DISABLE_FIND_PACKAGE_Catch2=ON \
+  "$root/source/setup.sh" >setup.log 2>&1
+check "setup.sh builds the autograder from the archive, with the carried Catch2 header" \
+  bash -c "test $? -eq 0 && grep -q 'Catch2 2.13: the header in third_party/catch2' setup.log" || tail -20 setup.log
 
 grade_submission() {  # grade_submission NAME: run run_autograder on what is in $root/submission
   rm -f "$root/results/results.json"

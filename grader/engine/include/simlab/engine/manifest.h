@@ -30,6 +30,7 @@ struct Manifest {
     std::string sourceDir;
     std::string buildDir;
     std::string sampleClass;           ///< <build>/sample-class: one folder per assignment, made from tests/corpus
+    std::string catch2Include;         ///< the folder holding catch2/catch.hpp (Catch2 2.13)
     std::vector<std::string> compile;  ///< compiler and flags; append -c SOURCE -o OBJECT
     std::vector<std::string> link;     ///< linker driver and flags
     std::vector<std::string> graderLibraries;

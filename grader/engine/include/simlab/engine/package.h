@@ -19,12 +19,14 @@ struct PackageSummary {
 
 /// Write what students receive to `outDir` (which must not exist or be empty): everything but the solutions, the
 /// hidden tests, the test corpus (made from the solutions, with expected scores), CI and benchmarks; with
-/// handouts/README-student.md as its README.md. It builds and self-checks on its own.
+/// handouts/README-student.md as its README.md, and this system's Catch2 2.13 header (third_party/catch2) for
+/// systems that ship Catch2 3. It builds and self-checks on its own.
 PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& outDir);
 
 /// Write Gradescope's autograder archive for `assignment`: the project without solutions, tests, CI and
 /// benchmarks, plus setup.sh (install packages, build) and run_autograder (grade /autograder/submission into
-/// /autograder/results/results.json; AUTOGRADER_ROOT changes /autograder).
+/// /autograder/results/results.json; AUTOGRADER_ROOT changes /autograder). It carries this system's Catch2 2.13
+/// header too, in third_party/catch2, for Gradescope's Ubuntu 24.04 image, whose Catch2 is version 3.
 PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& assignment, const std::string& zip);
 
 }  // namespace simlab::engine

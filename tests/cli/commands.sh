@@ -1,0 +1,23 @@
+# The simlab commands not covered elsewhere, run headless: build, list, --help everywhere, and the class
+# benchmark on a tiny class.
+source "$(dirname "$0")/../smoke/lib.sh"
+
+run_capture build "$SIMLAB" build apple "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" -o apple-built
+check "simlab build makes the lab program from any student file" test "$(status_of build)" -eq 0 -a -x apple-built
+run_capture built ./apple-built --quiet
+check "and the program it made runs the file's simulation" grep -q '14.8 accurate digits' built.out
+run_capture broken bash -c "echo 'int x = ;' >broken.cpp && '$SIMLAB' build apple broken.cpp -o never"
+check "a file that does not compile is a non-zero exit with the compiler's message" \
+  bash -c "test $(status_of broken) -eq 2 && grep -q 'error: expected' broken.err && test ! -e never"
+
+run_capture list "$SIMLAB" list
+check "simlab list shows the three assignments" test "$(grep -cE '^(apple|projectile|book) ' list.out)" -eq 3
+
+for command in "" check grade build list "package student" "package gradescope" autograde; do
+  run_capture help $SIMLAB $command --help
+  check "simlab $command --help" test "$(status_of help)" -eq 0 -a -s help.out
+done
+
+run_capture bench "$BIN_DIR/bench-grade-class" --students 2 --cmake-samples 0 --jobs 1
+check "the class benchmark runs and prints its ratio" grep -q 'simlab / floor = ' bench.out
+finish
