@@ -1,22 +1,22 @@
 // bench-grade-class: what grading a class costs, against the least it could cost.
 //
-// Makes a class of N students (default 40) from the sample class, each file made distinct so nothing is reused
-// from the object cache, and measures, in one run:
-//   simlab     `simlab grade --jobs J` on the class, from an empty cache: sandboxed, one process per test
-//   floor      the same files compiled with the same command, linked the same way, and each grader run once,
-//              all tests in one process, no sandbox and no harness between tests; J at a time
-//   cmake      a CMake project per submission (configure + build, no precompiled header), for a few students
-// and prints seconds per submission and the ratios. Cases that hang (the infinite loop) are left out: they cost
-// their time limit, by design, in both.
+// Runs rounds, alternating the two ways (A B A B ...) so that whatever else the machine does falls on both alike.
+// Each round grades a fresh class of distinct apple submissions (from 8 corpus kinds, each file made distinct so
+// nothing comes from the object cache):
+//   simlab   `simlab grade --jobs J` from an empty cache: each file compiled against its contract in the sandbox,
+//            checked, linked into a probe, and every test run as a sandboxed judge and probe
+//   floor    the same files compiled with the same command and linked with the tests and the probe's handlers
+//            into one program, run once, all tests in one process, no sandbox and nothing in between; J at a time
+// It prints each round's seconds per submission, the medians, and the ratio of the medians. Cases that hang (the
+// infinite loop) are left out: they cost their time limit, by design, in both.
 //
-//   build/bin/bench-grade-class [--students N] [--jobs J] [--cmake-samples K]
+//   build/bin/bench-grade-class [--rounds R] [--students N] [--jobs J]
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <thread>
 
 #include "simlab/engine/files.h"
@@ -37,9 +37,9 @@ ProcessResult run(const std::vector<std::string>& argv, const std::string& dir, 
     r.env = childEnvironment(env);
     r.workDir = dir;
     r.limits.wallSeconds = r.limits.cpuSeconds = 3600;
-    r.limits.memoryMiB = 1 << 20;
+    r.limits.memoryMiB = 1 << 16;
     r.limits.processes = 4096;
-    r.limits.fileMiB = 1 << 16;
+    r.limits.fileMiB = 1 << 12;
     r.limits.outputKiB = 1 << 20;
     return runProcess(r);
 }
@@ -50,113 +50,106 @@ double median(std::vector<double> v) {
     return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
+const std::vector<std::string> kMix = {"reference",         "gravity-up",      "wrong-height", "free-mobilizer",
+                                       "euler-coarse-step", "typed-in-answer", "segfault",     "compile-error"};
+
+// A class of `students` distinct files in `dir`, tagged so no two rounds share an object.
+std::vector<std::string> makeClass(const Manifest& manifest, const std::string& dir, int students, const std::string& tag) {
+    std::vector<std::string> ids;
+    for (int i = 0; i < students; ++i) {
+        const std::string kind = kMix[i % kMix.size()];
+        const std::string id = "s" + std::to_string(100 + i) + "-" + kind;
+        fs::create_directories(dir + "/" + id);
+        const std::string text = readFile(manifest.sampleClass + "/apple/" + kind + "/NewtonsApple.cpp");
+        writeFileAtomically(dir + "/" + id + "/NewtonsApple.cpp", text + "\n// " + tag + " " + id + "\n");
+        ids.push_back(id);
+    }
+    return ids;
+}
+
+double gradeWithSimlab(const std::string& classDir, const std::string& work, int jobs) {
+    fs::create_directories(work + "/cache");
+    const auto start = Clock::now();
+    const ProcessResult graded = run({SIMLAB_SIMLAB_PATH, "grade", "apple", classDir, "--out", work + "/grades",
+                                      "--jobs", std::to_string(jobs)},
+                                     work, {"SIMLAB_CACHE=" + work + "/cache"});
+    const double seconds = since(start);
+    if (!graded.exitedCleanly()) throw std::runtime_error("simlab grade failed:\n" + graded.output);
+    return seconds;
+}
+
+double gradeAtTheFloor(const Manifest& manifest, const Assignment& apple, const std::string& classDir,
+                       const std::vector<std::string>& ids, const std::string& work, int jobs) {
+    std::atomic<std::size_t> next{0};
+    auto worker = [&] {
+        for (std::size_t i = next++; i < ids.size(); i = next++) {
+            const std::string dir = work + "/" + ids[i];
+            fs::create_directories(dir);
+            std::vector<std::string> cc = manifest.compile;
+            cc.insert(cc.end(), {"-I" + apple.contractInclude, "-c", classDir + "/" + ids[i] + "/NewtonsApple.cpp",
+                                 "-o", dir + "/student.o"});
+            if (!run(cc, dir).exitedCleanly()) continue;
+            std::vector<std::string> ld = manifest.link;
+            ld.insert(ld.end(), {"-o", dir + "/floor"});
+            ld.insert(ld.end(), apple.floorObjects.begin(), apple.floorObjects.end());
+            ld.push_back(dir + "/student.o");
+            ld.insert(ld.end(), manifest.floorLibraries.begin(), manifest.floorLibraries.end());
+            run(ld, dir);
+            run({dir + "/floor"}, dir, {"SIMLAB_RUBRIC=" + apple.rubric});
+        }
+    };
+    const auto start = Clock::now();
+    std::vector<std::thread> workers;
+    for (int j = 0; j < jobs; ++j) workers.emplace_back(worker);
+    for (std::thread& w : workers) w.join();
+    return since(start);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    int students = 40, jobs = 2, cmakeSamples = 4;
-    CLI::App app{"What grading a class of apple submissions costs, against the floor.", "bench-grade-class"};
-    app.add_option("--students", students, "class size")->check(CLI::Range(2, 1000));
+    int rounds = 6, students = 8, jobs = 2;
+    CLI::App app{"What grading a class of apple submissions costs, against the floor, in alternating rounds.",
+                 "bench-grade-class"};
+    app.add_option("--rounds", rounds, "rounds; each grades a class with simlab and one at the floor")
+        ->check(CLI::Range(1, 100));
+    app.add_option("--students", students, "students per class")->check(CLI::Range(2, 1000));
     app.add_option("--jobs", jobs, "students graded at once")->check(CLI::Range(1, 64));
-    app.add_option("--cmake-samples", cmakeSamples, "students built with a CMake project each")->check(CLI::Range(0, 40));
     CLI11_PARSE(app, argc, argv);
 
-    const Manifest manifest = loadManifest();
-    const Assignment& apple = manifest.find("apple");
-    const std::vector<std::string> mix = {"reference",       "gravity-up",      "wrong-height", "free-mobilizer",
-                                          "euler-coarse-step", "typed-in-answer", "segfault",     "compile-error"};
-    TempDir work("simlab-bench-");
-    const std::string classDir = work.path() + "/class";
-    for (int i = 0; i < students; ++i) {
-        const std::string id = "s" + std::to_string(100 + i) + "-" + mix[i % mix.size()];
-        fs::create_directories(classDir + "/" + id);
-        const std::string text = readFile(manifest.sampleClass + "/apple/" + mix[i % mix.size()] + "/NewtonsApple.cpp");
-        writeFileAtomically(classDir + "/" + id + "/NewtonsApple.cpp", text + "\n// " + id + "\n");
-    }
-    std::vector<std::string> ids;
-    for (const auto& e : fs::directory_iterator(classDir)) ids.push_back(e.path().filename().string());
-    std::sort(ids.begin(), ids.end());
-    std::printf("Class of %d apple submissions (%zu kinds, each file distinct), %d jobs, sandbox: %s\n", students,
-                mix.size(), jobs, sandboxSupport().summary.c_str());
-
-    // simlab grade, from an empty object cache.
-    fs::create_directories(work.path() + "/cache");
-    auto start = Clock::now();
-    const ProcessResult graded = run({SIMLAB_SIMLAB_PATH, "grade", "apple", classDir, "--out", work.path() + "/grades",
-                                      "--jobs", std::to_string(jobs)},
-                                     work.path(), {"SIMLAB_CACHE=" + work.path() + "/cache"});
-    const double simlabSeconds = since(start);
-    if (!graded.exitedCleanly()) {
-        std::fprintf(stderr, "simlab grade failed:\n%s", graded.output.c_str());
+    try {
+        const Manifest manifest = loadManifest();
+        const Assignment& apple = manifest.find("apple");
+        TempDir work("simlab-bench-");
+        std::printf("Classes of %d apple submissions (%zu kinds, each file distinct), %d jobs, %d rounds of simlab and "
+                    "the floor, alternating; sandbox: %s\n\n",
+                    students, kMix.size(), jobs, rounds, sandboxSupport().summary.c_str());
+        std::printf("%-6s %-8s %12s\n", "round", "what", "s/student");
+        std::vector<double> simlab, floor;
+        for (int r = 0; r < rounds; ++r) {
+            // A B in even rounds, B A in odd ones: neither always goes first.
+            for (int half = 0; half < 2; ++half) {
+                const bool simlabTurn = (half == 0) == (r % 2 == 0);
+                const std::string tag = "round" + std::to_string(r) + (simlabTurn ? "-simlab" : "-floor");
+                const std::string dir = work.path() + "/" + tag;
+                const std::vector<std::string> ids = makeClass(manifest, dir + "/class", students, tag);
+                const double seconds = simlabTurn ? gradeWithSimlab(dir + "/class", dir, jobs)
+                                                  : gradeAtTheFloor(manifest, apple, dir + "/class", ids, dir, jobs);
+                (simlabTurn ? simlab : floor).push_back(seconds / students);
+                std::printf("%-6d %-8s %12.3f\n", r + 1, simlabTurn ? "simlab" : "floor", seconds / students);
+                std::fflush(stdout);
+                fs::remove_all(dir);
+            }
+        }
+        const double a = median(simlab), b = median(floor);
+        std::printf("\nmedian s/student: simlab %.3f, floor %.3f; simlab / floor = %.2f (target <= 1.3)\n", a, b, a / b);
+        std::vector<double> ratios;
+        for (std::size_t i = 0; i < simlab.size(); ++i) ratios.push_back(simlab[i] / floor[i]);
+        std::printf("per-round ratios: median %.2f, min %.2f, max %.2f\n", median(ratios),
+                    *std::min_element(ratios.begin(), ratios.end()), *std::max_element(ratios.begin(), ratios.end()));
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench-grade-class: error: %s\n", e.what());
         return 1;
     }
-
-    // The floor: compile, link and one run of every test, without simlab in between.
-    std::atomic<std::size_t> next{0};
-    std::vector<double> compile(ids.size()), link(ids.size()), tests(ids.size());
-    auto floorWorker = [&] {
-        for (std::size_t i = next++; i < ids.size(); i = next++) {
-            const std::string dir = work.path() + "/floor/" + ids[i];
-            fs::create_directories(dir);
-            std::vector<std::string> cc = manifest.compile;
-            cc.insert(cc.end(), {"-c", classDir + "/" + ids[i] + "/NewtonsApple.cpp", "-o", dir + "/student.o"});
-            auto t = Clock::now();
-            const bool compiled = run(cc, dir).exitedCleanly();
-            compile[i] = since(t);
-            if (!compiled) continue;
-            std::vector<std::string> ld = manifest.link;
-            ld.insert(ld.end(), {"-o", dir + "/grader", dir + "/student.o"});
-            ld.insert(ld.end(), apple.graderObjects.begin(), apple.graderObjects.end());
-            ld.insert(ld.end(), manifest.graderLibraries.begin(), manifest.graderLibraries.end());
-            t = Clock::now();
-            run(ld, dir);
-            link[i] = since(t);
-            t = Clock::now();
-            run({dir + "/grader"}, dir, {"SIMLAB_RUBRIC=" + apple.rubric});
-            tests[i] = since(t);
-        }
-    };
-    start = Clock::now();
-    std::vector<std::thread> workers;
-    for (int j = 0; j < jobs; ++j) workers.emplace_back(floorWorker);
-    for (std::thread& w : workers) w.join();
-    const double floorSeconds = since(start);
-
-    // A CMake project per submission, for a few.
-    std::vector<double> cmake;
-    for (int i = 0; i < cmakeSamples && i < static_cast<int>(ids.size()); ++i) {
-        const std::string dir = work.path() + "/cmake/" + ids[i];
-        fs::create_directories(dir);
-        std::string objects, libraries;
-        for (const std::string& o : apple.graderObjects) objects += " " + o;
-        for (const std::string& l : manifest.graderLibraries) libraries += " " + l;
-        writeFileAtomically(dir + "/CMakeLists.txt",
-            "cmake_minimum_required(VERSION 3.25)\nproject(submission CXX)\nset(CMAKE_CXX_STANDARD 17)\n"
-            "add_compile_options(-O1)\n"
-            "add_executable(grader " + classDir + "/" + ids[i] + "/NewtonsApple.cpp" + objects + ")\n"
-            "target_include_directories(grader PRIVATE " + manifest.sourceDir + "/assignments " + manifest.sourceDir +
-            "/assignments/support/include /usr/include/simbody)\n"
-            "target_link_libraries(grader PRIVATE" + libraries + " pthread)\n");
-        const auto t = Clock::now();
-        run({"/usr/bin/cmake", "-S", dir, "-B", dir + "/build"}, dir);
-        run({"/usr/bin/cmake", "--build", dir + "/build"}, dir);
-        cmake.push_back(since(t));
-    }
-
-    const double perSubmission = simlabSeconds / students, floorPer = floorSeconds / students;
-    std::printf("\n%-44s %10s\n", "", "s/student");
-    std::printf("%-44s %10.2f   (%.1f s in all)\n", "simlab grade (sandbox, a process per test)", perSubmission,
-                simlabSeconds);
-    std::printf("%-44s %10.2f   (%.1f s in all)\n", "floor: compile + link + one run of all tests", floorPer,
-                floorSeconds);
-    std::printf("%-44s %10.2f   (each, one at a time; median of %zu)\n", "a CMake project per submission",
-                median(cmake), cmake.size());
-    std::printf("\nsimlab / floor = %.2f   (target <= 1.3; <= 2 s per submission on 2 cores)\n",
-                simlabSeconds / floorSeconds);
-    if (!cmake.empty()) {
-        std::printf("CMake per submission / simlab per submission (both per core) = %.1f\n",
-                    median(cmake) / (perSubmission * jobs));
-    }
-    std::printf("floor phases, median per student: compile %.2f s, link %.2f s, tests %.2f s\n", median(compile),
-                median(link), median(tests));
     return 0;
 }

@@ -1,9 +1,11 @@
 # How simlab builds student code, and how an assignment is declared.
 #
 # Student files are compiled by one command line, whatever builds them: the lab programs (`apple`, ...) built
-# here by CMake, and the graders that `simlab check` and `simlab grade` link on the fly. That command line lives
+# here by CMake, and the probes that `simlab check` and `simlab grade` link on the fly. That command line lives
 # in SIMLAB_SUBMISSION_COMMAND below and is written to the build manifest (simlab-build.json) for the engine, so
-# the precompiled Simbody header always matches the flags it is used with.
+# the precompiled Simbody header always matches the flags it is used with. To it each assignment adds one include
+# folder, its contract: the assignment's header and the support headers a student may include, copied into the
+# build tree. A student file sees nothing else of the course - no tests, rubric, solution or build tree.
 
 set(SIMLAB_PCH_DIR ${PROJECT_BINARY_DIR}/pch)
 set(SIMLAB_PCH_HEADER ${SIMLAB_PCH_DIR}/simlab_pch.h)
@@ -11,14 +13,15 @@ set(SIMLAB_MANIFEST ${PROJECT_BINARY_DIR}/simlab-build.json)
 set(SIMLAB_SAMPLE_CLASS_DIR ${PROJECT_BINARY_DIR}/sample-class)
 
 # Flags for student code. -O1 keeps compiles short while the physics runs inside Simbody's optimized libraries.
+# A function that falls off its end without returning a value is an error, not a crash waiting to happen. Student
+# code is compiled with hidden visibility: what it defines stays inside the program and cannot take the place of a
+# shared library's function (simlab checks that nothing it defines is exported in one's stead).
 set(SIMLAB_SUBMISSION_FLAGS
-    -std=c++17 -O1 -g0 -fPIE -pthread
-    -Wall -Wextra -Wno-unused-parameter -Wno-deprecated-declarations -Winvalid-pch)
-set(SIMLAB_SUBMISSION_INCLUDES
-    -isystem ${Simbody_INCLUDE_DIR}
-    -I${PROJECT_SOURCE_DIR}/assignments/support/include
-    -I${PROJECT_SOURCE_DIR}/assignments)
+    -std=c++17 -O1 -g0 -fPIE -pthread -fvisibility=hidden -fvisibility-inlines-hidden
+    -Wall -Wextra -Wno-unused-parameter -Wno-deprecated-declarations -Winvalid-pch -Werror=return-type)
+set(SIMLAB_SUBMISSION_INCLUDES -isystem ${Simbody_INCLUDE_DIR})
 set(SIMLAB_SUBMISSION_COMMAND ${CMAKE_CXX_COMPILER} ${SIMLAB_SUBMISSION_FLAGS} ${SIMLAB_SUBMISSION_INCLUDES})
+set(SIMLAB_CONTRACT_DIR ${PROJECT_BINARY_DIR}/contract)
 
 # The precompiled header (GCC's format): Simbody.h and the standard library, built once with exactly the flags
 # above. Other compilers read the headers as they are.
@@ -38,11 +41,27 @@ if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
   set(SIMLAB_PCH_DEPENDS simlab_pch ${SIMLAB_PCH_HEADER}.gch)
 endif()
 
-# simlab_compile_submission(<object> <source>): compile one student file with the submission command.
-function(simlab_compile_submission object source)
+# simlab_contract(<id> <header>): the folder a student file of assignment <id> may include from, in the build
+# tree: <id>/<header> and simlab/*.h (the support headers). Sets SIMLAB_CONTRACT_INCLUDE in the caller.
+function(simlab_contract id header)
+  set(dir ${SIMLAB_CONTRACT_DIR}/${id})
+  configure_file(${CMAKE_CURRENT_SOURCE_DIR}/${header} ${dir}/${id}/${header} COPYONLY)
+  file(GLOB support_headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/assignments/support/include/simlab/*.h)
+  foreach(file IN LISTS support_headers)
+    get_filename_component(name ${file} NAME)
+    if(NOT name STREQUAL "pch.h")
+      configure_file(${file} ${dir}/simlab/${name} COPYONLY)
+    endif()
+  endforeach()
+  set(SIMLAB_CONTRACT_INCLUDE ${dir} PARENT_SCOPE)
+endfunction()
+
+# simlab_compile_submission(<object> <source> <contract folder>): compile one student file with the submission
+# command.
+function(simlab_compile_submission object source contract)
   add_custom_command(
     OUTPUT ${object}
-    COMMAND ${SIMLAB_SUBMISSION_COMMAND} -c ${source} -o ${object} -MD -MF ${object}.d
+    COMMAND ${SIMLAB_SUBMISSION_COMMAND} -I${contract} -c ${source} -o ${object} -MD -MF ${object}.d
     DEPFILE ${object}.d
     DEPENDS ${source} ${SIMLAB_PCH_DEPENDS}
     COMMENT "Compiling student file ${source}"
@@ -62,13 +81,15 @@ endfunction()
 #   TITLE <text>             what `simlab` calls it
 #   SOURCE <file name>       the one file a student writes (starter/<id>/<file>, solutions/<id>/<file>)
 #   PROGRAM <name>           the runnable lab program (course main + student file)
+#   CONTRACT <header>        the header the student implements, the only one of the assignment they may include
 #   MAIN <files...>          the course side of the program
-#   TESTS <files...>         visible grader tests (Catch2)
+#   PROBE <files...>         what the grader can observe of the contract (simlab/probe.h)
+#   TESTS <files...>         visible grader tests (Catch2), run in the judge
 #   HIDDEN_TESTS <files...>  hidden grader tests; absent from the student bundle, so optional
 #   RUBRIC <file>)           points and thresholds, one [[test]] per Catch2 test case
 function(simlab_add_assignment id)
-  cmake_parse_arguments(A "" "TITLE;SOURCE;PROGRAM;RUBRIC" "MAIN;TESTS;HIDDEN_TESTS" ${ARGN})
-  foreach(required TITLE SOURCE PROGRAM RUBRIC MAIN TESTS)
+  cmake_parse_arguments(A "" "TITLE;SOURCE;PROGRAM;RUBRIC;CONTRACT" "MAIN;PROBE;TESTS;HIDDEN_TESTS" ${ARGN})
+  foreach(required TITLE SOURCE PROGRAM RUBRIC CONTRACT MAIN PROBE TESTS)
     if(NOT A_${required})
       message(FATAL_ERROR "simlab_add_assignment(${id}): ${required} is required")
     endif()
@@ -91,20 +112,23 @@ function(simlab_add_assignment id)
     endif()
   endforeach()
 
+  simlab_contract(${id} ${A_CONTRACT})
+  set(contract ${SIMLAB_CONTRACT_INCLUDE})
+
   add_library(${id}_program_main OBJECT ${A_MAIN})
   target_link_libraries(${id}_program_main PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
 
   # The lab program, built from the student file in this tree (the starter unless told otherwise) ...
   set(SIMLAB_${id}_SOURCE ${starter} CACHE FILEPATH "Student file the ${A_PROGRAM} program is built from")
   set(object ${CMAKE_CURRENT_BINARY_DIR}/${A_PROGRAM}_student.o)
-  simlab_compile_submission(${object} ${SIMLAB_${id}_SOURCE})
+  simlab_compile_submission(${object} ${SIMLAB_${id}_SOURCE} ${contract})
   add_executable(${A_PROGRAM} $<TARGET_OBJECTS:${id}_program_main> ${object})
   target_link_libraries(${A_PROGRAM} PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
   # ... and from the reference solution, where the tree has one (the student bundle does not).
   set(reference_program "")
   if(EXISTS ${solution})
     set(object ${CMAKE_CURRENT_BINARY_DIR}/${A_PROGRAM}_reference.o)
-    simlab_compile_submission(${object} ${solution})
+    simlab_compile_submission(${object} ${solution} ${contract})
     add_executable(${A_PROGRAM}-reference $<TARGET_OBJECTS:${id}_program_main> ${object})
     target_link_libraries(${A_PROGRAM}-reference PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
     set(reference_program $<TARGET_FILE:${A_PROGRAM}-reference>)
@@ -115,23 +139,39 @@ function(simlab_add_assignment id)
     return()
   endif()
 
-  # The grader's side, compiled once: the assignment's tests. Object libraries keep every Catch2 TEST_CASE
-  # registration in the link (a static archive would drop the unreferenced ones). The engine links graders on
-  # demand; this target makes sure everything they need is built.
+  # The grader's side. Each test runs as two processes: the judge, built here once, holds the tests (hidden ones
+  # included) and decides every verdict; the probe, linked per submission from the course's objects below and the
+  # student's object, answers the judge's requests for observations. The tests are an object library so that
+  # every Catch2 TEST_CASE registration stays in the link (an archive would drop them).
   add_library(${id}_grader_tests OBJECT ${tests})
   target_link_libraries(${id}_grader_tests PRIVATE simlab_harness simlab_support Catch2::Catch2 ${Simbody_LIBRARIES})
-  add_custom_target(${id}_grader ALL DEPENDS ${id}_grader_tests ${id}_program_main ${SIMLAB_PCH_DEPENDS})
+  add_executable(${id}-judge $<TARGET_OBJECTS:${id}_grader_tests>)
+  target_link_libraries(${id}-judge PRIVATE simlab_harness simlab_observe_remote simlab_rubric simlab_support
+                                            Catch2::Catch2WithMain ${Simbody_LIBRARIES})
+  set_target_properties(${id}-judge PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/judges)
+  add_library(${id}_probe OBJECT ${A_PROBE})
+  target_link_libraries(${id}_probe PRIVATE simlab_probe simlab_support ${Simbody_LIBRARIES})
+  set_target_properties(${id}_probe PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  add_custom_target(${id}_grader ALL DEPENDS ${id}-judge ${id}_probe ${id}_program_main ${SIMLAB_PCH_DEPENDS})
 
-  _simlab_json_list(grader_objects $<TARGET_OBJECTS:${id}_grader_tests>)
+  # The probe's course side: linked before the student's object, whole, so that the student can add to it but
+  # never replace any of it.
+  _simlab_json_list(probe_objects $<TARGET_OBJECTS:simlab_probe_main> $<TARGET_OBJECTS:simlab_probe>
+                                  $<TARGET_OBJECTS:${id}_probe> $<TARGET_OBJECTS:simlab_support_objects>)
+  # The benchmark's floor: the tests and the probe in one program, the student's code called directly.
+  _simlab_json_list(floor_objects $<TARGET_OBJECTS:${id}_grader_tests> $<TARGET_OBJECTS:simlab_harness>
+                                  $<TARGET_OBJECTS:simlab_observe_local> $<TARGET_OBJECTS:simlab_probe>
+                                  $<TARGET_OBJECTS:${id}_probe> $<TARGET_OBJECTS:simlab_support_objects>)
   _simlab_json_list(program_objects $<TARGET_OBJECTS:${id}_program_main>)
   _simlab_json_list(hidden_tests ${hidden_paths})
   set(json "{\"id\": \"${id}\", \"title\": \"${A_TITLE}\", \"source\": \"${A_SOURCE}\",
     \"program\": \"${A_PROGRAM}\", \"program_path\": \"$<TARGET_FILE:${A_PROGRAM}>\",
     \"reference_program_path\": \"${reference_program}\",
-    \"dir\": \"${dir}\", \"rubric\": \"${dir}/${A_RUBRIC}\",
+    \"dir\": \"${dir}\", \"rubric\": \"${dir}/${A_RUBRIC}\", \"contract_include\": \"${contract}\",
     \"starter\": \"${starter}\", \"solution\": \"${solution}\", \"hidden_tests_built\": ${hidden_built},
-    \"hidden_tests\": ${hidden_tests},
-    \"grader_objects\": ${grader_objects}, \"program_objects\": ${program_objects}}")
+    \"hidden_tests\": ${hidden_tests}, \"judge\": \"$<TARGET_FILE:${id}-judge>\",
+    \"probe_objects\": ${probe_objects}, \"floor_objects\": ${floor_objects},
+    \"program_objects\": ${program_objects}}")
   set_property(GLOBAL APPEND PROPERTY SIMLAB_ASSIGNMENTS ${id})
   set_property(GLOBAL PROPERTY SIMLAB_ASSIGNMENT_${id} "${json}")
 endfunction()
@@ -146,10 +186,14 @@ function(simlab_write_manifest)
   endforeach()
   list(JOIN entries ",\n    " entries)
   _simlab_json_list(compile ${SIMLAB_SUBMISSION_COMMAND})
-  # Link order: student object, grader objects, then libraries from most to least dependent.
-  _simlab_json_list(grader_libraries
-    $<TARGET_OBJECTS:simlab_harness> $<TARGET_FILE:simlab_rubric> $<TARGET_FILE:simlab_support>
-    $<TARGET_FILE:Catch2::Catch2WithMain> $<TARGET_FILE:tomlplusplus::tomlplusplus>
+  # Link order: the course's objects, the student's object, then libraries from most to least dependent.
+  _simlab_json_list(probe_libraries
+    $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
+  # A probe exports nothing it defines (beyond the library data it must hold copies of): a function the student
+  # defines can never take the place of a shared library's, whoever calls it.
+  file(WRITE ${PROJECT_BINARY_DIR}/probe-exports.map "{ local: *; };\n")
+  _simlab_json_list(floor_libraries
+    $<TARGET_FILE:simlab_rubric> $<TARGET_FILE:Catch2::Catch2WithMain> $<TARGET_FILE:tomlplusplus::tomlplusplus>
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
   _simlab_json_list(program_libraries
     $<TARGET_FILE:simlab_program> $<TARGET_FILE:simlab_support>
@@ -161,8 +205,10 @@ function(simlab_write_manifest)
   \"sample_class\": \"${SIMLAB_SAMPLE_CLASS_DIR}\",
   \"catch2_include\": \"$<TARGET_PROPERTY:Catch2::Catch2,INTERFACE_INCLUDE_DIRECTORIES>\",
   \"compile\": ${compile},
-  \"link\": [\"${CMAKE_CXX_COMPILER}\", \"-pthread\"],
-  \"grader_libraries\": ${grader_libraries},
+  \"link\": [\"${CMAKE_CXX_COMPILER}\", \"-pthread\", \"-fno-lto\", \"-fno-use-linker-plugin\"],
+  \"probe_libraries\": ${probe_libraries},
+  \"probe_link\": [\"-Wl,--version-script=${PROJECT_BINARY_DIR}/probe-exports.map\"],
+  \"floor_libraries\": ${floor_libraries},
   \"program_libraries\": ${program_libraries},
   \"assignments\": [
     ${entries}

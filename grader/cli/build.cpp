@@ -9,6 +9,8 @@
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/manifest.h"
+#include "simlab/engine/text.h"
+#include "simlab/rubric.h"
 
 namespace simlab::cli {
 
@@ -26,17 +28,20 @@ void runBuild(const BuildOptions& o) {
     const Assignment& assignment = manifest.find(o.assignment);
     const std::string source = o.source.empty() ? assignment.starter : o.source;
     requireCppSource(source);
+    const Rubric rubric = loadRubric(assignment.rubric);
+    const engine::SubmissionFiles files = readSubmission(source, rubric, rubric.limits);
     const std::string output = o.output.empty() ? assignment.program : o.output;
     const std::filesystem::path parent = std::filesystem::absolute(output).parent_path();
     if (!std::filesystem::is_directory(parent)) {
         throw UsageError("cannot write '" + output + "': no directory " + parent.string());
     }
-    const BuildResult result = Builder(manifest).buildProgram(assignment, source, output);
+    const BuildResult result = Builder(manifest).buildProgram(assignment, files.name, files.text, output);
+    if (result.interrupted) throw UsageError("interrupted");
     if (!result.ok) {
-        std::cerr << firstLines(result.log, 30);
-        throw UsageError(source + (result.stage == "link" ? " did not link" : " did not compile"));
+        std::cerr << printable(firstLines(result.log, 30), true);
+        throw UsageError(printable(source) + (result.stage == "link" ? " did not link" : " did not compile"));
     }
-    std::cerr << result.warnings;
+    std::cerr << printable(result.warnings, true);
     std::cout << "Built " << output << " from " << source << "; run ./" << output << " --help\n";
 }
 

@@ -10,6 +10,8 @@
 #include "simlab/engine/grade.h"
 #include "simlab/engine/manifest.h"
 #include "simlab/engine/report.h"
+#include "simlab/engine/text.h"
+#include "simlab/rubric.h"
 
 namespace simlab::cli {
 
@@ -38,19 +40,19 @@ void runCheck(const CheckOptions& o) {
     GradeOptions options;
     options.includeHidden = o.all;
     options.onlyTests = o.tests;
-    if (o.timeout > 0) {
-        Limits limits = rubric.limits;
-        limits.wallSeconds = limits.cpuSeconds = o.timeout;
-        options.limits = limits;
-    }
+    const Limits limits = limitsWith(rubric.limits, o.timeout, 0);
+    options.limits = limits;
     for (const std::string& name : o.tests) {
         if (!rubric.find(name)) throw UsageError("no test named '" + name + "' in " + rubric.path);
     }
-    if (o.format == "text") std::cerr << "Building " << source << " against the " << assignment.id << " grader...\n";
+    const SubmissionFiles files = readSubmission(source, rubric, limits);
+    if (o.format == "text") {
+        std::cerr << "Building " << printable(source) << " against the " << assignment.id << " grader...\n";
+    }
     const Builder builder(manifest);
-    const GradeReport report = gradeSource(builder, assignment, rubric, source, options);
+    const GradeReport report = gradeSubmission(builder, assignment, rubric, files, options);
     if (o.format == "json") {
-        std::cout << toGradescope(report).dump(2) << '\n';
+        std::cout << toGradescope(report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
     } else {
         std::cout << renderText(report);
     }
@@ -69,8 +71,9 @@ void addCheck(CLI::App& app) {
         ->check(CLI::IsMember({"text", "json"}))
         ->capture_default_str();
     check->add_flag("--all", options->all, "run the hidden tests too (instructors)");
-    check->add_option("--timeout", options->timeout, "seconds each test may run (default: the rubric's)")
-        ->check(simlab::positive());
+    check->add_option("--timeout", options->timeout,
+                      "CPU seconds each test may use, 0.1 to 3600 (default: the rubric's)")
+        ->check(limitOption("cpu_seconds"));
     check->add_option("--test", options->tests, "run only the test of this name (repeatable)");
     check->add_option("--rubric", options->rubric, "another rubric file (default: the assignment's)")
         ->check(CLI::ExistingFile);

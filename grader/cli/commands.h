@@ -2,11 +2,28 @@
 // wires them together.
 #pragma once
 
+#include <string>
+
+#include "simlab/engine/grade.h"
+#include "simlab/rubric.h"
+
 namespace CLI {
 class App;
-}
+class Validator;
+}  // namespace CLI
 
 namespace simlab::cli {
+
+/// A CLI11 check that an option's value is within the range of the rubric limit `key` ("cpu_seconds").
+CLI::Validator limitOption(const std::string& key);
+
+/// `rubric` with the command line's --timeout (CPU seconds; the wall-clock net grows to six times it if it is
+/// smaller) and --memory (MiB) in place of its own; 0 keeps the rubric's. Throws UsageError if out of range.
+Limits limitsWith(const Limits& rubric, double timeout, double memory);
+
+/// The file `path` and the rubric's extra files beside it, read as grading reads them (readHandedIn). Throws
+/// UsageError, in one line, for a file that is not there or not safe to read.
+engine::SubmissionFiles readSubmission(const std::string& path, const Rubric& rubric, const Limits& limits);
 
 void addCheck(CLI::App& app);
 void addGrade(CLI::App& app);

@@ -17,6 +17,7 @@
 #include "simlab/engine/manifest.h"
 #include "simlab/engine/process.h"
 #include "simlab/engine/report.h"
+#include "simlab/engine/text.h"
 
 namespace fs = std::filesystem;
 
@@ -45,15 +46,28 @@ std::string minutesAndSeconds(double seconds) {
 }
 
 std::string studentLine(const engine::StudentRecord& r, bool reused) {
-    char text[512];
     std::string status = r.status + (r.note.empty() ? "" : ": " + r.note);
     if (reused) status += " (unchanged)";
-    std::snprintf(text, sizeof text, "  %-24s %7s  %s", r.id.c_str(),
-                  (engine::points(r.score) + "/" + engine::points(r.maxScore)).c_str(), status.c_str());
-    return text;
+    char score[32];
+    std::snprintf(score, sizeof score, "%7s", (engine::points(r.score) + "/" + engine::points(r.maxScore)).c_str());
+    std::string id = engine::printable(r.id);
+    if (id.size() < 24) id.resize(24, ' ');
+    return "  " + id + " " + score + "  " + engine::printable(status);
 }
 
-void onSignal(int) { engine::interruptChildren(); }
+// The first Ctrl-C (or SIGTERM) stops launching, ends the running children and lets simlab write what is
+// complete; a second one ends simlab at once. Only async-signal-safe calls here.
+void onSignal(int) {
+    static volatile sig_atomic_t signals = 0;
+    if (signals++ > 0) {
+        static const char line[] = "\nsimlab: stopped at once\n";
+        (void)!::write(STDERR_FILENO, line, sizeof line - 1);
+        ::_exit(130);
+    }
+    static const char line[] = "\nsimlab: stopping: finishing what is complete (press Ctrl-C again to quit at once)\n";
+    (void)!::write(STDERR_FILENO, line, sizeof line - 1);
+    engine::interruptChildren();
+}
 
 void runGrade(const GradeCommandOptions& o) {
     using namespace simlab::engine;
@@ -75,17 +89,13 @@ void runGrade(const GradeCommandOptions& o) {
     options.jobs = o.jobs;
     options.only = o.only;
     options.grade.includeHidden = true;
-    if (o.timeout > 0 || o.memory > 0) {
-        Limits limits = rubric.limits;
-        if (o.timeout > 0) limits.wallSeconds = limits.cpuSeconds = o.timeout;
-        if (o.memory > 0) limits.memoryMiB = static_cast<long>(o.memory);
-        options.grade.limits = limits;
-    }
+    options.grade.limits = limitsWith(rubric.limits, o.timeout, o.memory);
 
     const SandboxSupport& sandbox = sandboxSupport();
     if (!sandbox.warning.empty()) std::cerr << "simlab: warning: " << sandbox.warning << "\n";
     std::printf("Grading %s (%s) from %s into %s: %d jobs, sandbox: %s\n", assignment.id.c_str(),
-                assignment.title.c_str(), root.c_str(), out.c_str(), o.jobs, sandbox.summary.c_str());
+                assignment.title.c_str(), printable(root).c_str(), printable(out).c_str(), o.jobs,
+                sandbox.summary.c_str());
     std::fflush(stdout);
 
     // On a terminal, a live status line under the log; otherwise the log alone.
@@ -104,21 +114,31 @@ void runGrade(const GradeCommandOptions& o) {
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
     const Builder builder(manifest);
-    std::vector<StudentRecord> records;
+    ClassResult result;
     try {
-        records = gradeClass(builder, assignment, rubric, root, out, options, onProgress);
+        result = gradeClass(builder, assignment, rubric, root, out, options, onProgress);
     } catch (const Interrupted&) {
         if (live) std::fprintf(stderr, "\r\x1b[K");
-        std::cerr << "simlab: interrupted; what finished is in " << out
+        std::cerr << "simlab: interrupted; what finished is in " << printable(out)
                   << "/gradebook.csv. Run the same command again to grade the rest.\n";
         std::exit(130);
     }
     if (live) std::fprintf(stderr, "\r\x1b[K");
+    const std::vector<StudentRecord>& records = result.records;
+    for (const Skipped& s : result.skipped) {
+        std::cout << "  skipped " << printable(s.name) << ": " << s.why << "\n";
+    }
 
     std::cout << "\n" << summaryTable(rubric, records);
     if (!o.junit.empty()) writeFileAtomically(o.junit, junitXml(assignment, records));
-    std::cout << "\nWrote " << out << "/gradebook.csv, " << out << "/summary.csv and " << out
-              << "/students/<id>/{results.json,feedback.md}" << (o.junit.empty() ? "" : ", " + o.junit) << "\n";
+    std::cout << "\nWrote " << printable(out) << "/gradebook.csv, " << printable(out) << "/summary.csv and "
+              << printable(out) << "/students/<id>/{results.json,feedback.md}"
+              << (o.junit.empty() ? "" : ", " + printable(o.junit)) << "\n";
+    if (result.graderErrors > 0) {
+        throw std::runtime_error(std::to_string(result.graderErrors) +
+                                 " student(s) could not be graded (status 'grader error'); run the command again "
+                                 "to retry them");
+    }
 }
 
 }  // namespace
@@ -137,10 +157,11 @@ void addGrade(CLI::App& app) {
         ->check(CLI::Range(1, 64));
     grade->add_option("--only", options->only, "regrade only this student (repeatable); other rows are kept");
     grade->add_option("--junit", options->junit, "also write JUnit XML to this file");
-    grade->add_option("--timeout", options->timeout, "seconds each test may run (default: the rubric's)")
-        ->check(simlab::positive());
-    grade->add_option("--memory", options->memory, "MiB each test may use (default: the rubric's)")
-        ->check(simlab::positive());
+    grade->add_option("--timeout", options->timeout,
+                      "CPU seconds each test may use, 0.1 to 3600 (default: the rubric's)")
+        ->check(limitOption("cpu_seconds"));
+    grade->add_option("--memory", options->memory, "MiB each test may use, 64 to 65536 (default: the rubric's)")
+        ->check(limitOption("memory_mib"));
     grade->add_option("--rubric", options->rubric, "another rubric file (default: the assignment's)")
         ->check(CLI::ExistingFile);
     grade->callback([options] { runGrade(*options); });

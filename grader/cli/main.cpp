@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "simlab/engine/errors.h"
+#include "simlab/engine/text.h"
 #include "simlab/rubric.h"
 
 int main(int argc, char** argv) {
@@ -32,7 +33,8 @@ int main(int argc, char** argv) {
             commands += (commands.empty() ? "" : ", ") + sub->get_name();
         }
         if (!known) {
-            std::cerr << "simlab: error: unknown command '" << argv[1] << "'; commands: " << commands << '\n';
+            std::cerr << "simlab: error: unknown command '" << simlab::engine::printable(argv[1]) << "'; commands: "
+                      << commands << '\n';
             return 2;
         }
     }
@@ -41,13 +43,13 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         return app.exit(e) == 0 ? 0 : 2;
     } catch (const simlab::engine::UsageError& e) {
-        std::cerr << "simlab: error: " << e.what() << '\n';
+        std::cerr << "simlab: error: " << simlab::engine::printable(e.what()) << '\n';
         return 2;
     } catch (const simlab::RubricError& e) {
-        std::cerr << "simlab: error in the rubric: " << e.what() << '\n';
+        std::cerr << "simlab: error in the rubric: " << simlab::engine::printable(e.what()) << '\n';
         return 2;
     } catch (const std::exception& e) {
-        std::cerr << "simlab: error: " << e.what() << '\n';
+        std::cerr << "simlab: error: " << simlab::engine::printable(e.what()) << '\n';
         return 1;
     }
     return 0;

@@ -11,6 +11,7 @@
 #include "simlab/engine/manifest.h"
 #include "simlab/engine/package.h"
 #include "simlab/engine/report.h"
+#include "simlab/engine/text.h"
 
 namespace fs = std::filesystem;
 
@@ -45,15 +46,18 @@ void runAutograde(const AutogradeOptions& o) {
         const Rubric rubric = loadRubric(assignment.rubric);
         GradeOptions options;
         options.includeHidden = true;
-        const GradeReport report = gradeFolder(Builder(manifest), assignment, rubric, o.submission, true, options);
-        writeFileAtomically(o.results, toGradescope(report).dump(2) + "\n");
+        const GradeReport report =
+            gradeFolder(Builder(manifest), assignment, rubric, o.submission, /*recursive=*/true, /*followFolder=*/true,
+                        options);
+        writeFileAtomically(o.results,
+                            toGradescope(report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
         std::cout << renderText(report);
     } catch (const std::exception& e) {
         const nlohmann::json failed = {
             {"score", 0},
-            {"output", std::string("The autograder could not grade this submission: ") + e.what()},
+            {"output", std::string("The autograder could not grade this submission: ") + printable(e.what())},
             {"tests", nlohmann::json::array()}};
-        writeFileAtomically(o.results, failed.dump(2) + "\n");
+        writeFileAtomically(o.results, failed.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
         throw;
     }
 }

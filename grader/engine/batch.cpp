@@ -1,6 +1,7 @@
 #include "simlab/engine/batch.h"
 
 #include <algorithm>
+#include <cctype>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include "simlab/engine/files.h"
 #include "simlab/engine/process.h"
 #include "simlab/engine/report.h"
+#include "simlab/engine/text.h"
 
 namespace fs = std::filesystem;
 
@@ -21,10 +23,12 @@ namespace simlab::engine {
 
 namespace {
 
-bool isCppFile(const fs::path& p) {
-    const std::string e = p.extension().string();
+bool isCppFile(const std::string& name) {
+    const std::string e = fs::path(name).extension().string();
     return e == ".cpp" || e == ".cc" || e == ".cxx" || e == ".c++" || e == ".C";
 }
+
+std::string baseName(const std::string& relative) { return relative.substr(relative.rfind('/') + 1); }
 
 std::string lower(std::string s) {
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -32,6 +36,10 @@ std::string lower(std::string s) {
 }
 
 // --- Records ---------------------------------------------------------------------------------------------------
+
+std::string jsonText(const nlohmann::json& j) {
+    return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
 
 nlohmann::json toJson(const StudentRecord& r) {
     nlohmann::json tests = nlohmann::json::array();
@@ -44,7 +52,7 @@ nlohmann::json toJson(const StudentRecord& r) {
     }
     return {{"id", r.id},       {"key", r.key},           {"status", r.status},   {"note", r.note},
             {"file", r.file},   {"score", r.score},       {"max_score", r.maxScore},
-            {"seconds", r.seconds}, {"tests", tests}};
+            {"seconds", r.seconds}, {"compiler", r.compiler}, {"tests", tests}};
 }
 
 std::optional<StudentRecord> fromJson(const nlohmann::json& j) {
@@ -58,6 +66,7 @@ std::optional<StudentRecord> fromJson(const nlohmann::json& j) {
         r.score = j.at("score");
         r.maxScore = j.at("max_score");
         r.seconds = j.at("seconds");
+        r.compiler = j.at("compiler");
         for (const nlohmann::json& t : j.at("tests")) {
             TestResult x;
             x.name = t.at("name");
@@ -91,26 +100,20 @@ StudentRecord recordOf(const std::string& id, const std::string& key, const Grad
     r.score = report.score();
     r.maxScore = report.maxScore();
     r.seconds = report.seconds;
+    r.compiler = firstLines(report.build.ok ? report.build.warnings : report.build.log, 20);
     r.tests = report.tests;
     return r;
 }
 
 // --- CSV ----------------------------------------------------------------------------------------------------------
 
-std::string csvField(const std::string& s) {
-    if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-    std::string quoted = "\"";
-    for (char c : s) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return quoted + "\"";
-}
-
 std::string gradebookCsv(const Rubric& rubric, const std::vector<StudentRecord>& records) {
     std::ostringstream out;
     out << "student,score,max,status";
-    for (const RubricTest& t : rubric.tests) out << "," << csvField(t.name);
+    for (const RubricTest& t : rubric.tests) out << "," << csvCell(t.name);
     out << "\n";
     for (const StudentRecord& r : records) {
-        out << csvField(r.id) << "," << points(r.score) << "," << points(r.maxScore) << "," << csvField(r.status);
+        out << csvCell(r.id) << "," << points(r.score) << "," << points(r.maxScore) << "," << csvCell(r.status);
         for (const RubricTest& t : rubric.tests) {
             const auto found = std::find_if(r.tests.begin(), r.tests.end(),
                                             [&](const TestResult& x) { return x.name == t.name; });
@@ -122,23 +125,6 @@ std::string gradebookCsv(const Rubric& rubric, const std::vector<StudentRecord>&
 }
 
 // --- Text --------------------------------------------------------------------------------------------------------
-
-std::string xmlEscape(const std::string& s) {
-    std::string out;
-    for (unsigned char c : s) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&apos;"; break;
-            default:
-                if (c < 0x20 && c != '\n' && c != '\t') out += ' ';  // not allowed in XML 1.0
-                else out += static_cast<char>(c);
-        }
-    }
-    return out;
-}
 
 struct Spread {
     int count = 0;
@@ -197,70 +183,97 @@ std::string number(double v) {
 
 }  // namespace
 
-Submission findSubmission(const std::string& folder, const std::string& expected, bool recursive) {
-    std::vector<fs::path> cpp;
-    std::error_code error;
-    auto consider = [&](const fs::directory_entry& e) {
-        if (e.is_regular_file(error) && isCppFile(e.path())) cpp.push_back(e.path());
+Submission findSubmission(const std::string& folder, const std::string& expected, bool recursive, bool followFolder) {
+    const std::vector<FolderEntry> entries = recursive ? walkFolder(folder) : listFolder(folder, followFolder);
+    // Every C++-named entry counts, whatever it is: a link or a pipe named NewtonsApple.cpp is found here and
+    // refused when read, never passed over for another file.
+    std::vector<const FolderEntry*> cpp;
+    for (const FolderEntry& e : entries) {
+        if (e.type != EntryType::Directory && isCppFile(e.name)) cpp.push_back(&e);
+    }
+    auto chosen = [&](const FolderEntry& e, const std::string& status, const std::string& note) {
+        return Submission{e.folder, baseName(e.name), e.name, status, note};
     };
-    if (recursive) {
-        for (auto it = fs::recursive_directory_iterator(folder, fs::directory_options::skip_permission_denied, error);
-             it != fs::recursive_directory_iterator(); it.increment(error)) {
-            consider(*it);
-        }
-    } else {
-        for (const fs::directory_entry& e : fs::directory_iterator(folder, error)) consider(e);
+    for (const FolderEntry* e : cpp) {
+        if (baseName(e->name) == expected) return chosen(*e, "graded", "");
     }
-    std::sort(cpp.begin(), cpp.end());
-    const auto relative = [&](const fs::path& p) { return fs::relative(p, folder, error).string(); };
-    for (const fs::path& p : cpp) {
-        if (p.filename() == expected) return {p.string(), "graded", ""};
-    }
-    for (const fs::path& p : cpp) {
-        if (lower(p.filename().string()) == lower(expected)) {
-            return {p.string(), "misnamed file", "graded " + relative(p) + "; expected " + expected};
+    for (const FolderEntry* e : cpp) {
+        if (lower(baseName(e->name)) == lower(expected)) {
+            return chosen(*e, "misnamed file", "graded " + e->name + "; expected " + expected);
         }
     }
-    if (cpp.size() == 1) return {cpp[0].string(), "misnamed file", "graded " + relative(cpp[0]) + "; expected " + expected};
-    if (cpp.empty()) return {"", "missing file", "no " + expected + " (no C++ file at all)"};
+    if (cpp.size() == 1) return chosen(*cpp[0], "misnamed file", "graded " + cpp[0]->name + "; expected " + expected);
+    if (cpp.empty()) return {folder, "", "", "missing file", "no " + expected + " (no C++ file at all)"};
     std::string found;
-    for (const fs::path& p : cpp) found += (found.empty() ? "" : ", ") + relative(p);
-    return {"", "missing file", "no " + expected + " (found " + found + ")"};
+    for (const FolderEntry* e : cpp) found += (found.empty() ? "" : ", ") + e->name;
+    return {folder, "", "", "missing file", "no " + expected + " (found " + found + ")"};
+}
+
+Gathered gatherSubmission(const std::string& folder, const Rubric& rubric, const Limits& limits, bool recursive,
+                          bool followFolder) {
+    Gathered g;
+    g.found = findSubmission(folder, rubric.submission, recursive, followFolder);
+    g.status = g.found.status;
+    g.note = g.found.note;
+    if (g.found.name.empty()) return g;
+    const std::size_t cap = static_cast<std::size_t>(limits.submissionKiB) * 1024;
+    // The folder that holds the file was found without following links, or was named by the user.
+    const bool follow = recursive || followFolder;
+    const HandedIn source = readHandedIn(g.found.folder, g.found.name, cap, follow);
+    if (!source.ok) {
+        g.status = source.found ? source.status : "missing file";
+        g.note = source.found ? source.refusal : "no " + rubric.submission;
+        return g;
+    }
+    SubmissionFiles files;
+    files.name = g.found.name;
+    files.shown = g.found.shown;
+    files.text = source.text;
+    for (const std::string& name : rubric.extraFiles) {
+        HandedIn extra = readHandedIn(g.found.folder, name, cap, follow);
+        if (extra.found) files.extras.push_back(std::move(extra));
+    }
+    g.files = std::move(files);
+    return g;
 }
 
 GradeReport gradeFolder(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
-                        const std::string& folder, bool recursive, const GradeOptions& options) {
-    const Submission found = findSubmission(folder, rubric.submission, recursive);
-    if (found.file.empty()) return missingReport(assignment, rubric, found.note, options.includeHidden);
-    GradeReport report = gradeSource(builder, assignment, rubric, found.file, options);
-    if (report.status == "graded") report.status = found.status;
-    report.note = found.note;
+                        const std::string& folder, bool recursive, bool followFolder, const GradeOptions& options) {
+    const Limits limits = options.limits.value_or(rubric.limits);
+    const Gathered g = gatherSubmission(folder, rubric, limits, recursive, followFolder);
+    if (!g.files) return notGradedReport(assignment, rubric, g.status, g.note, options.includeHidden);
+    GradeReport report = gradeSubmission(builder, assignment, rubric, *g.files, options);
+    if (report.status == "graded") report.status = g.status;
+    if (!g.note.empty()) report.note = g.note + (report.note.empty() ? "" : "; " + report.note);
     return report;
 }
 
-std::vector<StudentRecord> gradeClass(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
-                                      const std::string& submissionsDir, const std::string& outDir,
-                                      const ClassOptions& options,
-                                      const std::function<void(const ClassProgress&)>& onProgress) {
+ClassResult gradeClass(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
+                       const std::string& submissionsDir, const std::string& outDir, const ClassOptions& options,
+                       const std::function<void(const ClassProgress&)>& onProgress) {
     const auto start = std::chrono::steady_clock::now();
+    ClassResult result;
     std::vector<std::string> ids;
-    for (const fs::directory_entry& e : fs::directory_iterator(submissionsDir)) {
-        if (e.is_directory() && e.path().filename().string()[0] != '.') ids.push_back(e.path().filename().string());
+    for (const FolderEntry& e : listFolder(submissionsDir, /*followFolder=*/true)) {
+        if (e.name[0] == '.') result.skipped.push_back({e.name, "a hidden folder or file (its name starts with a dot)"});
+        else if (e.type == EntryType::Directory) ids.push_back(e.name);
+        else if (e.type == EntryType::Symlink) result.skipped.push_back({e.name, "a symbolic link, not a folder"});
+        else result.skipped.push_back({e.name, "a file, not a student's folder"});
     }
-    std::sort(ids.begin(), ids.end());
     for (const std::string& id : options.only) {
         if (!std::binary_search(ids.begin(), ids.end(), id)) {
-            throw UsageError("no student '" + id + "' in " + submissionsDir);
+            throw UsageError("no student '" + printable(id) + "' in " + printable(submissionsDir));
         }
     }
     fs::create_directories(outDir + "/students");
 
-    // What every grade depends on besides the student's file.
+    // What every grade depends on besides the student's files.
     Hash base;
     base.add(builder.graderKey(assignment)).add(readFile(rubric.path));
     const Limits limits = options.grade.limits.value_or(rubric.limits);
     for (double v : {limits.wallSeconds, limits.cpuSeconds, double(limits.memoryMiB), double(limits.outputKiB),
-                     double(limits.fileMiB), double(limits.processes)}) {
+                     double(limits.fileMiB), double(limits.processes), double(limits.observationMiB),
+                     double(limits.submissionKiB)}) {
         base.add(std::to_string(v));
     }
     base.add(options.grade.includeHidden ? "all tests" : "visible tests");
@@ -268,32 +281,38 @@ std::vector<StudentRecord> gradeClass(const Builder& builder, const Assignment& 
     std::map<std::string, StudentRecord> records;
     struct Pending {
         std::string id, key;
+        Gathered gathered;
     };
     std::vector<Pending> pending;
     int reused = 0;
     for (const std::string& id : ids) {
-        const std::string folder = submissionsDir + "/" + id;
-        const Submission found = findSubmission(folder, rubric.submission, false);
+        const bool wanted = options.only.empty() || std::count(options.only.begin(), options.only.end(), id);
+        const std::string recordPath = outDir + "/students/" + id + "/record.json";
+        std::optional<StudentRecord> kept;
+        if (fs::exists(recordPath)) kept = fromJson(nlohmann::json::parse(readFile(recordPath), nullptr, false));
+        if (kept) kept->id = id;
+        if (kept && !wanted) {
+            records[id] = *kept;
+            continue;
+        }
+        if (!wanted) continue;
+        // The key is made from the bytes that will be graded, read once, with care.
+        Gathered gathered = gatherSubmission(submissionsDir + "/" + id, rubric, limits, false, false);
         Hash key = base;
-        key.add(found.status).add(found.file.empty() ? found.note : fs::path(found.file).filename().string());
-        if (!found.file.empty()) {
-            key.add(readFile(found.file));
+        key.add(gathered.status).add(gathered.note).add(gathered.found.shown);
+        if (gathered.files) {
+            key.add(gathered.files->text);
             for (const std::string& name : rubric.extraFiles) {
-                const fs::path extra = fs::path(found.file).parent_path() / name;
-                key.add(fs::is_regular_file(extra) ? readFile(extra.string()) : "(none)");
+                const auto extra = std::find_if(gathered.files->extras.begin(), gathered.files->extras.end(),
+                                                [&](const HandedIn& h) { return h.name == name; });
+                key.add(extra == gathered.files->extras.end() ? "(none)" : extra->ok ? extra->text : extra->refusal);
             }
         }
-        const std::string recordPath = outDir + "/students/" + id + "/record.json";
-        const bool wanted = options.only.empty() || std::count(options.only.begin(), options.only.end(), id);
-        std::optional<StudentRecord> kept;
-        if (fs::exists(recordPath)) {
-            kept = fromJson(nlohmann::json::parse(readFile(recordPath), nullptr, false));
-        }
-        if (kept && (!wanted || (options.only.empty() && kept->key == key.hex()))) {
+        if (kept && options.only.empty() && kept->key == key.hex()) {
             records[id] = *kept;
-            reused += wanted;
-        } else if (wanted) {
-            pending.push_back({id, key.hex()});
+            ++reused;
+        } else {
+            pending.push_back({id, key.hex(), std::move(gathered)});
         }
     }
 
@@ -318,47 +337,70 @@ std::vector<StudentRecord> gradeClass(const Builder& builder, const Assignment& 
 
     std::atomic<std::size_t> next{0};
     std::atomic<bool> stop{false};
-    std::exception_ptr failure;
     const int alreadyDone = progress.done;
+    auto finish = [&](StudentRecord record, bool writeRecord, const GradeReport* report) {
+        const std::string dir = outDir + "/students/" + record.id;
+        fs::create_directories(dir);
+        if (report) {
+            writeFileAtomically(dir + "/results.json", jsonText(toGradescope(*report)));
+            std::string output;
+            for (const TestResult& t : report->tests) {
+                output += "=== " + t.name + " (" + outcomeName(t.outcome) + ")\n" + printable(t.output, true) + "\n";
+            }
+            if (!report->graderOutput.empty()) {
+                output += "=== the grader's account of the tests\n" + printable(report->graderOutput, true) + "\n";
+            }
+            writeFileAtomically(dir + "/output.txt", output);
+        }
+        writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, record));
+        if (writeRecord) writeFileAtomically(dir + "/record.json", jsonText(toJson(record)));  // last: the commit
+
+        std::lock_guard<std::mutex> guard(lock);
+        records[record.id] = record;
+        publish();
+        ++progress.done;
+        progress.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double graded = progress.done - alreadyDone;
+        progress.eta = progress.elapsed / graded * (progress.total - progress.done);
+        progress.last = &records[record.id];
+        progress.lastReused = false;
+        if (onProgress) onProgress(progress);
+    };
     auto worker = [&](int slot) {
         for (std::size_t i = next++; i < pending.size() && !stop; i = next++) {
             const Pending& p = pending[i];
-            const std::string folder = submissionsDir + "/" + p.id;
-            const std::string dir = outDir + "/students/" + p.id;
             GradeOptions grade = options.grade;
             grade.slot = slot;
             try {
-                const GradeReport report = gradeFolder(builder, assignment, rubric, folder, false, grade);
-                const std::string file =
-                    report.source.empty() ? "" : fs::relative(report.source, folder).string();
-                StudentRecord record = recordOf(p.id, p.key, report, file);
-                fs::create_directories(dir);
-                writeFileAtomically(dir + "/results.json", toGradescope(report).dump(2) + "\n");
-                writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, record));
-                std::string output;
-                for (const TestResult& t : report.tests) {
-                    output += "=== " + t.name + " (" + outcomeName(t.outcome) + ")\n" + t.output + "\n";
+                GradeReport report;
+                if (p.gathered.files) {
+                    report = gradeSubmission(builder, assignment, rubric, *p.gathered.files, grade);
+                    if (report.status == "graded") report.status = p.gathered.status;
+                    if (!p.gathered.note.empty()) {
+                        report.note = p.gathered.note + (report.note.empty() ? "" : "; " + report.note);
+                    }
+                } else {
+                    report = notGradedReport(assignment, rubric, p.gathered.status, p.gathered.note,
+                                             grade.includeHidden);
                 }
-                writeFileAtomically(dir + "/output.txt", output);
-                writeFileAtomically(dir + "/record.json", toJson(record).dump(2) + "\n");  // last: the commit
-
-                std::lock_guard<std::mutex> guard(lock);
-                records[p.id] = record;
-                publish();
-                ++progress.done;
-                progress.elapsed =
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-                const double graded = progress.done - alreadyDone;
-                progress.eta = progress.elapsed / graded * (progress.total - progress.done);
-                progress.last = &records[p.id];
-                progress.lastReused = false;
-                if (onProgress) onProgress(progress);
+                finish(recordOf(p.id, p.key, report, p.gathered.found.shown), true, &report);
             } catch (const Interrupted&) {
-                stop = true;
-            } catch (...) {
+                stop = true;  // this student has no outcome: the next run grades them
+            } catch (const std::exception& e) {
+                // simlab could not grade this one (a disk full, say): a row that says so, and a retry next run.
+                StudentRecord failed;
+                failed.id = p.id;
+                failed.key = "retry";
+                failed.status = "grader error";
+                failed.note = e.what();
+                failed.maxScore = rubric.totalPoints();
+                try {
+                    finish(failed, true, nullptr);
+                } catch (const std::exception&) {
+                    stop = true;  // nothing can be written: stop rather than lose grades silently
+                }
                 std::lock_guard<std::mutex> guard(lock);
-                if (!failure) failure = std::current_exception();
-                stop = true;
+                ++result.graderErrors;
             }
         }
     };
@@ -366,24 +408,22 @@ std::vector<StudentRecord> gradeClass(const Builder& builder, const Assignment& 
     const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(pending.size())));
     for (int slot = 0; slot < jobs; ++slot) workers.emplace_back(worker, slot);
     for (std::thread& w : workers) w.join();
-    if (failure) std::rethrow_exception(failure);
 
-    std::vector<StudentRecord> sorted;
     for (const std::string& id : ids) {
-        if (records.count(id)) sorted.push_back(records[id]);
+        if (records.count(id)) result.records.push_back(records[id]);
     }
-    writeFileAtomically(outDir + "/summary.csv", summaryCsv(rubric, sorted));
+    writeFileAtomically(outDir + "/summary.csv", summaryCsv(rubric, result.records));
     if (childrenInterrupted()) throw Interrupted();
-    return sorted;
+    return result;
 }
 
 std::string summaryCsv(const Rubric& rubric, const std::vector<StudentRecord>& records) {
     std::ostringstream out;
     out << "test,visibility,points,graded,passed,pass_rate,figure,median,min,max\n";
     for (const TestSummary& s : summarize(rubric, records)) {
-        out << csvField(s.test->name) << "," << s.test->visibility << "," << points(s.test->points) << ","
+        out << csvCell(s.test->name) << "," << s.test->visibility << "," << points(s.test->points) << ","
             << s.graded << "," << s.passed << "," << (s.graded ? number(double(s.passed) / s.graded) : "") << ","
-            << csvField(s.unit) << "," << number(s.figures.median) << "," << number(s.figures.min) << ","
+            << csvCell(s.unit) << "," << number(s.figures.median) << "," << number(s.figures.min) << ","
             << number(s.figures.max) << "\n";
     }
     return out.str();
@@ -421,8 +461,8 @@ std::string junitXml(const Assignment& assignment, const std::vector<StudentReco
         int f = 0, e = 0;
         std::ostringstream cases;
         for (const TestResult& t : r.tests) {
-            cases << "    <testcase classname=\"" << xmlEscape(assignment.id + "." + r.id) << "\" name=\""
-                  << xmlEscape(t.name) << "\" time=\"" << t.seconds << "\"";
+            cases << "    <testcase classname=\"" << xmlText(assignment.id + "." + r.id) << "\" name=\""
+                  << xmlText(t.name) << "\" time=\"" << t.seconds << "\"";
             if (t.outcome == Outcome::Passed) {
                 cases << "/>\n";
                 continue;
@@ -431,21 +471,21 @@ std::string junitXml(const Assignment& assignment, const std::vector<StudentReco
             (failed ? f : e)++;
             const std::string tag = failed ? "failure" : "error";
             const std::string message = outcomeName(t.outcome) + (t.reason.empty() ? "" : ": " + t.reason);
-            cases << ">\n      <" << tag << " type=\"" << xmlEscape(outcomeName(t.outcome)) << "\" message=\""
-                  << xmlEscape(message) << "\">" << xmlEscape(message) << "</" << tag << ">\n    </testcase>\n";
+            cases << ">\n      <" << tag << " type=\"" << xmlText(outcomeName(t.outcome)) << "\" message=\""
+                  << xmlText(message) << "\">" << xmlText(message) << "</" << tag << ">\n    </testcase>\n";
         }
         tests += static_cast<int>(r.tests.size());
         failures += f;
         errors += e;
-        suites << "  <testsuite name=\"" << xmlEscape(r.id) << "\" tests=\"" << r.tests.size() << "\" failures=\""
+        suites << "  <testsuite name=\"" << xmlText(r.id) << "\" tests=\"" << r.tests.size() << "\" failures=\""
                << f << "\" errors=\"" << e << "\" time=\"" << r.seconds << "\">\n"
                << "    <properties><property name=\"score\" value=\"" << points(r.score) << "/"
-               << points(r.maxScore) << "\"/><property name=\"status\" value=\"" << xmlEscape(r.status)
+               << points(r.maxScore) << "\"/><property name=\"status\" value=\"" << xmlText(r.status)
                << "\"/></properties>\n"
                << cases.str() << "  </testsuite>\n";
     }
     std::ostringstream out;
-    out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"simlab " << xmlEscape(assignment.id)
+    out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"simlab " << xmlText(assignment.id)
         << "\" tests=\"" << tests << "\" failures=\"" << failures << "\" errors=\"" << errors << "\">\n"
         << suites.str() << "</testsuites>\n";
     return out.str();
@@ -453,35 +493,53 @@ std::string junitXml(const Assignment& assignment, const std::vector<StudentReco
 
 std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& r) {
     std::ostringstream out;
-    out << "# " << assignment.title << ": " << r.id << "\n\n";
+    out << "# " << markdownText(assignment.title) << ": " << markdownText(r.id) << "\n\n";
     out << "**Score: " << points(r.score) << "/" << points(r.maxScore) << "**";
     if (r.status != "graded") out << " (" << r.status << ")";
     out << "\n\n";
-    if (!r.note.empty()) out << r.note << ".\n\n";
+    if (!r.note.empty()) out << markdownText(r.note) << ".\n\n";
     const std::string file = r.file.empty() ? assignment.source : r.file;
+    // A command to copy: in code when the file's name is plain, else as escaped text.
+    const bool plain = std::all_of(file.begin(), file.end(), [](unsigned char c) {
+        return std::isalnum(c) || c == '.' || c == '_' || c == '-' || c == '/' || c == '+';
+    });
+    auto command = [&](const std::string& rest) {
+        const std::string text = "simlab check " + assignment.id + " " + file + rest;
+        return plain ? "`" + text + "`" : markdownText(text);
+    };
+    if (!r.compiler.empty()) {
+        // An indented block: shown as the compiler wrote it (escaped), and nothing in it can end the block.
+        const char* title = r.status == "did not compile" ? "The compiler's message:"
+                            : r.status == "did not link"  ? "The linker's message:"
+                            : r.status == "forbidden code" ? "Why the file was refused:"
+                                                           : "The compiler's warnings:";
+        out << title << "\n\n";
+        std::istringstream lines(printable(r.compiler, true));
+        for (std::string line; std::getline(lines, line);) out << "    " << line << "\n";
+        out << "\n";
+    }
     out << "| points | outcome | test |\n| ---: | --- | --- |\n";
     for (const TestResult& t : r.tests) {
         out << "| " << points(t.score) << "/" << points(t.maxScore) << " | " << outcomeName(t.outcome) << " | "
-            << t.name << " |\n";
+            << markdownText(t.name) << " |\n";
     }
     out << "\n";
     for (const TestResult& t : r.tests) {
         if (t.outcome == Outcome::Passed && t.reason.empty()) continue;
-        out << "## " << t.name << "\n\n" << points(t.score) << "/" << points(t.maxScore) << ", "
+        out << "## " << markdownText(t.name) << "\n\n" << points(t.score) << "/" << points(t.maxScore) << ", "
             << outcomeName(t.outcome);
         if (t.visibility == "hidden") {
             out << ". (A hidden test: your instructor has the details.)\n\n";
             continue;
         }
-        out << (t.reason.empty() ? "" : ": " + t.reason) << "\n\n";
-        for (const std::string& line : t.feedback) out << "- " << line << "\n";
+        out << (t.reason.empty() ? "" : ": " + markdownText(t.reason)) << "\n\n";
+        for (const std::string& line : t.feedback) out << "- " << markdownText(line) << "\n";
         if (!t.feedback.empty()) out << "\n";
         if (t.outcome != Outcome::Passed && t.visibility == "visible") {
-            out << "Reproduce: `simlab check " << assignment.id << " " << file << " --test \"" << t.name
-                << "\"`\n\n";
+            out << "Reproduce: " << command(" --test \"" + t.name + "\"") << "\n\n";
         }
     }
-    out << "Check your file on the visible tests with `simlab check " << assignment.id << " " << file << "`.\n";
+    out << "Check your file on the visible tests with " << command("") << ".\n";
     return out.str();
 }
 

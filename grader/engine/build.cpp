@@ -1,13 +1,18 @@
 #include "simlab/engine/build.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <mutex>
 #include <set>
 #include <sstream>
 
+#include "simlab/engine/elf.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/process.h"
+#include "simlab/engine/text.h"
 
 namespace fs = std::filesystem;
 
@@ -15,14 +20,15 @@ namespace simlab::engine {
 
 namespace {
 
-// Compilers and linkers are trusted, but what they read is not: limits stop an #include of /dev/zero.
+// Compilers and linkers are trusted, but what they read is not: limits stop an #include of /dev/zero. Their CPU
+// time decides; the wall clock is a net for a machine under load.
 Limits toolLimits() {
     Limits l;
-    l.wallSeconds = 120;
+    l.wallSeconds = 300;
     l.cpuSeconds = 120;
     l.memoryMiB = 4096;
     l.outputKiB = 1024;
-    l.fileMiB = 512;
+    l.fileMiB = 64;  // an object is a few MiB: a .fill of 500 MiB in inline assembly stops here
     l.processes = 16;
     return l;
 }
@@ -64,6 +70,44 @@ std::vector<std::string> includeFolders(const std::vector<std::string>& command)
     return folders;
 }
 
+std::string shortened(std::string text, std::size_t most) {
+    if (text.size() > most) text = text.substr(0, most - 3) + "...";
+    return text;
+}
+
+// Every input the linker reads for the course's side of a probe (the C runtime's pieces among them) and every
+// shared library the result loads: the trace of a trial link that leaves the student's symbols undefined.
+std::vector<std::string> courseFiles(const Manifest& manifest, const Assignment& assignment) {
+    TempDir trial("simlab-symbols-");
+    ProcessRequest request;
+    request.argv = manifest.link;
+    request.argv.insert(request.argv.end(), {"-o", trial.path() + "/probe", "-Wl,--no-as-needed", "-Wl,--trace",
+                                             "-Wl,--unresolved-symbols=ignore-all"});
+    request.argv.insert(request.argv.end(), assignment.probeObjects.begin(), assignment.probeObjects.end());
+    request.argv.insert(request.argv.end(), manifest.probeLibraries.begin(), manifest.probeLibraries.end());
+    request.env = childEnvironment({kToolLocale});
+    request.workDir = trial.path();
+    request.limits = toolLimits();
+    request.keepOutput = 1 << 20;
+    const ProcessResult linked = runProcess(request);
+    if (!linked.exitedCleanly()) throw std::runtime_error("cannot link the course's probe: " + linked.output);
+    std::set<std::string> files;
+    std::istringstream lines(linked.output);
+    for (std::string line; std::getline(lines, line);) {
+        if (!line.empty() && line[0] == '/') files.insert(line.substr(0, line.find(' ')));
+    }
+    request.argv = {"/usr/bin/ldd", trial.path() + "/probe"};
+    const ProcessResult loaded = runProcess(request);
+    std::istringstream libraries(loaded.output);
+    for (std::string line; std::getline(libraries, line);) {
+        const std::size_t arrow = line.find("=> /"), slash = line.find_first_not_of(" \t");
+        std::string path = arrow != std::string::npos ? line.substr(arrow + 3) : slash != std::string::npos && line[slash] == '/' ? line.substr(slash) : "";
+        path = path.substr(0, path.find(' '));
+        if (!path.empty()) files.insert(path);
+    }
+    return {files.begin(), files.end()};
+}
+
 }  // namespace
 
 std::string firstLines(const std::string& text, int maxLines) {
@@ -82,41 +126,196 @@ std::string firstLines(const std::string& text, int maxLines) {
     return out;
 }
 
+namespace {
+
+bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+// The sections g++ makes from C++ (and their relocations): anything else came from assembly the student wrote.
+bool isCompilerSection(std::string name) {
+    if (startsWith(name, ".rela.")) name = name.substr(5);
+    static const std::set<std::string> exact = {
+        "", ".text", ".data", ".bss", ".rodata", ".comment", ".eh_frame", ".init_array", ".fini_array",
+        ".note.GNU-stack", ".note.gnu.property", ".group", ".shstrtab", ".strtab", ".symtab", ".symtab_shndx",
+        ".gcc_except_table", ".tbss", ".tdata", ".data.rel.ro", ".data.rel"};
+    if (exact.count(name)) return true;
+    for (const char* prefix : {".text.", ".data.", ".bss.", ".rodata.", ".gcc_except_table.", ".tbss.", ".tdata."}) {
+        if (startsWith(name, prefix)) return true;
+    }
+    return false;
+}
+
+std::string sectionProblem(const std::string& section) {
+    if (startsWith(section, ".preinit_array")) return "puts code in .preinit_array, which would run before the course's code";
+    if (startsWith(section, ".init_array.") || startsWith(section, ".ctors")) {
+        return "has a constructor with a priority (constructor(N) or init_priority(N)), which would run before the "
+               "course's code; give it none";
+    }
+    if (startsWith(section, ".fini_array.") || startsWith(section, ".dtors")) {
+        return "has a destructor with a priority (destructor(N)), which would run after the course's code ends";
+    }
+    if (section == ".init" || section == ".fini") {
+        return "puts code in the " + section + " section, which runs outside the course's control";
+    }
+    if (startsWith(section, ".gnu.lto")) {
+        return "holds link-time-optimization code (" + section + "), which the linker would compile outside the "
+               "checks: write C++, not its assembly";
+    }
+    return "holds a section named " + section + ", which a C++ compiler does not make: the course links only what "
+           "g++ makes from C++";
+}
+
+}  // namespace
+
+std::vector<std::string> forbiddenCode(const std::string& objectPath, const std::string& sourceName,
+                                       const CourseSymbols& course) {
+    const ElfObject object = readElfObject(objectPath);
+    std::vector<std::string> problems;
+    auto say = [&](const std::string& what) {
+        const std::string line = sourceName + " " + what;
+        if (std::find(problems.begin(), problems.end(), line) == problems.end()) problems.push_back(line);
+    };
+    for (const std::string& section : object.sectionNames) {
+        if (!isCompilerSection(section)) say(sectionProblem(printable(section)));
+    }
+    for (const ElfSymbol& symbol : object.defined) {
+        const std::string name = shortened(printable(demangle(symbol.name)), 160);
+        if (symbol.ifunc) say("defines " + name + " as an ifunc, whose resolver would run before the course's code");
+        if (startsWith(symbol.name, "__gnu_lto")) say("holds link-time-optimization code (" + name + ")");
+        const auto found = course.find(symbol.name);
+        if (found == course.end()) continue;
+        const CourseSymbol& c = found->second;
+        const std::string owner = c.from == "course" ? "the course's code" : c.from;
+        if (!c.defined) {
+            // Nothing of the course's defines it but something calls it: a contract function (which the course's
+            // objects need), or a hook the runtime would call because it exists.
+            if (!c.required) say("defines " + name + ", which the course's runtime would call as a hook");
+            continue;
+        }
+        // A weak definition outside an inline function's group is as good as strong: the linker would keep it.
+        if (symbol.strong || !symbol.comdat) {
+            say("defines " + name + ", which " + owner +
+                " defines: a submission may define only the contract's functions and its own helpers");
+        } else if (c.strong && c.inObjects) {
+            // Harmless (the course's out-of-line definition is the one linked), but never what a student means.
+            say("redefines " + name + " inline, which " + owner + " defines");
+        }
+        // An inline copy of a library's function is harmless: the probe is linked so that it exports nothing it
+        // defines (the manifest's probe_link), and a library's calls stay with the library.
+    }
+    return problems;
+}
+
 Builder::Builder(const Manifest& manifest) : manifest_(manifest), cacheDir_(manifest.buildDir + "/cache/objects") {
     if (const char* dir = std::getenv("SIMLAB_CACHE"); dir && *dir) cacheDir_ = dir;
     std::error_code ignored;
     fs::create_directories(cacheDir_, ignored);
 }
 
-std::string Builder::objectKey(const std::string& sourceText) const {
+std::string Builder::objectKey(const Assignment& assignment, const std::string& sourceText) const {
     Hash h;
-    h.add(sourceText).add(manifest_.version).add(kToolLocale);
+    h.add(sourceText).add(manifest_.version).add(kToolLocale).add(assignment.contractInclude);
     for (const std::string& part : manifest_.compile) h.add(part);
     for (std::size_t i = 0; i + 1 < manifest_.compile.size(); ++i) {
         if (manifest_.compile[i] == "-include") h.addFileStamp(manifest_.compile[i + 1] + ".gch");
     }
+    std::error_code error;
+    std::vector<std::string> headers;
+    for (auto it = fs::recursive_directory_iterator(assignment.contractInclude, error);
+         it != fs::recursive_directory_iterator(); it.increment(error)) {
+        headers.push_back(it->path().string());
+    }
+    std::sort(headers.begin(), headers.end());
+    for (const std::string& header : headers) h.addFileStamp(header);
     return h.hex();
 }
 
 std::string Builder::graderKey(const Assignment& assignment) const {
     Hash h;
-    h.add(objectKey(""));
+    h.add(objectKey(assignment, ""));
     for (const std::string& part : manifest_.link) h.add(part);
-    for (const std::string& file : assignment.graderObjects) h.addFileStamp(file);
-    for (const std::string& file : manifest_.graderLibraries) h.addFileStamp(file);
+    for (const std::string& file : assignment.probeObjects) h.addFileStamp(file);
+    for (const std::string& file : manifest_.probeLibraries) h.addFileStamp(file);
+    for (const std::string& flag : manifest_.probeLink) h.add(flag);
+    h.addFileStamp(assignment.judge);
     return h.hex();
 }
 
-BuildResult Builder::compile(const std::string& source, const std::string& workDir, std::string* object) const {
+const CourseSymbols& Builder::courseSymbols(const Assignment& assignment) const {
+    static std::mutex lock;
+    static std::map<std::string, CourseSymbols> known;
+    const std::string key = graderKey(assignment);
+    std::lock_guard<std::mutex> guard(lock);
+    if (const auto found = known.find(key); found != known.end()) return found->second;
+    CourseSymbols& symbols = known[key];
+    // Kept with the build (not with the objects, which $SIMLAB_CACHE may move): it depends on the build alone.
+    const std::string cached = manifest_.buildDir + "/cache/course-symbols-" + key + ".txt";
+    std::error_code ignored;
+    fs::create_directories(manifest_.buildDir + "/cache", ignored);
+    if (fs::exists(cached)) {
+        // One line per symbol: six flags (defined, strong, inObjects, inLibraries, required, referenced), a tab,
+        // the name, a tab, where it is from.
+        std::istringstream lines(readFile(cached));
+        for (std::string line; std::getline(lines, line);) {
+            const std::size_t tab = line.find('\t', 7);
+            if (line.size() < 8 || line[6] != '\t' || tab == std::string::npos) continue;
+            CourseSymbol& s = symbols[line.substr(7, tab - 7)];
+            s.defined = line[0] == '1';
+            s.strong = line[1] == '1';
+            s.inObjects = line[2] == '1';
+            s.inLibraries = line[3] == '1';
+            s.required = line[4] == '1';
+            s.referenced = line[5] == '1';
+            s.from = line.substr(tab + 1);
+        }
+        return symbols;
+    }
+    std::set<std::string> objectsNeed;  // strong references in the course's objects
+    for (const std::string& file : courseFiles(manifest_, assignment)) {
+        ElfObject elf;
+        try {
+            elf = readElfFile(file);
+        } catch (const std::exception&) {
+            continue;  // a linker script (libc.so is one), not code
+        }
+        const bool ours = std::find(assignment.probeObjects.begin(), assignment.probeObjects.end(), file) !=
+                          assignment.probeObjects.end();
+        const std::string from = ours ? "course" : fs::path(file).filename().string();
+        for (const ElfSymbol& s : elf.defined) {
+            CourseSymbol& entry = symbols[s.name];
+            if (!entry.defined || (s.strong && !entry.strong)) entry.from = from;
+            entry.defined = true;
+            entry.strong = entry.strong || s.strong;
+            (ours ? entry.inObjects : entry.inLibraries) = true;
+        }
+        for (const ElfSymbol& s : elf.undefined) {
+            symbols[s.name].referenced = true;
+            if (ours && s.strong) objectsNeed.insert(s.name);
+        }
+    }
+    for (auto& [name, s] : symbols) s.required = !s.defined && objectsNeed.count(name);
+    std::string text;
+    for (const auto& [name, s] : symbols) {
+        text += std::string(1, s.defined ? '1' : '0') + (s.strong ? '1' : '0') + (s.inObjects ? '1' : '0') +
+                (s.inLibraries ? '1' : '0') + (s.required ? '1' : '0') + (s.referenced ? '1' : '0') + "\t" + name +
+                "\t" + s.from + "\n";
+    }
+    writeFileAtomically(cached, text);
+    return symbols;
+}
+
+BuildResult Builder::compile(const Assignment& assignment, const std::string& name, const std::string& text,
+                             const std::string& workDir, int slot, std::string* object) const {
     BuildResult result;
     result.stage = "compile";
-    const std::string text = readFile(source);
-    const std::string key = objectKey(text);
+    const std::string key = objectKey(assignment, text);
     const std::string cached = cacheDir_ + "/" + key + ".o";
     const std::string cachedLog = cacheDir_ + "/" + key + ".log";
     const std::string cachedFailure = cacheDir_ + "/" + key + ".failed";
+    const std::string cachedSource = cacheDir_ + "/" + key + ".cpp";
     *object = cached;
-    if (fs::exists(cached) || fs::exists(cachedFailure)) {
+    // The key is a strong hash; the source kept beside the object makes sure all the same that it is this file's.
+    const bool same = fs::exists(cachedSource) && readFile(cachedSource) == text;
+    if (same && (fs::exists(cached) || fs::exists(cachedFailure))) {
         result.cached = true;
         result.ok = fs::exists(cached);
         const std::string log = fs::exists(cachedLog) ? readFile(cachedLog) : "";
@@ -125,38 +324,44 @@ BuildResult Builder::compile(const std::string& source, const std::string& workD
     }
 
     // Compile a copy under the submission's own file name, so messages read "NewtonsApple.cpp:12:5: error".
-    const std::string name = fs::path(source).filename().string();
-    const std::string copy = workDir + "/" + name;
-    writeFileAtomically(copy, text);
+    writeFileAtomically(workDir + "/" + name, text);
     const std::string output = workDir + "/" + key + ".o";
     ProcessRequest request;
     request.argv = manifest_.compile;
-    request.argv.insert(request.argv.end(), {"-c", name, "-o", output});
-    request.env = childEnvironment({kToolLocale});
+    request.argv.insert(request.argv.end(), {"-I" + assignment.contractInclude, "-c", name, "-o", output});
+    request.env = {"PATH=/usr/bin:/bin", "HOME=" + workDir, "TMPDIR=/tmp", kToolLocale};
     request.workDir = workDir;
     request.limits = toolLimits();
     request.keepOutput = 64 * 1024;
-    // The compiler reads what the student's #include lines name, and its messages come back in their report: it
-    // sees only the system and the include folders on its command line, nothing of other students' or simlab's.
+    // The compiler reads what the student's #include and .incbin lines name, and its messages come back in their
+    // report: it runs as the sandbox user and sees the system, the contract's headers and the precompiled header -
+    // nothing of the course's tests, rubrics or solutions, of other students', or of simlab's build tree.
     request.isolate = true;
-    request.ownUser = false;
+    request.slot = slot;
     request.readOnlyPaths = includeFolders(manifest_.compile);
+    request.readOnlyPaths.push_back(assignment.contractInclude);
+    request.maskedPaths = {manifest_.sourceDir, manifest_.buildDir};
     const ProcessResult run = runProcess(request);
     result.compileSeconds = run.wallSeconds;
+    if (run.interrupted) {
+        result.interrupted = true;
+        return result;
+    }
     result.ok = run.exitedCleanly() && fs::exists(output);
     std::string log = run.started ? run.output : run.error;
-    if (run.wallTimeout || run.cpuTimeout) log = "the compiler was stopped after " + std::to_string(static_cast<int>(request.limits.wallSeconds)) + " s\n" + log;
+    if (run.wallTimeout || run.cpuTimeout) log = "the compiler was stopped after " + std::to_string(static_cast<int>(run.cpuTimeout ? request.limits.cpuSeconds : request.limits.wallSeconds)) + " s\n" + log;
     else if (!result.ok && run.signal) log = "the compiler crashed (" + signalName(run.signal) + ")\n" + log;
 
-    // Keep the outcome in the cache, then publish the object. A compile error is kept too (the same file fails
-    // the same way); a compiler stopped by a limit is not, since a quieter machine may finish it.
-    const bool genuineError = run.started && run.signal == 0 && run.exitCode > 0 && !run.wallTimeout;
-    if (result.ok || genuineError) writeFileAtomically(cachedLog, log);
+    // Keep the outcome in the cache, then publish the object (a copy simlab owns, not the sandbox user's file). A
+    // compile error is kept too (the same file fails the same way); a compiler stopped by a limit is not, since
+    // a quieter machine may finish it.
+    const bool genuineError = run.started && run.signal == 0 && run.exitCode > 0 && !run.wallTimeout && !run.cpuTimeout;
+    if (result.ok || genuineError) {
+        writeFileAtomically(cachedLog, log);
+        writeFileAtomically(cachedSource, text);
+    }
     if (result.ok) {
-        std::error_code error;
-        fs::rename(output, cached, error);
-        if (error) fs::copy_file(output, cached, fs::copy_options::overwrite_existing, error);
-        if (error) *object = output;
+        writeFileAtomically(cached, readFile(output));
         result.warnings = log;
     } else {
         if (genuineError) writeFileAtomically(cachedFailure, "");
@@ -165,48 +370,82 @@ BuildResult Builder::compile(const std::string& source, const std::string& workD
     return result;
 }
 
-void Builder::link(const std::vector<std::string>& inputs, const std::string& output, BuildResult& result) const {
+void Builder::link(const std::vector<std::string>& inputs, const std::vector<std::string>& flags,
+                   const std::string& output, int slot, BuildResult& result) const {
     ProcessRequest request;
     request.argv = manifest_.link;
     request.argv.insert(request.argv.end(), {"-o", output});
     request.argv.insert(request.argv.end(), inputs.begin(), inputs.end());
-    request.env = childEnvironment({kToolLocale});
+    request.argv.insert(request.argv.end(), flags.begin(), flags.end());
+    request.env = {"PATH=/usr/bin:/bin", "TMPDIR=/tmp", kToolLocale};
     request.workDir = fs::path(output).parent_path().string();
     request.limits = toolLimits();
+    // The linker reads the student's object too: it runs in the sandbox as well, lent its inputs one by one, and
+    // with no plugin (the link compiles nothing: see the manifest's link command).
+    request.isolate = true;
+    request.slot = slot;
+    for (const std::string& input : inputs) {
+        if (input.rfind("/usr/", 0) != 0) request.readOnlyPaths.push_back(input);
+    }
+    for (const std::string& flag : flags) {
+        const std::size_t file = flag.find("--version-script=");
+        if (file != std::string::npos) request.readOnlyPaths.push_back(flag.substr(file + 17));
+    }
+    request.maskedPaths = {manifest_.sourceDir, manifest_.buildDir};
     const ProcessResult run = runProcess(request);
     result.linkSeconds = run.wallSeconds;
+    if (run.interrupted) {
+        result.ok = false;
+        result.interrupted = true;
+        return;
+    }
     result.ok = run.exitedCleanly() && fs::exists(output);
     if (!result.ok) {
         result.stage = "link";
         result.log = linkSummary(run.started ? run.output : run.error);
     } else {
         result.binary = output;
+        // What it made is simlab's, not the sandbox user's.
+        std::error_code ignored;
+        if (::geteuid() == 0) {
+            (void)!::chown(output.c_str(), 0, 0);
+            (void)!::chown(request.workDir.c_str(), 0, 0);
+        }
     }
 }
 
-BuildResult Builder::buildGrader(const Assignment& assignment, const std::string& source, const std::string& workDir,
-                                 const std::string& binary) const {
+BuildResult Builder::buildProbe(const Assignment& assignment, const std::string& name, const std::string& text,
+                                const std::string& workDir, const std::string& binary, int slot) const {
     std::string object;
-    BuildResult result = compile(source, workDir, &object);
+    BuildResult result = compile(assignment, name, text, workDir, slot, &object);
     if (!result.ok) return result;
-    std::vector<std::string> inputs = {object};
-    inputs.insert(inputs.end(), assignment.graderObjects.begin(), assignment.graderObjects.end());
-    inputs.insert(inputs.end(), manifest_.graderLibraries.begin(), manifest_.graderLibraries.end());
-    link(inputs, binary, result);
+    const std::vector<std::string> problems = forbiddenCode(object, name, courseSymbols(assignment));
+    if (!problems.empty()) {
+        result.ok = false;
+        result.stage = "check";
+        for (const std::string& p : problems) result.log += p + "\n";
+        return result;
+    }
+    // The course's objects first and whole: an inline function both define keeps the course's copy, and a
+    // definition of anything the course defines is an error rather than a replacement.
+    std::vector<std::string> inputs = assignment.probeObjects;
+    inputs.push_back(object);
+    inputs.insert(inputs.end(), manifest_.probeLibraries.begin(), manifest_.probeLibraries.end());
+    link(inputs, manifest_.probeLink, binary, slot, result);
     return result;
 }
 
-BuildResult Builder::buildProgram(const Assignment& assignment, const std::string& source,
+BuildResult Builder::buildProgram(const Assignment& assignment, const std::string& name, const std::string& text,
                                   const std::string& output) const {
     const fs::path target = fs::absolute(output);
     TempDir work("simlab-build-");
     std::string object;
-    BuildResult result = compile(source, work.path(), &object);
+    BuildResult result = compile(assignment, name, text, work.path(), 0, &object);
     if (!result.ok) return result;
     std::vector<std::string> inputs = {object};
     inputs.insert(inputs.end(), assignment.programObjects.begin(), assignment.programObjects.end());
     inputs.insert(inputs.end(), manifest_.programLibraries.begin(), manifest_.programLibraries.end());
-    link(inputs, target.string(), result);
+    link(inputs, {}, target.string(), 0, result);
     return result;
 }
 

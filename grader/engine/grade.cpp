@@ -1,14 +1,24 @@
 #include "simlab/engine/grade.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <map>
+#include <mutex>
+#include <sys/socket.h>
+#include <thread>
 
 #include "simlab/engine/errors.h"
-#include "simlab/engine/files.h"
 #include "simlab/engine/process.h"
+#include "simlab/bounded_json.h"
 
 namespace fs = std::filesystem;
 
@@ -22,86 +32,277 @@ std::string seconds(double s) {
     return text;
 }
 
-// What the report channel said: the test's "end" record if it wrote one, and whether it ran out of memory.
-struct Reported {
-    bool started = false;
-    bool memory = false;
-    std::optional<nlohmann::json> end;
-};
-
-Reported parseReports(const std::vector<std::string>& lines, const std::string& test) {
-    Reported r;
-    for (const std::string& line : lines) {
-        const nlohmann::json record = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
-        if (!record.is_object() || !record.contains("event")) continue;
-        const std::string event = record.value("event", "");
-        if (event == "memory") r.memory = true;
-        if (record.value("test", "") != test) continue;
-        if (event == "start") r.started = true;
-        if (event == "end") r.end = record;
-    }
-    return r;
+// The judge waits on each test's probe in turn, so its wall-clock net is theirs added up and then some; its own
+// work is small.
+Limits judgeLimits(const Limits& probe, std::size_t tests) {
+    Limits l;
+    l.wallSeconds = (probe.wallSeconds + 5) * static_cast<double>(tests) + 60;
+    l.cpuSeconds = 10.0 * static_cast<double>(tests) + 60;
+    l.memoryMiB = 4096;
+    l.outputKiB = 1024;
+    l.fileMiB = 16;
+    l.processes = 16;
+    l.observationMiB = probe.observationMiB;
+    return l;
 }
 
-TestResult interpret(const RubricTest& test, const ProcessResult& run, const Limits& limits) {
+// What the probe said about itself on its event channel. Student code shares that process and can write there
+// too; the events only ever name a failure, so a forged one costs its writer.
+struct ProbeEvents {
+    bool memory = false;
+    std::string terminate;  // what was in flight when std::terminate ran
+    bool terminated = false;
+};
+
+ProbeEvents probeEvents(const std::vector<std::string>& lines) {
+    ProbeEvents e;
+    for (const std::string& line : lines) {
+        const nlohmann::json record = wire::parseBounded(line);
+        if (!record.is_object() || !record.contains("event") || !record["event"].is_string()) continue;
+        const std::string event = record["event"];
+        if (event == "memory") e.memory = true;
+        if (event == "terminate") {
+            e.terminated = true;
+            e.terminate = record.contains("what") && record["what"].is_string() ? record["what"].get<std::string>() : "";
+        }
+    }
+    return e;
+}
+
+// The judge's "end" record for `test`, if it wrote one.
+std::optional<nlohmann::json> judgeVerdict(const std::vector<std::string>& lines, const std::string& test) {
+    std::optional<nlohmann::json> end;
+    for (const std::string& line : lines) {
+        nlohmann::json record = wire::parseBounded(line);
+        if (record.is_object() && record.value("event", "") == "end" && record.value("test", "") == test) end = record;
+    }
+    return end;
+}
+
+// Why a probe that died of a signal died, as far as simlab can tell.
+std::string crashReason(const ProcessResult& probe, const ProbeEvents& events) {
+    std::string reason = "crashed (" + signalName(probe.signal) + ")";
+    if (probe.signal == SIGABRT && events.terminated) {
+        if (events.terminate.empty() || events.terminate == "no exception was active") {
+            return reason + ": std::terminate was called with no exception in flight";
+        }
+        return reason + ": " + events.terminate +
+               " was thrown and never caught (or thrown from a destructor or a noexcept function)";
+    }
+    if (probe.signal == SIGABRT) {
+        const std::size_t at = probe.output.find("Assertion `");
+        if (at != std::string::npos) {
+            const std::size_t start = probe.output.rfind('\n', at);
+            const std::size_t end = probe.output.find('\n', at);
+            const std::size_t from = start == std::string::npos ? 0 : start + 1;
+            return reason + ": " + probe.output.substr(from, std::min<std::size_t>(end - from, 300));
+        }
+        return reason + ": abort() was called";
+    }
+    if (probe.signal == SIGSEGV) return reason + ": a bad pointer, or a stack overflowed by endless recursion";
+    if (probe.signal == SIGFPE) return reason + ": an arithmetic fault, such as an integer division by zero";
+    return reason;
+}
+
+TestResult interpret(const RubricTest& test, const ProcessResult& probe, const ProcessResult& judge,
+                     const Limits& limits) {
     TestResult t;
     t.name = test.name;
     t.visibility = test.visibility;
     t.maxScore = test.points;
-    t.seconds = run.wallSeconds;
-    t.output = run.output;
-    const Reported reported = parseReports(run.reports, test.name);
+    t.seconds = probe.wallSeconds;
+    t.cpuSeconds = probe.cpuSeconds;
+    t.output = probe.output;
+    const ProbeEvents events = probeEvents(probe.reports);
+    const std::optional<nlohmann::json> verdict = judgeVerdict(judge.reports, test.name);
     double credit = 0;
 
-    if (!run.started) {
+    if (!probe.started) {
         t.outcome = Outcome::DidNotFinish;
-        t.reason = "could not run the grader: " + run.error;
-    } else if (reported.memory) {
+        t.reason = "could not run the student's code: " + probe.error;
+    } else if (!judge.started) {
+        t.outcome = Outcome::DidNotFinish;
+        t.reason = "could not run the grader's tests: " + judge.error;
+    } else if (!verdict && (judge.cpuTimeout || judge.wallTimeout || judge.signal != 0)) {
+        t.outcome = Outcome::DidNotFinish;
+        t.reason = "the grader's judge stopped (" +
+                   std::string(judge.signal ? signalName(judge.signal) : judge.cpuTimeout ? "its CPU time ran out" : "its time ran out") +
+                   ") before this test: a fault in simlab, not in the submission";
+    } else if (events.memory && (probe.exitCode == 137 || probe.signal != 0)) {
         t.outcome = Outcome::OutOfMemory;
         t.reason = "killed for memory: it needed more than " + std::to_string(limits.memoryMiB) + " MiB";
-    } else if (run.outputLimit) {
+    } else if (probe.outputLimit) {
         t.outcome = Outcome::OutputTruncated;
         t.reason = "output truncated: it printed more than " + std::to_string(limits.outputKiB) + " KiB, and was stopped";
-    } else if (run.wallTimeout) {
-        t.outcome = Outcome::TimedOut;
-        t.reason = "timed out after " + seconds(limits.wallSeconds);
-    } else if (run.cpuTimeout) {
+    } else if (probe.cpuTimeout) {
         t.outcome = Outcome::TimedOut;
         t.reason = "timed out after " + seconds(std::ceil(limits.cpuSeconds)) + " of CPU time";
-    } else if (run.signal != 0) {
+    } else if (probe.wallTimeout) {
+        char text[160];
+        std::snprintf(text, sizeof text, "stalled: no end after %g s of wall-clock time, having used %.1f s of CPU "
+                      "time (sleeping, or waiting for something?)", limits.wallSeconds, probe.cpuSeconds);
+        t.outcome = Outcome::Stalled;
+        t.reason = text;
+    } else if (probe.signal != 0) {
         t.outcome = Outcome::Crashed;
-        t.reason = "crashed (" + signalName(run.signal) + ")";
-        if (reported.end && !reported.end->value("reason", "").empty()) {
-            t.reason += ": " + reported.end->value("reason", "");
-        }
-    } else if (!reported.end) {
+        t.reason = crashReason(probe, events);
+    } else if (!verdict) {
         t.outcome = Outcome::DidNotFinish;
-        if (run.output.find("No test cases matched") != std::string::npos) {
+        if (judge.output.find("No test cases matched") != std::string::npos) {
             t.reason = "the grader has no test of this name: the rubric and the tests disagree";
         } else {
-            t.reason = "did not finish: the process exited with status " + std::to_string(run.exitCode) +
-                       (reported.started ? " before the test reported its end" : " before the test started");
-            const std::string firstLine = run.output.substr(0, run.output.find('\n'));
-            if (!reported.started && !firstLine.empty()) t.reason += " (" + firstLine + ")";
+            t.reason = "the grader's judge ended without a verdict (" +
+                       (judge.signal ? signalName(judge.signal) : "status " + std::to_string(judge.exitCode)) +
+                       "): a fault in simlab, not in the submission";
         }
+    } else if (verdict->value("channel", "") == "process ended") {
+        t.outcome = Outcome::DidNotFinish;
+        t.reason = "did not finish: the student's code ended its process (exit status " +
+                   std::to_string(probe.exitCode) + ") before it answered";
+    } else if (verdict->value("channel", "") == "bad report") {
+        t.outcome = Outcome::BadReport;
+        t.reason = "bad report: " + verdict->value("reason", "");
     } else {
-        const nlohmann::json& end = *reported.end;
-        const bool passed = end.value("passed", false);
+        const bool passed = verdict->value("passed", false);
         t.outcome = passed ? Outcome::Passed : Outcome::Failed;
-        credit = passed ? 1.0 : std::clamp(end.value("credit", 0.0), 0.0, 1.0);
-        t.reason = end.value("reason", "");
-        if (end.contains("feedback") && end["feedback"].is_array()) {
-            for (const auto& line : end["feedback"]) {
+        const nlohmann::json creditField = verdict->value("credit", nlohmann::json(0.0));
+        const double c = creditField.is_number() ? creditField.get<double>() : 0.0;
+        credit = passed ? 1.0 : std::isfinite(c) ? std::clamp(c, 0.0, 1.0) : 0.0;
+        t.reason = verdict->value("reason", "");
+        if (verdict->contains("feedback") && (*verdict)["feedback"].is_array()) {
+            for (const auto& line : (*verdict)["feedback"]) {
                 if (line.is_string()) t.feedback.push_back(line.get<std::string>());
             }
         }
-        if (end.contains("figure") && end["figure"].is_object()) {
-            t.figure = end["figure"].value("value", 0.0);
-            t.unit = end["figure"].value("unit", "");
+        if (verdict->contains("figure") && (*verdict)["figure"].is_object()) {
+            const nlohmann::json& figure = (*verdict)["figure"];
+            if (figure.contains("value") && figure["value"].is_number()) t.figure = figure["value"].get<double>();
+            t.unit = figure.value("unit", "");
         }
     }
     t.score = roundScore(test.points * credit);
     return t;
+}
+
+// Where one submission's grading happens: the probe's program, the judge's files, a folder per process.
+struct Workspace {
+    std::string root, build, probe, judgeFiles, submission;
+};
+
+void makeReadable(const std::string& path) {
+    std::error_code ignored;
+    fs::permissions(path,
+                    fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec | fs::perms::others_read |
+                        fs::perms::others_exec,
+                    ignored);
+}
+
+// The tests of one submission: one judge runs them all, in turn, and at each test's first question asks for a
+// probe of that test's own on the socket at its descriptor 6. The server below starts the probe with two new pipes
+// - requests to its descriptor 4, answers from its descriptor 5 - and hands the judge their other ends.
+std::vector<TestResult> runTests(const Assignment& assignment, const std::vector<const RubricTest*>& tests,
+                                 const Workspace& w, const Limits& limits, int slot, std::string* graderOutput) {
+    int socket[2];
+    if (::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, socket) != 0) {
+        throw std::runtime_error(std::string("cannot create a socket: ") + std::strerror(errno));
+    }
+    std::mutex lock;
+    std::map<std::string, ProcessResult> probes;  // by test name
+    std::vector<std::thread> running;
+    int started = 0;
+
+    // Each message from the judge is "probe <test>"; each reply carries the judge's ends of the new pipes.
+    std::thread server([&] {
+        char message[1024];
+        for (;;) {
+            const ssize_t n = ::recv(socket[0], message, sizeof message, 0);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 6 || std::string(message, 6) != "probe ") break;  // the judge is done (or confused)
+            const std::string test(message + 6, static_cast<std::size_t>(n) - 6);
+            int requests[2] = {-1, -1}, answers[2] = {-1, -1};
+            if (::pipe2(requests, O_CLOEXEC) != 0 || ::pipe2(answers, O_CLOEXEC) != 0) {
+                for (int fd : {requests[0], requests[1], answers[0], answers[1]}) {
+                    if (fd >= 0) ::close(fd);
+                }
+                break;  // the judge reads the socket's end: its tests say the process could not start
+            }
+            const std::string dir = w.root + "/test" + std::to_string(++started);
+            fs::create_directory(dir);
+            ProcessRequest probe;
+            probe.argv = {w.probe + "/probe"};
+            probe.env = {"PATH=/usr/bin:/bin", "HOME=" + dir, "TMPDIR=/tmp", "LC_ALL=C"};
+            probe.workDir = dir;
+            probe.limits = limits;
+            probe.reportChannel = true;
+            probe.passFds = {{4, requests[0]}, {5, answers[1]}};
+            probe.isolate = true;
+            probe.readOnlyPaths = {w.probe};
+            probe.scratchWorkDir = true;
+            probe.slot = slot;
+            running.emplace_back([&, probe, test] {
+                ProcessResult result = runProcess(probe);
+                std::lock_guard<std::mutex> guard(lock);
+                probes[test] = std::move(result);
+            });
+            // The judge's ends: sent, then closed here, so that each pipe ends when its last holder does.
+            int ends[2] = {requests[1], answers[0]};
+            char byte = 'p';
+            struct iovec part = {&byte, 1};
+            alignas(struct cmsghdr) char control[CMSG_SPACE(sizeof ends)] = {};
+            struct msghdr m {};
+            m.msg_iov = &part;
+            m.msg_iovlen = 1;
+            m.msg_control = control;
+            m.msg_controllen = sizeof control;
+            struct cmsghdr* c = CMSG_FIRSTHDR(&m);
+            c->cmsg_level = SOL_SOCKET;
+            c->cmsg_type = SCM_RIGHTS;
+            c->cmsg_len = CMSG_LEN(sizeof ends);
+            std::memcpy(CMSG_DATA(c), ends, sizeof ends);
+            const bool sent = ::sendmsg(socket[0], &m, MSG_NOSIGNAL) == 1;
+            ::close(ends[0]);
+            ::close(ends[1]);
+            if (!sent) break;
+        }
+    });
+
+    ProcessRequest judge;
+    // One test spec naming every test: Catch2 reads commas as "or" (a rubric's names hold none).
+    std::string names;
+    for (const RubricTest* test : tests) names += (names.empty() ? "" : ",") + test->name;
+    judge.argv = {assignment.judge, "--use-colour", "no", names};
+    judge.env = {"PATH=/usr/bin:/bin", "HOME=" + w.root + "/judge-home", "TMPDIR=/tmp", "LC_ALL=C",
+                 "SIMLAB_RUBRIC=" + w.judgeFiles + "/rubric.toml", "SIMLAB_SUBMISSION_DIR=" + w.submission,
+                 "SIMLAB_ANSWER_LIMIT=" + std::to_string(static_cast<unsigned long long>(limits.observationMiB) << 20)};
+    judge.workDir = w.root + "/judge-home";
+    fs::create_directory(judge.workDir);
+    judge.limits = judgeLimits(limits, tests.size());
+    judge.reportChannel = true;
+    judge.passFds = {{6, socket[1]}};
+    judge.isolate = true;
+    judge.readOnlyPaths = {assignment.judge, w.judgeFiles};
+    judge.scratchWorkDir = true;
+    judge.judgeUser = true;
+    judge.slot = slot;
+    const ProcessResult judged = runProcess(judge);
+    ::shutdown(socket[0], SHUT_RDWR);  // ends the server's wait, should the judge have left a copy behind
+    server.join();
+    for (std::thread& t : running) t.join();
+    ::close(socket[0]);
+    *graderOutput = judged.output;
+
+    bool interrupted = judged.interrupted;
+    for (const auto& [test, probe] : probes) interrupted = interrupted || probe.interrupted;
+    if (interrupted) throw Interrupted();
+    std::vector<TestResult> results;
+    for (const RubricTest* test : tests) {
+        ProcessResult probe;  // a test that asked nothing had no probe: as if one had started and ended cleanly
+        probe.started = true;
+        probe.exitCode = 0;
+        if (const auto found = probes.find(test->name); found != probes.end()) probe = found->second;
+        results.push_back(interpret(*test, probe, judged, limits));
+    }
+    return results;
 }
 
 }  // namespace
@@ -111,30 +312,34 @@ std::string outcomeName(Outcome outcome) {
         case Outcome::Passed: return "passed";
         case Outcome::Failed: return "failed";
         case Outcome::TimedOut: return "timed out";
+        case Outcome::Stalled: return "stalled";
         case Outcome::OutOfMemory: return "killed for memory";
         case Outcome::Crashed: return "crashed";
         case Outcome::OutputTruncated: return "output truncated";
+        case Outcome::BadReport: return "bad report";
         case Outcome::DidNotFinish: return "did not finish";
         case Outcome::DidNotCompile: return "did not compile";
+        case Outcome::Refused: return "refused";
         case Outcome::MissingFile: return "missing file";
     }
     return "unknown";
 }
 
 Outcome outcomeNamed(const std::string& name) {
-    for (Outcome o : {Outcome::Passed, Outcome::Failed, Outcome::TimedOut, Outcome::OutOfMemory, Outcome::Crashed,
-                      Outcome::OutputTruncated, Outcome::DidNotFinish, Outcome::DidNotCompile, Outcome::MissingFile}) {
+    for (Outcome o : {Outcome::Passed, Outcome::Failed, Outcome::TimedOut, Outcome::Stalled, Outcome::OutOfMemory,
+                      Outcome::Crashed, Outcome::OutputTruncated, Outcome::BadReport, Outcome::DidNotFinish,
+                      Outcome::DidNotCompile, Outcome::Refused, Outcome::MissingFile}) {
         if (outcomeName(o) == name) return o;
     }
     throw std::invalid_argument("unknown outcome '" + name + "'");
 }
 
-GradeReport missingReport(const Assignment& assignment, const Rubric& rubric, const std::string& note,
-                          bool includeHidden) {
+GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, const std::string& status,
+                            const std::string& note, bool includeHidden) {
     GradeReport report;
     report.assignment = assignment.id;
     report.title = assignment.title;
-    report.status = "missing file";
+    report.status = status;
     report.note = note;
     report.build.stage = "missing";
     for (const RubricTest& test : rubric.tests) {
@@ -147,7 +352,7 @@ GradeReport missingReport(const Assignment& assignment, const Rubric& rubric, co
         t.name = test.name;
         t.visibility = test.visibility;
         t.maxScore = test.points;
-        t.outcome = Outcome::MissingFile;
+        t.outcome = status == "missing file" ? Outcome::MissingFile : Outcome::Refused;
         t.reason = note;
         report.tests.push_back(t);
     }
@@ -168,14 +373,16 @@ double GradeReport::maxScore() const {
     return roundScore(total);
 }
 
-GradeReport gradeSource(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
-                        const std::string& source, const GradeOptions& options) {
-    requireCppSource(source);
+GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
+                            const SubmissionFiles& files, const GradeOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     GradeReport report;
     report.assignment = assignment.id;
     report.title = assignment.title;
-    report.source = source;
+    report.source = files.shown;
+    for (const HandedIn& extra : files.extras) {
+        if (!extra.ok) report.note += (report.note.empty() ? "" : "; ") + extra.refusal;
+    }
 
     for (const std::string& name : options.onlyTests) {
         if (!rubric.find(name)) throw UsageError("no test named '" + name + "' in " + rubric.path);
@@ -195,59 +402,42 @@ GradeReport gradeSource(const Builder& builder, const Assignment& assignment, co
         }
     }
 
-    // work/build: the student's file and its object; work/grader: the grader and the rubric, which the sandbox
-    // lends each test read-only (nothing else: not even the student's own source); work/testN: each test's
-    // empty working directory.
+    // work/build: the student's file and its object (the compiler's folder); work/probe: the probe's program,
+    // which its sandbox is lent; work/judge: the rubric and the files handed in beside the source, which the
+    // judge's sandbox is lent - never the probe's. Each process gets an empty folder of its own as well.
     TempDir work("simlab-" + assignment.id + "-", options.workRoot);
-    const std::string buildDir = work.path() + "/build", graderDir = work.path() + "/grader";
-    fs::create_directory(buildDir);
-    fs::create_directory(graderDir);
-    report.build = builder.buildGrader(assignment, source, buildDir, graderDir + "/grader");
+    Workspace w{work.path(), work.path() + "/build", work.path() + "/probe", work.path() + "/judge",
+                work.path() + "/judge/submission"};
+    for (const std::string& dir : {w.build, w.probe, w.judgeFiles, w.submission}) fs::create_directory(dir);
+    for (const std::string& dir : {w.root, w.probe, w.judgeFiles, w.submission}) makeReadable(dir);
+    report.build = builder.buildProbe(assignment, files.name, files.text, w.build, w.probe + "/probe", options.slot);
+    if (report.build.interrupted) throw Interrupted();
     const Limits limits = options.limits.value_or(rubric.limits);
 
     if (report.build.ok) {
-        const std::string rubricCopy = graderDir + "/rubric.toml";
-        writeFileAtomically(rubricCopy, readFile(rubric.path));
-        // Files handed in beside the source (answers, say), for the tests to read.
-        const std::string handedIn = graderDir + "/submission";
-        fs::create_directory(handedIn);
-        for (const std::string& name : rubric.extraFiles) {
-            const fs::path file = fs::path(source).parent_path() / name;
-            if (fs::is_regular_file(file)) writeFileAtomically(handedIn + "/" + name, readFile(file.string()));
+        writeFileAtomically(w.judgeFiles + "/rubric.toml", readFile(rubric.path));
+        for (const HandedIn& extra : files.extras) {
+            if (extra.ok) writeFileAtomically(w.submission + "/" + extra.name, extra.text);
+            else writeFileAtomically(w.submission + "/" + extra.name + ".refused", extra.refusal);
         }
-        const fs::perms readable = fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
-                                   fs::perms::others_read | fs::perms::others_exec;
-        fs::permissions(work.path(), readable);
-        fs::permissions(graderDir, readable);
-        fs::permissions(handedIn, readable);
-        int index = 0;
-        for (const RubricTest* test : selected) {
-            const std::string dir = work.path() + "/test" + std::to_string(++index);
-            fs::create_directory(dir);
-            ProcessRequest request;
-            request.argv = {report.build.binary, test->name, "--use-colour", "no"};
-            request.env = {"PATH=/usr/bin:/bin", "HOME=" + dir, "TMPDIR=/tmp", "LC_ALL=C",
-                           "SIMLAB_RUBRIC=" + rubricCopy, "SIMLAB_SUBMISSION_DIR=" + handedIn};
-            request.workDir = dir;
-            request.limits = limits;
-            request.reportChannel = true;
-            request.isolate = true;
-            request.readOnlyPaths = {graderDir};
-            request.slot = options.slot;
-            const ProcessResult run = runProcess(request);
-            if (run.interrupted) throw Interrupted();
-            report.tests.push_back(interpret(*test, run, limits));
+        for (const auto& entry : fs::directory_iterator(w.judgeFiles)) makeReadable(entry.path().string());
+        for (const auto& entry : fs::directory_iterator(w.submission)) {
+            std::error_code ignored;
+            fs::permissions(entry.path(), fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
+                                              fs::perms::others_read, ignored);
         }
+        if (!selected.empty()) report.tests = runTests(assignment, selected, w, limits, options.slot, &report.graderOutput);
     } else {
-        const std::string reason = report.build.stage == "link" ? "did not link" : "did not compile";
-        report.status = reason;
+        const std::string& stage = report.build.stage;
+        report.status = stage == "check" ? "forbidden code" : stage == "link" ? "did not link" : "did not compile";
+        const std::string firstReason = report.build.log.substr(0, report.build.log.find('\n'));
         for (const RubricTest* test : selected) {
             TestResult t;
             t.name = test->name;
             t.visibility = test->visibility;
             t.maxScore = test->points;
-            t.outcome = Outcome::DidNotCompile;
-            t.reason = reason;
+            t.outcome = stage == "check" ? Outcome::Refused : Outcome::DidNotCompile;
+            t.reason = stage == "check" ? firstReason : report.status;
             report.tests.push_back(t);
         }
     }

@@ -44,7 +44,9 @@ Manifest loadManifest(const std::string& path) {
         m.catch2Include = j.at("catch2_include");
         m.compile = j.at("compile").get<std::vector<std::string>>();
         m.link = j.at("link").get<std::vector<std::string>>();
-        m.graderLibraries = j.at("grader_libraries").get<std::vector<std::string>>();
+        m.probeLibraries = j.at("probe_libraries").get<std::vector<std::string>>();
+        m.probeLink = j.at("probe_link").get<std::vector<std::string>>();
+        m.floorLibraries = j.at("floor_libraries").get<std::vector<std::string>>();
         m.programLibraries = j.at("program_libraries").get<std::vector<std::string>>();
         for (const nlohmann::json& a : j.at("assignments")) {
             Assignment x;
@@ -60,7 +62,10 @@ Manifest loadManifest(const std::string& path) {
             x.solution = a.at("solution");
             x.hiddenTestsBuilt = a.at("hidden_tests_built");
             x.hiddenTests = a.at("hidden_tests").get<std::vector<std::string>>();
-            x.graderObjects = a.at("grader_objects").get<std::vector<std::string>>();
+            x.contractInclude = a.at("contract_include");
+            x.judge = a.at("judge");
+            x.probeObjects = a.at("probe_objects").get<std::vector<std::string>>();
+            x.floorObjects = a.at("floor_objects").get<std::vector<std::string>>();
             x.programObjects = a.at("program_objects").get<std::vector<std::string>>();
             m.assignments.push_back(std::move(x));
         }

@@ -4,22 +4,41 @@
 #include <cstdio>
 #include <sstream>
 
+#include "simlab/engine/text.h"
+
 namespace simlab::engine {
 
 namespace {
 
+int warningCount(const std::string& log) {
+    int count = 0;
+    for (std::size_t at = log.find(": warning: "); at != std::string::npos; at = log.find(": warning: ", at + 1)) ++count;
+    return count;
+}
+
 std::string buildLine(const BuildResult& b) {
     char text[160];
+    const int warnings = warningCount(b.warnings);
+    const std::string counted = warnings == 0 ? "" : warnings == 1 ? " (1 warning)" : " (" + std::to_string(warnings) + " warnings)";
     if (b.stage == "missing") {
         std::snprintf(text, sizeof text, "nothing to build");
     } else if (!b.ok) {
-        std::snprintf(text, sizeof text, "%s", b.stage == "link" ? "did not link" : "did not compile");
+        std::snprintf(text, sizeof text, "%s",
+                      b.stage == "link" ? "did not link" : b.stage == "check" ? "forbidden code" : "did not compile");
     } else if (b.cached) {
-        std::snprintf(text, sizeof text, "compiled (unchanged since last time), linked in %.1f s", b.linkSeconds);
+        std::snprintf(text, sizeof text, "compiled (unchanged since last time)%s, linked in %.1f s", counted.c_str(),
+                      b.linkSeconds);
     } else {
-        std::snprintf(text, sizeof text, "compiled in %.1f s, linked in %.1f s", b.compileSeconds, b.linkSeconds);
+        std::snprintf(text, sizeof text, "compiled in %.1f s%s, linked in %.1f s", b.compileSeconds, counted.c_str(),
+                      b.linkSeconds);
     }
     return text;
+}
+
+// The compiler's warnings about the student's file, to show under the build line.
+std::string warningLines(const BuildResult& b, int maxLines) {
+    if (!b.ok || warningCount(b.warnings) == 0) return "";
+    return firstLines(printable(b.warnings, true), maxLines);
 }
 
 std::string indent(const std::string& text, const std::string& prefix) {
@@ -51,10 +70,11 @@ std::string points(double value) {
 
 std::string renderText(const GradeReport& r) {
     std::ostringstream out;
-    out << r.title << " (" << r.assignment << "): " << (r.source.empty() ? "no file" : r.source) << "\n";
-    if (!r.note.empty()) out << "  " << r.note << "\n";
+    out << r.title << " (" << r.assignment << "): " << (r.source.empty() ? "no file" : printable(r.source)) << "\n";
+    if (!r.note.empty()) out << "  " << printable(r.note) << "\n";
     out << "  " << buildLine(r.build) << "\n";
-    if (!r.build.ok) out << indent(firstLines(r.build.log, 12), "    | ");
+    if (!r.build.ok) out << indent(firstLines(printable(r.build.log, true), 12), "    | ");
+    out << indent(warningLines(r.build, 12), "    | ");
     const std::string* previous = nullptr;
     for (const TestResult& t : r.tests) {
         char head[64];
@@ -64,11 +84,11 @@ std::string renderText(const GradeReport& r) {
         // A failure that stops every test (a SIMLAB_TODO in buildModel, say) is spelled out once.
         if (!t.reason.empty() && t.outcome != Outcome::DidNotCompile) {
             const bool repeated = t.outcome != Outcome::Passed && previous && *previous == t.reason;
-            out << ": " << (repeated ? "(the same)" : t.reason);
+            out << ": " << (repeated ? "(the same)" : printable(t.reason));
             if (t.outcome != Outcome::Passed) previous = &t.reason;
         }
         out << "\n";
-        for (const std::string& line : t.feedback) out << "                            - " << line << "\n";
+        for (const std::string& line : t.feedback) out << "                            - " << printable(line) << "\n";
     }
     out << "Score: " << points(r.score()) << "/" << points(r.maxScore()) << "\n";
     const std::string left = notRunLine(r);
@@ -80,9 +100,9 @@ nlohmann::json toGradescope(const GradeReport& r) {
     nlohmann::json tests = nlohmann::json::array();
     for (const TestResult& t : r.tests) {
         std::string output = outcomeName(t.outcome);
-        if (!t.reason.empty() && t.outcome != Outcome::DidNotCompile) output += ": " + t.reason;
-        for (const std::string& line : t.feedback) output += "\n- " + line;
-        if (t.outcome == Outcome::DidNotCompile) output += "\n" + firstLines(r.build.log, 12);
+        if (!t.reason.empty() && t.outcome != Outcome::DidNotCompile) output += ": " + printable(t.reason);
+        for (const std::string& line : t.feedback) output += "\n- " + printable(line);
+        if (t.outcome == Outcome::DidNotCompile) output += "\n" + firstLines(printable(r.build.log, true), 12);
         nlohmann::json test = {{"name", t.name},
                                {"score", t.score},
                                {"max_score", t.maxScore},
@@ -96,14 +116,18 @@ nlohmann::json toGradescope(const GradeReport& r) {
         }
         tests.push_back(test);
     }
-    std::string output = r.note.empty() ? "" : r.note + "\n";
+    std::string output = r.note.empty() ? "" : printable(r.note) + "\n";
     output += buildLine(r.build) + "\n";
-    if (!r.build.ok) output += firstLines(r.build.log, 20);
+    if (!r.build.ok) output += firstLines(printable(r.build.log, true), 20);
+    output += warningLines(r.build, 20);
     const std::string left = notRunLine(r);
     if (!left.empty()) output += left + "\n";
+    // Everything is plain text (never HTML or Markdown a student's bytes could shape), valid UTF-8.
     return {{"score", r.score()},
             {"execution_time", static_cast<int>(std::ceil(r.seconds))},
             {"output", output},
+            {"output_format", "text"},
+            {"test_output_format", "text"},
             {"stdout_visibility", "hidden"},
             {"tests", tests},
             {"extra_data",

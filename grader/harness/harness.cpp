@@ -1,15 +1,12 @@
-// The grader's side of every test process: the grading API and the Catch2 listener that reports results.
+// The judge's side of every grader test: the grading API and the Catch2 listener that reports each verdict.
 //
-// The report channel. The engine starts each test case as its own process with a pipe only the engine reads
-// (descriptor SIMLAB_REPORT_FD) and a second pipe carrying a random token (descriptor SIMLAB_TOKEN_FD). A
-// constructor that runs before any other static initializer - before any of the student's code - reads the
-// token, closes its pipe, and moves the report pipe to a high close-on-exec descriptor. The harness then writes
-// one line per event, "<token> <json>": "start" when a test case begins and "end", with the verdict, when Catch2
-// has finished it. Student code shares the process, but nothing it prints reaches the pipe, a file it writes is
-// never read, and exiting early - exit(0) inside a student function, say - leaves the test without its "end"
-// line, which the engine scores as not finished. (Code that searches the process's memory for the token is a
-// deliberate attack, out of reach of any in-process harness; that is what hidden variants and reading the code
-// are for.) Run by hand, without the pipes, the test binary is an ordinary Catch2 program.
+// The judge is a process that never loads student code. The engine starts it once per submission, for the test
+// cases it names, with two descriptors: 3 takes this listener's records to the engine, and 6 is a socket on which
+// each test case, at its first question, receives a new probe of its own (the process that holds the student's
+// code, see simlab/probe.h and observe_remote.cpp). The listener writes one line per event: "start" when a test
+// case begins and "end", with the verdict, when Catch2 has finished it. Nothing the student's code does can reach
+// descriptor 3: it runs in other processes. Run by hand, without the engine, the judge is an ordinary Catch2 program whose tests fail,
+// saying that they ask a student's process that only simlab check starts.
 // Listeners are part of Catch2's "external interfaces", declared only on request.
 #define CATCH_CONFIG_EXTERNAL_INTERFACES
 #include <catch2/catch.hpp>
@@ -17,10 +14,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <new>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -28,6 +25,7 @@
 #include <vector>
 
 #include "simlab/grading.h"
+#include "simlab/observe.h"
 #include "simlab/rubric.h"
 
 namespace simlab::grading {
@@ -36,15 +34,18 @@ namespace {
 
 constexpr std::size_t kMaxReasonLength = 400;
 
-struct Channel {
-    int fd = -1;
-    std::string token;
-    std::string memoryLine;  // prepared in advance: the new-handler may not allocate
-};
-
-Channel& channel() {
-    static Channel c;
-    return c;
+// Descriptor 3 when the engine runs this judge (SIMLAB_REPORT_FD says so), else nowhere.
+int reportFd() {
+    static const int fd = [] {
+        const char* value = std::getenv("SIMLAB_REPORT_FD");
+        if (!value) return -1;
+        const int inherited = std::atoi(value);
+        // Out of the way of the observation channel, and kept from anything the judge might execute.
+        const int moved = ::fcntl(inherited, F_DUPFD_CLOEXEC, 200);
+        if (moved >= 0) ::close(inherited);
+        return moved;
+    }();
+    return fd;
 }
 
 void writeAll(int fd, const std::string& text) {
@@ -52,6 +53,7 @@ void writeAll(int fd, const std::string& text) {
     std::size_t left = text.size();
     while (left > 0) {
         const ssize_t n = ::write(fd, p, left);
+        if (n < 0 && errno == EINTR) continue;
         if (n <= 0) return;
         p += n;
         left -= static_cast<std::size_t>(n);
@@ -59,40 +61,9 @@ void writeAll(int fd, const std::string& text) {
 }
 
 void send(const nlohmann::json& record) {
-    const Channel& c = channel();
-    if (c.fd < 0) return;
-    writeAll(c.fd, c.token + " " + record.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-}
-
-// Out of memory: say so on the channel, then stop. Reporting must not allocate, hence the prepared line.
-void onOutOfMemory() {
-    const Channel& c = channel();
-    if (c.fd >= 0) writeAll(c.fd, c.memoryLine);
-    std::_Exit(137);
-}
-
-std::string readToken(int fd) {
-    std::string token;
-    char c = 0;
-    while (token.size() < 128 && ::read(fd, &c, 1) == 1 && c != '\n') token += c;
-    ::close(fd);
-    return token;
-}
-
-// Runs before the default-priority static initializers of every translation unit, the student's included.
-__attribute__((constructor(101))) void openChannel() {
-    const char* reportFd = std::getenv("SIMLAB_REPORT_FD");
-    const char* tokenFd = std::getenv("SIMLAB_TOKEN_FD");
-    if (!reportFd || !tokenFd) return;
-    const int inherited = std::atoi(reportFd);
-    Channel& c = channel();
-    c.token = readToken(std::atoi(tokenFd));
-    c.fd = ::fcntl(inherited, F_DUPFD_CLOEXEC, 200);
-    if (inherited != c.fd) ::close(inherited);
-    c.memoryLine = c.token + " {\"event\":\"memory\"}\n";
-    ::unsetenv("SIMLAB_REPORT_FD");
-    ::unsetenv("SIMLAB_TOKEN_FD");
-    std::set_new_handler(onOutOfMemory);
+    const int fd = reportFd();
+    if (fd < 0) return;
+    writeAll(fd, record.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 // What the running test case has said about itself.
@@ -144,6 +115,13 @@ double param(const std::string& key) {
 std::string submissionFile(const std::string& name) {
     const char* dir = std::getenv("SIMLAB_SUBMISSION_DIR");
     const std::string path = std::string(dir ? dir : ".") + "/" + name;
+    // The engine copies each file handed in, with care; one it would not read has a note saying why instead.
+    if (std::FILE* refused = std::fopen((path + ".refused").c_str(), "r")) {
+        char why[512] = {0};
+        const std::size_t n = std::fread(why, 1, sizeof why - 1, refused);
+        std::fclose(refused);
+        throw std::runtime_error(std::string(why, n));
+    }
     if (::access(path.c_str(), R_OK) != 0) {
         throw std::runtime_error("the submission has no " + name + " (it goes beside your source file)");
     }
@@ -169,6 +147,11 @@ void partialCredit(double fraction) {
 void feedback(const std::string& line) { verdict().feedback.push_back(oneLine(line)); }
 
 bool atLeast(double value, double floor, double target, const std::string& unit) {
+    if (!std::isfinite(value)) {
+        measured(0, unit, unit + ": not a finite number, need " + show(target));
+        partialCredit(0);
+        return false;
+    }
     char text[96];
     std::snprintf(text, sizeof text, "%.1f %s, need %g", value, unit.c_str(), target);
     measured(value, unit, text);
@@ -177,6 +160,10 @@ bool atLeast(double value, double floor, double target, const std::string& unit)
 }
 
 bool atMost(double value, double allowed, const std::string& what) {
+    if (std::isnan(value)) {
+        measured(0, what, what + ": not a number, allowed " + show(allowed));
+        return false;
+    }
     measured(value, what, what + " " + show(value) + ", allowed " + show(allowed));
     return value <= allowed;
 }
@@ -189,6 +176,7 @@ struct Listener : Catch::TestEventListenerBase {
     void testCaseStarting(const Catch::TestCaseInfo& info) override {
         verdict() = Verdict{};
         verdict().test = info.name;
+        observe::startTest(info.name);
         send({{"event", "start"}, {"test", info.name}});
         TestEventListenerBase::testCaseStarting(info);
     }
@@ -220,15 +208,23 @@ struct Listener : Catch::TestEventListenerBase {
 
     void testCaseEnded(const Catch::TestCaseStats& stats) override {
         const Verdict& v = verdict();
-        const bool passed = stats.totals.assertions.failed == 0 && !stats.aborting;
+        // Whatever the test concluded, the channel must have carried exactly the answers it asked for.
+        const bool failedBefore = observe::lastFailure() != observe::ChannelFailure::None;
+        const std::string extra = observe::finishTest();
+        const observe::ChannelFailure channel = observe::lastFailure();
+        const bool passed =
+            stats.totals.assertions.failed == 0 && !stats.aborting && channel == observe::ChannelFailure::None;
         std::string reason = v.text;
         if (!passed && (v.failureIsException || v.failureHasInfo || v.text.empty())) reason = v.firstFailure;
+        if (!extra.empty() && !failedBefore) reason = extra;
         nlohmann::json record = {{"event", "end"},
                                  {"test", v.test},
                                  {"passed", passed},
                                  {"credit", passed ? 1.0 : v.credit.value_or(0.0)},
                                  {"reason", reason},
                                  {"feedback", v.feedback}};
+        if (channel == observe::ChannelFailure::BadReport) record["channel"] = "bad report";
+        if (channel == observe::ChannelFailure::ProcessEnded) record["channel"] = "process ended";
         if (v.figure) record["figure"] = {{"value", std::isfinite(*v.figure) ? *v.figure : 0.0}, {"unit", v.unit}};
         send(record);
         TestEventListenerBase::testCaseEnded(stats);

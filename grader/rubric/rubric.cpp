@@ -1,5 +1,6 @@
 #include "simlab/rubric.h"
 
+#include <cstdio>
 #include <set>
 #include <sstream>
 #include <toml++/toml.h>
@@ -33,15 +34,27 @@ void readLimits(const std::string& path, const toml::table& table, Limits& limit
     for (auto&& [key, node] : table) {
         const std::string k(key.str());
         const double v = number(path, node, k);
-        if (!(v > 0)) fail(path, node, "limit '" + k + "' must be positive");
+        const LimitRange* range = nullptr;
+        for (const LimitRange& r : limitRanges()) {
+            if (k == r.key) range = &r;
+        }
+        if (!range) {
+            std::string known;
+            for (const LimitRange& r : limitRanges()) known += (known.empty() ? "" : ", ") + std::string(r.key);
+            fail(path, node, "unknown limit '" + k + "' (known: " + known + ")");
+        }
+        if (const std::string bad = outOfRange(*range, v); !bad.empty()) fail(path, node, bad);
         if (k == "wall_seconds") limits.wallSeconds = v;
         else if (k == "cpu_seconds") limits.cpuSeconds = v;
         else if (k == "memory_mib") limits.memoryMiB = static_cast<long>(v);
         else if (k == "output_kib") limits.outputKiB = static_cast<long>(v);
         else if (k == "file_mib") limits.fileMiB = static_cast<long>(v);
         else if (k == "processes") limits.processes = static_cast<long>(v);
-        else fail(path, node, "unknown limit '" + k +
-                                  "' (known: wall_seconds, cpu_seconds, memory_mib, output_kib, file_mib, processes)");
+        else if (k == "observation_mib") limits.observationMiB = static_cast<long>(v);
+        else if (k == "submission_kib") limits.submissionKiB = static_cast<long>(v);
+    }
+    if (limits.wallSeconds < limits.cpuSeconds) {
+        fail(path, table, "wall_seconds (the net for sleeping code) must be at least cpu_seconds");
     }
 }
 
@@ -79,6 +92,40 @@ RubricTest readTest(const std::string& path, const toml::table& table) {
 
 }  // namespace
 
+const std::vector<LimitRange>& limitRanges() {
+    static const std::vector<LimitRange> ranges = {
+        {"cpu_seconds", 0.1, 3600, "s"},      {"wall_seconds", 1, 86400, "s"},     {"memory_mib", 64, 65536, "MiB"},
+        {"output_kib", 1, 1048576, "KiB"},    {"file_mib", 1, 4096, "MiB"},        {"processes", 1, 4096, ""},
+        {"observation_mib", 1, 1024, "MiB"},  {"submission_kib", 1, 65536, "KiB"}};
+    return ranges;
+}
+
+const LimitRange& limitRange(const std::string& key) {
+    for (const LimitRange& r : limitRanges()) {
+        if (key == r.key) return r;
+    }
+    throw std::invalid_argument("unknown limit '" + key + "'");
+}
+
+std::string outOfRange(const LimitRange& range, double value) {
+    if (value >= range.min && value <= range.max) return "";
+    char text[160];
+    std::snprintf(text, sizeof text, "%s must be between %g and %g%s%s, got %g", range.key, range.min, range.max,
+                  *range.unit ? " " : "", range.unit, value);
+    return text;
+}
+
+void Limits::check() const {
+    const std::pair<const char*, double> values[] = {
+        {"cpu_seconds", cpuSeconds},          {"wall_seconds", wallSeconds},    {"memory_mib", double(memoryMiB)},
+        {"output_kib", double(outputKiB)},    {"file_mib", double(fileMiB)},    {"processes", double(processes)},
+        {"observation_mib", double(observationMiB)}, {"submission_kib", double(submissionKiB)}};
+    for (const auto& [key, value] : values) {
+        if (const std::string bad = outOfRange(limitRange(key), value); !bad.empty()) throw std::invalid_argument(bad);
+    }
+    if (wallSeconds < cpuSeconds) throw std::invalid_argument("the wall-clock net must be at least the CPU time");
+}
+
 bool isValidTestName(const std::string& name, std::string* why) {
     auto no = [&](const std::string& reason) {
         if (why) *why = reason;
@@ -89,6 +136,7 @@ bool isValidTestName(const std::string& name, std::string* why) {
         return no("holds one of , [ ] \" * ~ \\ or a newline, which Catch2 reads as test-spec syntax");
     }
     if (name.rfind("exclude:", 0) == 0) return no("starts with 'exclude:'");
+    if (name[0] == '-') return no("starts with '-', which Catch2 reads as an option");
     return true;
 }
 

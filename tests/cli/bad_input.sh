@@ -19,7 +19,24 @@ expect_error "missing source file" "source file 'nope.cpp' does not exist" "$SIM
 expect_error "non-C++ file" "is not a C\+\+ source file" "$SIMLAB" check apple notes.txt
 expect_error "a directory" "is a directory" "$SIMLAB" check apple folder
 expect_error "bad --format" "format" "$SIMLAB" check apple --format xml
-expect_error "bad --timeout" "timeout: must be a positive number, got -3" "$SIMLAB" check apple --timeout -3
+expect_error "bad --timeout" "timeout: must be between 0.1 and 3600 s, got -3" "$SIMLAB" check apple --timeout -3
+# Limits out of range once zeroed every test silently; now each is a one-line error.
+expect_error "a timeout of 1e10 s" "timeout: must be between 0.1 and 3600 s, got 1e\\+10" "$SIMLAB" check apple --timeout 1e10
+expect_error "grade: a memory of 1e30 MiB" "memory: must be between 64 and 65536 MiB, got 1e\\+30" \
+  "$SIMLAB" grade apple --memory 1e30
+expect_error "grade: --timeout nan" "timeout: must be a number, got nan" "$SIMLAB" grade apple --timeout nan
+expect_error "grade: no jobs" "jobs" "$SIMLAB" grade apple --jobs 0
+expect_error "grade: 65 jobs" "jobs" "$SIMLAB" grade apple --jobs 65
+expect_error "a rubric with a limit out of range" "cpu_seconds must be between 0.1 and 3600 s, got 1e\+10" \
+  bash -c "sed 's/^cpu_seconds = 5 /cpu_seconds = 1e10/' '$SOURCE_DIR/assignments/apple/rubric.toml' >far.toml && '$SIMLAB' check apple --rubric far.toml"
+# A file to check is read as grading reads it: a link, a pipe or a huge file is refused in one line.
+ln -s /etc/shadow Linked.cpp
+expect_error "a source that is a symbolic link" "Linked.cpp is a symbolic link; hand in the file itself" \
+  "$SIMLAB" check apple Linked.cpp
+mkfifo Piped.cpp
+expect_error "a source that is a named pipe" "Piped.cpp is a named pipe" "$SIMLAB" check apple Piped.cpp
+truncate -s 3G Huge.cpp
+expect_error "a source of 3 GiB" "Huge.cpp is 3.0 GiB; the limit is 1.0 MiB" "$SIMLAB" check apple Huge.cpp
 expect_error "no subcommand" "subcommand" "$SIMLAB"
 expect_error "unknown command" "unknown command 'frobnicate'; commands: check" "$SIMLAB" frobnicate
 expect_error "grade: missing folder" "no submissions folder" "$SIMLAB" grade apple no-such-folder
@@ -48,6 +65,6 @@ expect_error "book: a negative dimension" "dimensions: must be a positive number
   "$BIN_DIR/book-reference" --dimensions 0.2,-0.3,0.05
 if [[ $(id -u) -ne 0 ]]; then
   echo 'int x;' >locked.cpp && chmod 000 locked.cpp
-  expect_error "unreadable source" "cannot read" "$SIMLAB" check apple locked.cpp
+  expect_error "unreadable source" "locked.cpp cannot be read" "$SIMLAB" check apple locked.cpp
 fi
 finish

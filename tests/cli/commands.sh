@@ -18,6 +18,6 @@ for command in "" check grade build list "package student" "package gradescope" 
   check "simlab $command --help" test "$(status_of help)" -eq 0 -a -s help.out
 done
 
-run_capture bench "$BIN_DIR/bench-grade-class" --students 2 --cmake-samples 0 --jobs 1
+run_capture bench "$BIN_DIR/bench-grade-class" --students 2 --rounds 1 --jobs 1
 check "the class benchmark runs and prints its ratio" grep -q 'simlab / floor = ' bench.out
 finish

@@ -6,59 +6,123 @@
 //     description = "Gravity points up."
 //     base = "solution"                        # or "starter"
 //     score = 35                               # total the grader must give, hidden tests included
+//     status = "graded"                        # optional: the gradebook's status for it
 //     report_contains = ["..."]                # optional: text the report must show
+//     report_lacks = ["..."]                   # optional: text it must not show (an answer key, say)
 //     [[edit]]                                 # `find` must occur exactly once in the base
 //     find = "Vec3(0, -scene.gravity, 0)"
 //     replace = "Vec3(0, scene.gravity, 0)"
 //     file = "BookAnswers.toml"                # optional: edit one of the rubric's extra files instead
+//     percent = true                           # optional: %XX in `replace` is the byte XX (TOML holds only UTF-8)
 //     [outcomes]                               # every test not listed must pass
 //     "y at the final time has the target accuracy digits" = "failed"
 //
-//   simlab-corpus materialize <assignment> <case.toml>... --out DIR   write DIR/<case>/<submission file>
+// Attacks on the files themselves are [[file]] entries, applied after the edits, and a folder name:
+//
+//     folder = "%1B]0;pwned%07"                # the student's folder in a class (percent escapes decoded)
+//     skipped = true                           # in a class, the folder is listed as skipped, with no row
+//     [[file]]
+//     name = "NewtonsApple.cpp"
+//     symlink = "/etc/shadow"                  # or: fifo = true; sparse_bytes = 3221225472; remove = true;
+//                                              # rename = "other name" (percent escapes decoded);
+//                                              # text = "..." (with percent = true for raw bytes)
+//
+// In a symlink target, {class} is the class folder (to point at another student's file). In a symlink target and
+// in an edit's `replace`, {source_dir} and {build_dir} are this tree's folders (an attacker may guess them).
+//
+//   simlab-corpus materialize <assignment> <case.toml>... --out DIR   write DIR/<case>/<files>
 //   simlab-corpus check <assignment> <case.toml>                      grade it and compare; exit 1 on a mismatch
 //   simlab-corpus class <assignment> <case.toml>... --simlab PATH     grade them all as one class with
 //       `simlab grade`, while listening on 127.0.0.1:47810, and compare every student; also check that each
-//       student has one gradebook row, that nobody connected to the listener, and that no student's report
-//       holds another student's file
+//       student has one gradebook row, that nobody connected to the listener, that no student's report holds
+//       another student's file, a line of the hidden tests, of the rubric or of /etc/shadow, that no terminal
+//       line or feedback holds a control character, that no spreadsheet cell starts a formula, that every
+//       results.json is valid UTF-8 JSON, and that simlab itself stayed small
 #include <CLI/CLI.hpp>
+#include <fcntl.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
-#include <set>
-#include <thread>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <thread>
 #include <toml++/toml.h>
 
+#include "simlab/engine/batch.h"
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/grade.h"
 #include "simlab/engine/manifest.h"
 #include "simlab/engine/process.h"
 #include "simlab/engine/report.h"
+#include "simlab/engine/text.h"
 
 namespace fs = std::filesystem;
 using namespace simlab::engine;
 
 namespace {
 
+// A file of the student's folder as a case lays it out.
+struct File {
+    std::string text;
+    std::string symlink;          // a symbolic link to this target instead
+    bool fifo = false;            // a named pipe instead
+    unsigned long long sparse = 0;  // a sparse file of this many bytes instead
+};
+
 struct Case {
     std::string name;
+    std::string folder;  // the student's folder name in a class (raw bytes)
     std::string description;
-    std::map<std::string, std::string> files;  // what the student hands in: the submission and its extra files
+    std::map<std::string, File> files;  // what the student hands in
     double score = 0;
+    std::string status;
+    bool skipped = false;
     std::vector<std::string> reportContains;
+    std::vector<std::string> reportLacks;
     std::map<std::string, std::string> outcomes;
 };
 
+std::string gSourceDir, gBuildDir;  // this tree's, for {source_dir} and {build_dir}
+
+std::string withFolders(std::string text) {
+    for (const auto& [name, value] : {std::pair<std::string, std::string>{"{source_dir}", gSourceDir}, {"{build_dir}", gBuildDir}}) {
+        for (std::size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + value.size())) {
+            text.replace(at, name.size(), value);
+        }
+    }
+    return text;
+}
+
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
     throw std::runtime_error(path + ": " + what);
+}
+
+// "%1B" is the byte 0x1B; "%%" is "%".
+std::string percentDecoded(const std::string& text) {
+    std::string out;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (text[i] == '%' && i + 2 < text.size() + 0 && std::isxdigit(static_cast<unsigned char>(text[i + 1])) &&
+            std::isxdigit(static_cast<unsigned char>(text[i + 2]))) {
+            out += static_cast<char>(std::stoi(text.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else if (text[i] == '%' && i + 1 < text.size() && text[i + 1] == '%') {
+            out += '%';
+            ++i;
+        } else {
+            out += text[i];
+        }
+    }
+    return out;
 }
 
 Case loadCase(const Assignment& assignment, const simlab::Rubric& rubric, const std::string& path) {
@@ -70,15 +134,18 @@ Case loadCase(const Assignment& assignment, const simlab::Rubric& rubric, const 
     }
     Case c;
     c.name = fs::path(path).stem().string();
+    c.folder = percentDecoded(t["folder"].value_or(c.name));
     c.description = t["description"].value_or(std::string());
+    c.status = t["status"].value_or(std::string());
+    c.skipped = t["skipped"].value_or(false);
     const std::string base = t["base"].value_or(std::string());
     if (base != "solution" && base != "starter") fail(path, "base must be \"solution\" or \"starter\"");
     const std::string basePath = base == "solution" ? assignment.solution : assignment.starter;
     if (basePath.empty()) fail(path, "this tree has no solution for " + assignment.id);
-    c.files[assignment.source] = readFile(basePath);
+    c.files[assignment.source].text = readFile(basePath);
     for (const std::string& extra : rubric.extraFiles) {
         const fs::path file = fs::path(basePath).parent_path() / extra;
-        if (fs::exists(file)) c.files[extra] = readFile(file.string());
+        if (fs::exists(file)) c.files[extra].text = readFile(file.string());
     }
     const auto score = t["score"].value<double>();
     if (!score) fail(path, "score is missing");
@@ -87,11 +154,13 @@ Case loadCase(const Assignment& assignment, const simlab::Rubric& rubric, const 
         for (const toml::node& node : *edits) {
             const toml::table* edit = node.as_table();
             const auto find = edit ? (*edit)["find"].value<std::string>() : std::nullopt;
-            const auto replace = edit ? (*edit)["replace"].value<std::string>() : std::nullopt;
+            auto replace = edit ? (*edit)["replace"].value<std::string>() : std::nullopt;
             if (!find || !replace) fail(path, "each [[edit]] needs find and replace");
+            if ((*edit)["percent"].value_or(false)) replace = percentDecoded(*replace);
+            replace = withFolders(*replace);
             const std::string file = (*edit)["file"].value_or(assignment.source);
             if (!c.files.count(file)) fail(path, "the " + base + " has no " + file + " to edit");
-            std::string& text = c.files[file];
+            std::string& text = c.files[file].text;
             const std::size_t at = text.find(*find);
             if (at == std::string::npos || text.find(*find, at + 1) != std::string::npos) {
                 fail(path, "edit must match exactly once in the " + base + "'s " + file + ", and does not: " + *find);
@@ -99,8 +168,36 @@ Case loadCase(const Assignment& assignment, const simlab::Rubric& rubric, const 
             text.replace(at, find->size(), *replace);
         }
     }
+    if (const toml::array* files = t["file"].as_array()) {
+        for (const toml::node& node : *files) {
+            const toml::table* entry = node.as_table();
+            const auto name = entry ? (*entry)["name"].value<std::string>() : std::nullopt;
+            if (!name) fail(path, "each [[file]] needs a name");
+            const std::string fileName = percentDecoded(*name);
+            if ((*entry)["remove"].value_or(false)) {
+                c.files.erase(fileName);
+                continue;
+            }
+            if (const auto rename = (*entry)["rename"].value<std::string>()) {
+                if (!c.files.count(fileName)) fail(path, "no " + fileName + " to rename");
+                c.files[percentDecoded(*rename)] = c.files[fileName];
+                c.files.erase(fileName);
+                continue;
+            }
+            File f;
+            f.symlink = withFolders((*entry)["symlink"].value_or(std::string()));
+            f.fifo = (*entry)["fifo"].value_or(false);
+            f.sparse = static_cast<unsigned long long>((*entry)["sparse_bytes"].value_or(0.0));
+            f.text = (*entry)["text"].value_or(std::string());
+            if ((*entry)["percent"].value_or(false)) f.text = percentDecoded(f.text);
+            c.files[fileName] = f;
+        }
+    }
     if (const toml::array* texts = t["report_contains"].as_array()) {
         for (const toml::node& node : *texts) c.reportContains.push_back(node.value_or(std::string()));
+    }
+    if (const toml::array* texts = t["report_lacks"].as_array()) {
+        for (const toml::node& node : *texts) c.reportLacks.push_back(node.value_or(std::string()));
     }
     if (const toml::table* outcomes = t["outcomes"].as_table()) {
         for (auto&& [test, outcome] : *outcomes) c.outcomes[std::string(test.str())] = outcome.value_or(std::string());
@@ -108,12 +205,32 @@ Case loadCase(const Assignment& assignment, const simlab::Rubric& rubric, const 
     return c;
 }
 
-// Write a case's files into `dir`; a file is rewritten only when it changed, so it keeps its time stamp.
-void writeCase(const Case& c, const fs::path& dir) {
+// Write a case's files into `dir`; a regular file is rewritten only when it changed, so it keeps its time stamp.
+void writeCase(const Case& c, const fs::path& dir, const std::string& classDir) {
     fs::create_directories(dir);
-    for (const auto& [name, text] : c.files) {
-        const fs::path file = dir / name;
-        if (!fs::exists(file) || readFile(file.string()) != text) writeFileAtomically(file.string(), text);
+    for (const auto& [name, file] : c.files) {
+        const fs::path path = dir / name;
+        std::error_code ignored;
+        if (!file.symlink.empty()) {
+            std::string target = file.symlink;
+            const std::size_t at = target.find("{class}");
+            if (at != std::string::npos) target.replace(at, 7, classDir);
+            fs::remove(path, ignored);
+            fs::create_symlink(target, path);
+        } else if (file.fifo) {
+            fs::remove(path, ignored);
+            if (::mkfifo(path.c_str(), 0644) != 0) throw std::runtime_error("cannot make a named pipe " + path.string());
+        } else if (file.sparse > 0) {
+            fs::remove(path, ignored);
+            const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            if (fd < 0 || ::ftruncate(fd, static_cast<off_t>(file.sparse)) != 0) {
+                throw std::runtime_error("cannot make a sparse file " + path.string());
+            }
+            ::close(fd);
+        } else if (fs::is_symlink(path) || !fs::exists(path) || readFile(path.string()) != file.text) {
+            fs::remove(path, ignored);
+            writeFileAtomically(path.string(), file.text);
+        }
     }
 }
 
@@ -121,14 +238,75 @@ int materialize(const Assignment& assignment, const simlab::Rubric& rubric, cons
                 const std::string& out) {
     for (const std::string& path : cases) {
         const Case c = loadCase(assignment, rubric, path);
-        writeCase(c, fs::path(out) / c.name);
+        writeCase(c, fs::path(out) / c.name, out);
     }
     return 0;
 }
 
+// Lines of a file that would betray it if they turned up in a student's report: long enough to be its own
+// (25 characters, trimmed), and not the test names, which reports show by design.
+std::vector<std::string> telltaleLines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        const std::size_t first = line.find_first_not_of(" \t"), last = line.find_last_not_of(" \t\r");
+        if (first == std::string::npos) continue;
+        line = line.substr(first, last - first + 1);
+        if (line.size() < 25 || line.rfind("TEST_CASE(", 0) == 0 || line.rfind("name = ", 0) == 0) continue;
+        lines.push_back(line);
+    }
+    return lines;
+}
+
+// What no student may ever see: the hidden tests, the rubric and /etc/shadow (when this process can read it).
+std::vector<std::pair<std::string, std::string>> secrets(const Assignment& assignment) {
+    std::vector<std::pair<std::string, std::string>> found;
+    std::vector<std::string> files = assignment.hiddenTests;
+    files.push_back(assignment.rubric);
+    for (const std::string& file : files) {
+        if (!fs::exists(file)) continue;
+        for (const std::string& line : telltaleLines(readFile(file))) found.push_back({fs::path(file).filename(), line});
+    }
+    std::ifstream shadow("/etc/shadow");
+    for (std::string line; std::getline(shadow, line);) {
+        if (line.size() >= 8) found.push_back({"/etc/shadow", line});
+    }
+    return found;
+}
+
+std::vector<std::string> leaks(const std::vector<std::pair<std::string, std::string>>& secret, const std::string& seen) {
+    std::vector<std::string> out;
+    for (const auto& [file, line] : secret) {
+        if (seen.find(line) != std::string::npos) out.push_back("it shows a line of " + file + ": " + printable(line));
+    }
+    return out;
+}
+
+// Every string a JSON document holds, decoded, one per line: the text a reader of it sees.
+void jsonStrings(const nlohmann::json& j, std::string& out) {
+    if (j.is_string()) {
+        out += j.get<std::string>() + "\n";
+    } else if (j.is_structured()) {
+        for (const auto& item : j) jsonStrings(item, out);
+    }
+}
+
+// Control characters a terminal would act on: C0 but newline and tab, DEL, and C1 (as UTF-8).
+std::string firstControl(const std::string& text) {
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        if ((c < 0x20 && c != '\n' && c != '\t') || c == 0x7f) return "byte " + std::to_string(c) + " at " + std::to_string(i);
+        if (c == 0xc2 && i + 1 < text.size() && static_cast<unsigned char>(text[i + 1]) >= 0x80 &&
+            static_cast<unsigned char>(text[i + 1]) <= 0x9f) {
+            return "a C1 control at " + std::to_string(i);
+        }
+    }
+    return "";
+}
+
 // What differs between a case's expectations and a grade: outcomes, the score, texts the report must show.
 std::vector<std::string> compare(const Case& c, const std::vector<TestResult>& tests, double score,
-                                 const std::string& text) {
+                                 const std::string& status, const std::string& text) {
     std::vector<std::string> mismatches;
     for (const TestResult& t : tests) {
         const auto listed = c.outcomes.find(t.name);
@@ -140,8 +318,12 @@ std::vector<std::string> compare(const Case& c, const std::vector<TestResult>& t
     if (std::abs(score - c.score) > 0.005) {
         mismatches.push_back("score " + points(score) + ", expected " + points(c.score));
     }
+    if (!c.status.empty() && status != c.status) mismatches.push_back("status '" + status + "', expected '" + c.status + "'");
     for (const std::string& needle : c.reportContains) {
         if (text.find(needle) == std::string::npos) mismatches.push_back("the report does not say '" + needle + "'");
+    }
+    for (const std::string& needle : c.reportLacks) {
+        if (text.find(needle) != std::string::npos) mismatches.push_back("the report says '" + needle + "'");
     }
     return mismatches;
 }
@@ -149,19 +331,24 @@ std::vector<std::string> compare(const Case& c, const std::vector<TestResult>& t
 int check(const Manifest& manifest, const Assignment& assignment, const simlab::Rubric& rubric,
           const std::string& path) {
     const Case c = loadCase(assignment, rubric, path);
+    if (c.skipped) {
+        std::cout << c.name << ": a folder simlab grade skips; graded only as part of a class\nOK: as expected\n";
+        return 0;
+    }
     for (const auto& [test, outcome] : c.outcomes) {
         if (!rubric.find(test)) fail(path, "no test named '" + test + "' in " + assignment.rubric);
     }
     TempDir dir("simlab-corpus-");
-    writeCase(c, dir.path());
-    const std::string file = dir.path() + "/" + assignment.source;
+    writeCase(c, dir.path() + "/student", dir.path());
     GradeOptions options;
     options.includeHidden = true;
-    const GradeReport report = gradeSource(Builder(manifest), assignment, rubric, file, options);
+    const GradeReport report =
+        gradeFolder(Builder(manifest), assignment, rubric, dir.path() + "/student", false, false, options);
     const std::string text = renderText(report);
     std::cout << c.name << ": " << c.description << "\n" << text;
 
-    const std::vector<std::string> mismatches = compare(c, report.tests, report.score(), text);
+    std::vector<std::string> mismatches = compare(c, report.tests, report.score(), report.status, text);
+    for (const std::string& leak : leaks(secrets(assignment), text)) mismatches.push_back(leak);
     for (const std::string& m : mismatches) std::cout << "MISMATCH: " << m << "\n";
     std::cout << (mismatches.empty() ? "OK: as expected\n" : "FAILED\n");
     return mismatches.empty() ? 0 : 1;
@@ -210,16 +397,48 @@ private:
 
 std::string marker(const std::string& student) { return "corpus student " + student + " wrote this file"; }
 
+// The cells of a CSV document, quotes undone.
+std::vector<std::vector<std::string>> csvRows(const std::string& text) {
+    std::vector<std::vector<std::string>> rows(1);
+    std::string cell;
+    bool quoted = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char ch = text[i];
+        if (quoted) {
+            if (ch == '"' && i + 1 < text.size() && text[i + 1] == '"') cell += '"', ++i;
+            else if (ch == '"') quoted = false;
+            else cell += ch;
+        } else if (ch == '"') {
+            quoted = true;
+        } else if (ch == ',') {
+            rows.back().push_back(cell), cell.clear();
+        } else if (ch == '\n') {
+            rows.back().push_back(cell), cell.clear();
+            rows.emplace_back();
+        } else {
+            cell += ch;
+        }
+    }
+    if (!rows.back().empty() || !cell.empty()) rows.back().push_back(cell);
+    else rows.pop_back();
+    return rows;
+}
+
 int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, const std::vector<std::string>& paths,
                  const std::string& simlab, int jobs) {
     std::vector<Case> cases;
     for (const std::string& path : paths) cases.push_back(loadCase(assignment, rubric, path));
     TempDir dir("simlab-class-");
     const std::string submissions = dir.path() + "/submissions", out = dir.path() + "/grades";
+    fs::create_directories(submissions);
     for (const Case& c : cases) {
         Case marked = c;
-        marked.files[assignment.source] += "\n// " + marker(c.name) + "\n";
-        writeCase(marked, submissions + "/" + c.name);
+        const auto source = marked.files.find(assignment.source);
+        if (source != marked.files.end() && source->second.symlink.empty() && !source->second.fifo &&
+            source->second.sparse == 0) {
+            source->second.text += "\n// " + marker(c.name) + "\n";
+        }
+        writeCase(marked, submissions + "/" + c.folder, submissions);
     }
 
     Listener listener(47810);
@@ -227,42 +446,82 @@ int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, con
     request.argv = {simlab, "grade", assignment.id, submissions, "--out", out, "--jobs", std::to_string(jobs)};
     request.env = childEnvironment();
     request.workDir = dir.path();
-    request.limits.wallSeconds = request.limits.cpuSeconds = 1800;
+    request.limits.wallSeconds = request.limits.cpuSeconds = 3000;
     request.limits.memoryMiB = 1 << 20;
     request.limits.processes = 4096;
     request.limits.fileMiB = 4096;
     request.limits.outputKiB = 16 * 1024;
     request.keepOutput = 1 << 20;
     const ProcessResult batch = runProcess(request);
-    std::cout << batch.output;
+    std::cout << printable(batch.output, true);
 
     std::vector<std::string> problems;
     if (!batch.exitedCleanly()) problems.push_back("simlab grade did not complete (status " + std::to_string(batch.exitCode) + ")");
     if (listener.connections() > 0) {
         problems.push_back(std::to_string(listener.connections()) + " connection(s) reached 127.0.0.1:47810");
     }
-    // One gradebook row per student, none twice.
-    std::ifstream gradebook(out + "/gradebook.csv");
-    std::string row;
-    std::getline(gradebook, row);
-    std::multiset<std::string> rows;
-    while (std::getline(gradebook, row)) rows.insert(row.substr(0, row.find(',')));
-    for (const Case& c : cases) {
-        if (rows.count(c.name) != 1) {
-            problems.push_back(c.name + ": " + std::to_string(rows.count(c.name)) + " gradebook rows");
+    if (const std::string control = firstControl(batch.output); !control.empty()) {
+        problems.push_back("simlab's terminal output holds a control character: " + control);
+    }
+    std::printf("simlab grade: %.1f s, peak memory %ld MiB\n", batch.wallSeconds, batch.maxRssKiB / 1024);
+    if (batch.maxRssKiB > 512 * 1024) problems.push_back("simlab used " + std::to_string(batch.maxRssKiB / 1024) + " MiB");
+
+    // One gradebook row per student, none twice, no cell a spreadsheet would run; skipped folders listed.
+    const std::vector<std::vector<std::string>> gradebook = csvRows(fs::exists(out + "/gradebook.csv") ? readFile(out + "/gradebook.csv") : "");
+    std::multiset<std::string> ids;
+    std::map<std::string, std::string> statusOf;
+    for (std::size_t r = 1; r < gradebook.size(); ++r) {
+        if (gradebook[r].size() < 4) continue;
+        ids.insert(gradebook[r][0]);
+        statusOf[gradebook[r][0]] = gradebook[r][3];
+    }
+    for (const std::string& csv : {std::string("gradebook.csv"), std::string("summary.csv")}) {
+        for (const auto& row : csvRows(fs::exists(out + "/" + csv) ? readFile(out + "/" + csv) : "")) {
+            for (const std::string& cell : row) {
+                if (!cell.empty() && std::string("=+-@\t\r").find(cell[0]) != std::string::npos) {
+                    problems.push_back(csv + " has a cell a spreadsheet would read as a formula: " + printable(cell));
+                }
+            }
         }
     }
-    if (rows.size() != cases.size()) problems.push_back("the gradebook has " + std::to_string(rows.size()) + " rows");
-
+    std::size_t graded = 0;
     for (const Case& c : cases) {
-        const std::string student = out + "/students/" + c.name;
+        // What simlab writes for this student's id: printable, then neutralized, as its one CSV writer does.
+        const std::string id = csvRows(csvCell(printable(c.folder)) + "\n").front().front();
+        if (c.skipped) {
+            if (ids.count(id)) problems.push_back(c.name + ": a skipped folder has a gradebook row");
+            if (batch.output.find("skipped " + printable(c.folder)) == std::string::npos) {
+                problems.push_back(c.name + ": its folder is not listed as skipped");
+            }
+            continue;
+        }
+        ++graded;
+        if (ids.count(id) != 1) problems.push_back(c.name + ": " + std::to_string(ids.count(id)) + " gradebook rows");
+        if (!c.status.empty() && statusOf[id] != c.status) {
+            problems.push_back(c.name + ": status '" + statusOf[id] + "', expected '" + c.status + "'");
+        }
+    }
+    if (ids.size() != graded) problems.push_back("the gradebook has " + std::to_string(ids.size()) + " rows");
+
+    const auto secret = secrets(assignment);
+    for (const Case& c : cases) {
+        if (c.skipped) continue;
+        const std::string student = out + "/students/" + c.folder;
         if (!fs::exists(student + "/results.json")) {
             problems.push_back(c.name + ": no results.json");
             continue;
         }
         const std::string results = readFile(student + "/results.json");
         const std::string feedback = readFile(student + "/feedback.md");
-        const nlohmann::json json = nlohmann::json::parse(results);
+        if (!isValidUtf8(results)) problems.push_back(c.name + ": results.json is not valid UTF-8");
+        const nlohmann::json json = nlohmann::json::parse(results, nullptr, false);
+        if (json.is_discarded()) {
+            problems.push_back(c.name + ": results.json is not JSON");
+            continue;
+        }
+        if (const std::string control = firstControl(feedback); !control.empty()) {
+            problems.push_back(c.name + ": feedback.md holds a control character: " + control);
+        }
         std::vector<TestResult> tests;
         for (const nlohmann::json& t : json.at("tests")) {
             TestResult r;
@@ -270,12 +529,16 @@ int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, con
             r.outcome = outcomeNamed(t.at("extra_data").at("outcome"));
             tests.push_back(r);
         }
-        std::vector<std::string> mismatches = compare(c, tests, json.at("score"), results + feedback);
+        const std::string status = json.at("extra_data").value("status", "");
+        std::string seen = feedback;
+        jsonStrings(json, seen);
+        std::vector<std::string> mismatches = compare(c, tests, json.at("score"), status, seen);
         for (const Case& other : cases) {
             if (other.name != c.name && (results + feedback).find(marker(other.name)) != std::string::npos) {
                 mismatches.push_back("its report holds " + other.name + "'s file");
             }
         }
+        for (const std::string& leak : leaks(secret, results + seen)) mismatches.push_back(leak);
         std::cout << (mismatches.empty() ? "OK       " : "MISMATCH ") << c.name << ": " << points(json.at("score"))
                   << " (expected " << points(c.score) << ")\n";
         for (const std::string& m : mismatches) problems.push_back(c.name + ": " + m);
@@ -309,6 +572,8 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     try {
         const Manifest manifest = loadManifest();
+        gSourceDir = manifest.sourceDir;
+        gBuildDir = manifest.buildDir;
         const Assignment& assignment = manifest.find(assignmentId);
         const simlab::Rubric rubric = simlab::loadRubric(assignment.rubric);
         if (materializeCommand->parsed()) return materialize(assignment, rubric, cases, out);

@@ -4,21 +4,19 @@
 #include <fstream>
 #include <string>
 
+#include "simlab/engine/files.h"
 #include "simlab/rubric.h"
 
 namespace {
 
-// Writes `text` to a rubric file and loads it.
+// Writes `text` to a rubric file of a folder of its own (tests run side by side) and loads it.
 simlab::Rubric loadText(const std::string& text) {
-    const std::string path = "rubric-test.toml";
+    const simlab::engine::TempDir dir("simlab-rubric-test-");
+    const std::string path = dir.path() + "/rubric-test.toml";
     {
         std::ofstream out(path);
         out << text;
     }
-    struct Remove {
-        std::string path;
-        ~Remove() { std::remove(path.c_str()); }
-    } remove{path};
     return simlab::loadRubric(path);
 }
 
@@ -37,13 +35,16 @@ TEST_CASE("the apple's rubric totals 100 points, 20 of them hidden", "[rubric]")
     const simlab::RubricTest* digits = rubric.find("y at the final time has the target accuracy digits");
     REQUIRE(digits);
     CHECK(digits->params.at("target") == 10);
-    CHECK(rubric.limits.wallSeconds == 5);
+    CHECK(rubric.limits.cpuSeconds == 5);
+    CHECK(rubric.limits.wallSeconds == 30);  // a net for sleeping code, far above the CPU time
+    CHECK(rubric.limits.submissionKiB == 1024);
 }
 
 TEST_CASE("a rubric's thresholds and limits are read as written", "[rubric]") {
-    const simlab::Rubric r = loadText(kHeader + "[limits]\nwall_seconds = 2.5\n[[test]]\nname = \"a test\"\n"
-                                                "points = 7\nvisibility = \"after_due_date\"\nfloor = 3\n");
-    CHECK(r.limits.wallSeconds == 2.5);
+    const simlab::Rubric r = loadText(kHeader + "[limits]\ncpu_seconds = 2.5\nwall_seconds = 9\n[[test]]\n"
+                                                "name = \"a test\"\npoints = 7\nvisibility = \"after_due_date\"\nfloor = 3\n");
+    CHECK(r.limits.cpuSeconds == 2.5);
+    CHECK(r.limits.wallSeconds == 9);
     REQUIRE(r.tests.size() == 1);
     CHECK(r.tests[0].points == 7);
     CHECK_FALSE(r.tests[0].visible());
@@ -66,6 +67,15 @@ TEST_CASE("malformed rubrics are refused with the file, line and what is wrong",
     CHECK_THROWS_WITH(loadText(kHeader + "[limits]\nwall = 3\n[[test]]\nname = \"x\"\npoints = 1\n"),
                       Contains("unknown limit 'wall'"));
     CHECK_THROWS_WITH(loadText(kHeader), Contains("the rubric has no [[test]]"));
+    // Every limit has a range: a timeout of 1e10 s or 1e30 MiB of memory would silently zero every test.
+    const std::string test = "[[test]]\nname = \"x\"\npoints = 1\n";
+    CHECK_THROWS_WITH(loadText(kHeader + "[limits]\ncpu_seconds = 1e10\n" + test),
+                      Contains("cpu_seconds must be between 0.1 and 3600 s, got 1e+10"));
+    CHECK_THROWS_WITH(loadText(kHeader + "[limits]\nmemory_mib = 1e30\n" + test),
+                      Contains("memory_mib must be between 64 and 65536 MiB"));
+    CHECK_THROWS_WITH(loadText(kHeader + "[limits]\nprocesses = 0\n" + test), Contains("processes must be between"));
+    CHECK_THROWS_WITH(loadText(kHeader + "[limits]\ncpu_seconds = 20\nwall_seconds = 10\n" + test),
+                      Contains("wall_seconds (the net for sleeping code) must be at least cpu_seconds"));
     CHECK_THROWS_WITH(loadText("[[test]]\nname = \"x\"\npoints = 1\n"), Contains("'assignment' is missing"));
     CHECK_THROWS_WITH(simlab::loadRubric("no-such-rubric.toml"), Contains("no-such-rubric.toml"));
 }

@@ -1,4 +1,4 @@
-// What the apple's visible and hidden tests share: running a student's simulation and measuring it.
+// What the apple's visible and hidden tests share: observing a student's simulation and measuring it.
 #pragma once
 
 #include <algorithm>
@@ -7,6 +7,7 @@
 
 #include "apple/NewtonsApple.h"
 #include "apple/exact.h"
+#include "apple/observations.h"
 #include "simlab/digits.h"
 #include "simlab/testing.h"
 
@@ -17,7 +18,7 @@ using namespace simlab::testing;
 using Run = simlab::RunResult<Sample>;
 
 inline Run simulate(const Scene& scene, const simlab::RunSettings& settings = defaultRunSettings()) {
-    return simlab::testing::simulate<Model, Sample>(scene, settings);
+    return simlab::testing::simulate<Sample>(scene, settings);
 }
 
 inline simlab::RunSettings settingsFor(double finalTime, double dt, double accuracy = 1e-7) {

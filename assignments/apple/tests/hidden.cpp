@@ -43,7 +43,9 @@ TEST_CASE("hidden: other masses keep the energy at m g h", "[apple][hidden]") {
     double worst = 0;
     for (const double mass : {0.05, 3.2}) {
         const Scene s = scene(10, 9.8, mass);
-        worst = std::max(worst, energyDrift(s, simulate(s)));
+        const Run run = simulate(s);
+        lastSample(run, defaultRunSettings().finalTime);  // the whole fall, not an empty run
+        worst = std::max(worst, energyDrift(s, run));
     }
     CHECK(grading::atMost(worst, grading::param("tolerance") * defaultRunSettings().accuracy,
                           "relative energy drift"));

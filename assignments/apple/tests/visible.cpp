@@ -22,7 +22,7 @@ TEST_CASE("samples run from t = 0 to the final time every dt", "[apple][sampling
 
 TEST_CASE("the integrator is the one asked for at the accuracy asked for", "[apple][integrator]") {
     // One second, sampled every 0.05 s: 20 steps when fixed.
-    checkIntegratorRequests<Model, Sample>(Scene{}, settingsFor(1.0, 0.05));
+    checkIntegratorRequests<Sample>(Scene{}, settingsFor(1.0, 0.05));
 }
 
 TEST_CASE("y at the final time has the target accuracy digits", "[apple][accuracy]") {
@@ -58,10 +58,7 @@ TEST_CASE("the mechanical energy stays at m g h", "[apple][energy]") {
 }
 
 TEST_CASE("the model has only the one degree of freedom a fall needs", "[apple][model]") {
-    const Scene scene;
-    Model model;
-    buildModel(scene, model);
-    checkDegreesOfFreedom(simlab::describeModel(model.matter, initialState(scene, model)), 1, "a fall along y",
+    checkDegreesOfFreedom(simlab::observe::model(Scene{}), 1, "a fall along y",
                           "a Slider along Ground's y gives the apple exactly its one motion");
 }
 

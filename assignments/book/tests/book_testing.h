@@ -11,6 +11,7 @@
 
 #include "book/BookSpin.h"
 #include "book/exact.h"
+#include "book/observations.h"
 #include "simlab/testing.h"
 
 namespace book::testing {
@@ -20,11 +21,25 @@ using namespace simlab::testing;
 using Run = simlab::RunResult<Sample>;
 
 inline Run simulate(const Scene& scene, const simlab::RunSettings& settings = defaultRunSettings()) {
-    return simlab::testing::simulate<Model, Sample>(scene, settings);
+    return simlab::testing::simulate<Sample>(scene, settings);
+}
+
+/// The student's simulation of `scene` with the lab's settings, checked to reach their final time: what a test
+/// measures over the samples must cover the whole run.
+inline Run simulateWhole(const Scene& scene) {
+    Run run = simulate(scene);
+    lastSample(run, defaultRunSettings().finalTime);
+    return run;
 }
 
 inline simlab::RunSettings settingsFor(double finalTime, double dt, double accuracy = 1e-10) {
     return simlab::testing::settingsFor(defaultRunSettings(), finalTime, dt, accuracy);
+}
+
+/// The book's mass properties in the student's model of `scene`.
+inline MassObservation massProperties(const Scene& scene) {
+    return simlab::observe::decode<MassObservation>(
+        simlab::observe::ask("massProperties", {{"scene", simlab::wire::toJson(scene)}}), "massProperties");
 }
 
 /// `scene` spun about its "min", "intermediate" or "max" axis at `rate`, with the lab's 0.2 rad/s wobble.
@@ -79,6 +94,18 @@ inline Answers readAnswers() {
         }
     }
     return answers;
+}
+
+/// "6 of 9 right; no readable answer for Hx, Hy (write yes or no)".
+inline std::string countLine(int right, std::size_t of, const std::vector<std::string>& unreadable,
+                             const std::string& choices) {
+    std::string line = std::to_string(right) + " of " + std::to_string(of) + " right";
+    if (!unreadable.empty()) {
+        line += "; no readable answer for ";
+        for (std::size_t i = 0; i < unreadable.size(); ++i) line += (i ? ", " : "") + unreadable[i];
+        line += " (write " + choices + ")";
+    }
+    return line;
 }
 
 /// The quantities the answers file asks about, and how to read each from a sample.

@@ -1,5 +1,6 @@
 // The spinning book: the tests only an instructor's grading runs. Other spins and other books, so a file that
-// types in the lab's numbers passes the visible tests and fails these.
+// types in the lab's numbers passes the visible tests and fails these; and the answers file against the key, which
+// is why these tests are not in what students receive.
 #include "book_testing.h"
 
 namespace book::testing {
@@ -42,6 +43,47 @@ TEST_CASE("hidden: other books and masses follow the exact solution", "[book][hi
     }
     CHECK(grading::atLeast(worstDigits(scenes), grading::param("floor"), grading::param("target"),
                            "digits at the worst spin"));
+}
+
+TEST_CASE("the answers say which quantities are conserved", "[book][answers]") {
+    // The feedback counts right answers and names unreadable ones, never which answers are wrong.
+    const Answers answers = readAnswers();
+    const std::map<std::string, std::string> truth = {{"wx", "no"}, {"wy", "no"},   {"wz", "no"},
+                                                      {"K", "yes"}, {"Hx", "no"},   {"Hy", "no"},
+                                                      {"Hz", "no"}, {"Hmag", "yes"}, {"HG", "yes"}};
+    int right = 0;
+    std::vector<std::string> unreadable;
+    for (const auto& [quantity, answer] : truth) {
+        const auto given = answers.conserved.find(quantity);
+        if (given == answers.conserved.end() || (given->second != "yes" && given->second != "no")) {
+            unreadable.push_back(quantity);
+        } else if (given->second == answer) {
+            ++right;
+        }
+    }
+    grading::measured(right, "right", countLine(right, truth.size(), unreadable, "yes or no"));
+    grading::partialCredit(double(right) / truth.size());
+    CHECK(right == static_cast<int>(truth.size()));
+}
+
+TEST_CASE("the answers say which spins are stable", "[book][answers]") {
+    // Spin about the minimum and maximum axes is stable (a linear analysis says neutrally stable: both are
+    // accepted); about the intermediate axis it is unstable. As above, wrong answers are counted, not named.
+    const Answers answers = readAnswers();
+    const std::map<std::string, std::vector<std::string>> truth = {{"minimum", {"stable", "neutrally stable"}},
+                                                                   {"intermediate", {"unstable"}},
+                                                                   {"maximum", {"stable", "neutrally stable"}}};
+    int right = 0;
+    std::vector<std::string> unreadable;
+    for (const auto& [axis, accepted] : truth) {
+        const auto given = answers.stability.find(axis);
+        const std::string value = given == answers.stability.end() ? "" : given->second;
+        if (value != "stable" && value != "neutrally stable" && value != "unstable") unreadable.push_back(axis);
+        else if (std::count(accepted.begin(), accepted.end(), value)) ++right;
+    }
+    grading::measured(right, "right", countLine(right, truth.size(), unreadable, "stable, neutrally stable or unstable"));
+    grading::partialCredit(right / 3.0);
+    CHECK(right == 3);
 }
 
 }  // namespace book::testing

@@ -6,21 +6,17 @@ namespace book::testing {
 TEST_CASE("the principal moments of inertia come from the book's dimensions", "[book][inertia]") {
     // A uniform 0.4 kg book, 20 x 30 x 5 cm: Ixx = m (Ly^2 + Lz^2)/12 = 3.083e-3, Iyy = 1.417e-3, Izz = 4.333e-3.
     const Scene scene;
-    Model model;
-    buildModel(scene, model);
-    SimTK::State state = initialState(scene, model);
-    model.system.realize(state, SimTK::Stage::Instance);
-    const SimTK::MassProperties props = model.book.getBodyMassProperties(state);
-    const SimTK::Vec3 moments = props.getInertia().getMoments(), products = props.getInertia().getProducts();
+    const MassObservation props = massProperties(scene);
+    const SimTK::Vec3 moments = props.moments, products = props.products;
     const SimTK::Vec3 expected = exact::principalMoments(scene);
     if (std::abs(moments[0] / expected[0] - 4) < 1e-6) {
         grading::feedback("every moment is 4 times too large: UnitInertia::brick takes half the edge lengths");
     }
     INFO("the book's inertia about its center is (" << moments << ") kg m^2 with products (" << products
-                                                    << "), mass " << props.getMass() << " kg, center " << props.getMassCenter()
+                                                    << "), mass " << props.mass << " kg, center " << props.center
                                                     << "; expected (" << expected << ") kg m^2 about its x, y, z");
-    CHECK(props.getMass() == Approx(scene.mass).epsilon(1e-12));
-    CHECK(props.getMassCenter().norm() < 1e-12);
+    CHECK(props.mass == Approx(scene.mass).epsilon(1e-12));
+    CHECK(props.center.norm() < 1e-12);
     for (int i = 0; i < 3; ++i) {
         CHECK(moments[i] == Approx(expected[i]).epsilon(1e-9));
         CHECK(products[i] == Approx(0.0).margin(1e-15));
@@ -43,7 +39,7 @@ TEST_CASE("samples run from t = 0 to the final time every dt", "[book][sampling]
 }
 
 TEST_CASE("the integrator is the one asked for at the accuracy asked for", "[book][integrator]") {
-    checkIntegratorRequests<Model, Sample>(Scene{}, settingsFor(1.0, 0.05));
+    checkIntegratorRequests<Sample>(Scene{}, settingsFor(1.0, 0.05));
 }
 
 TEST_CASE("omega at 4 s matches the exact solution for all three spins", "[book][accuracy]") {
@@ -63,7 +59,7 @@ TEST_CASE("K and |H| stay constant and so does H in Ground", "[book][conservatio
     const double allowed = grading::param("tolerance") * defaultRunSettings().accuracy;
     double worst = 0;
     for (const std::string& axis : axisNames()) {
-        const Run run = simulate(spun(Scene{}, axis));
+        const Run run = simulateWhole(spun(Scene{}, axis));
         for (const auto& [quantity, read] : quantities()) {
             if (quantity == "K" || quantity == "Hmag" || quantity == "HG") {
                 worst = std::max(worst, relativeChange(run, read));
@@ -76,7 +72,7 @@ TEST_CASE("K and |H| stay constant and so does H in Ground", "[book][conservatio
 TEST_CASE("the body components of omega and H change", "[book][conservation]") {
     // Seen from the turning book, H's components (and w's) do change: checked on the student's own output.
     std::vector<Run> runs;
-    for (const std::string& axis : axisNames()) runs.push_back(simulate(spun(Scene{}, axis)));
+    for (const std::string& axis : axisNames()) runs.push_back(simulateWhole(spun(Scene{}, axis)));
     std::vector<std::string> constant;
     for (const auto& [quantity, read] : quantities()) {
         if (quantity == "K" || quantity == "Hmag" || quantity == "HG") continue;  // the conserved ones
@@ -91,59 +87,22 @@ TEST_CASE("the body components of omega and H change", "[book][conservation]") {
     CHECK(constant.empty());
 }
 
-TEST_CASE("the answers say which quantities are conserved", "[book][answers]") {
-    const Answers answers = readAnswers();
-    const std::map<std::string, std::string> truth = {{"wx", "no"}, {"wy", "no"},   {"wz", "no"},
-                                                      {"K", "yes"}, {"Hx", "no"},   {"Hy", "no"},
-                                                      {"Hz", "no"}, {"Hmag", "yes"}, {"HG", "yes"}};
-    int right = 0;
-    std::string wrong;
-    for (const auto& [quantity, answer] : truth) {
-        const auto given = answers.conserved.find(quantity);
-        if (given != answers.conserved.end() && given->second == answer) ++right;
-        else wrong += (wrong.empty() ? "" : ", ") + quantity + " is '" + (given == answers.conserved.end() ? "missing" : given->second) + "'";
-    }
-    grading::measured(right, "right", std::to_string(right) + " of " + std::to_string(truth.size()) + " right" +
-                                          (wrong.empty() ? "" : ": " + wrong));
-    grading::partialCredit(double(right) / truth.size());
-    CHECK(right == static_cast<int>(truth.size()));
-}
-
-TEST_CASE("the answers say which spins are stable", "[book][answers]") {
-    // Spin about the minimum and maximum axes is stable (a linear analysis says neutrally stable: both are
-    // accepted); about the intermediate axis it is unstable.
-    const Answers answers = readAnswers();
-    const std::map<std::string, std::vector<std::string>> truth = {{"minimum", {"stable", "neutrally stable"}},
-                                                                   {"intermediate", {"unstable"}},
-                                                                   {"maximum", {"stable", "neutrally stable"}}};
-    int right = 0;
-    std::string wrong;
-    for (const auto& [axis, accepted] : truth) {
-        const auto given = answers.stability.find(axis);
-        const std::string value = given == answers.stability.end() ? "missing" : given->second;
-        if (std::count(accepted.begin(), accepted.end(), value)) ++right;
-        else wrong += (wrong.empty() ? "" : ", ") + axis + " is '" + value + "'";
-    }
-    grading::measured(right, "right", std::to_string(right) + " of 3 right" + (wrong.empty() ? "" : ": " + wrong));
-    grading::partialCredit(right / 3.0);
-    CHECK(right == 3);
-}
-
 TEST_CASE("the answers agree with the student's own simulation", "[book][answers]") {
     // What the student's own numbers show: a quantity that changes by less than a millionth is constant, by more
     // than a thousandth is not; a spin that reverses is unstable, one whose wobble stays under 1 rad/s is not.
+    // Only the number of disagreements is reported: naming them would read the key off the student's run.
     const Answers answers = readAnswers();
     std::map<std::string, Run> runs;
-    for (const std::string& axis : axisNames()) runs.emplace(axis, simulate(spun(Scene{}, axis)));
-    std::string disagreements;
+    for (const std::string& axis : axisNames()) runs.emplace(axis, simulateWhole(spun(Scene{}, axis)));
+    int compared = 0, disagree = 0;
     for (const auto& [quantity, read] : quantities()) {
         double largest = 0;
         for (const auto& [axis, run] : runs) largest = std::max(largest, relativeChange(run, read));
         const std::string shown = largest < 1e-6 ? "yes" : largest > 1e-3 ? "no" : "";
+        if (shown.empty()) continue;
         const auto given = answers.conserved.find(quantity);
-        if (!shown.empty() && (given == answers.conserved.end() || given->second != shown)) {
-            disagreements += (disagreements.empty() ? "" : "; ") + quantity + ": your numbers say " + shown;
-        }
+        ++compared;
+        disagree += given == answers.conserved.end() || given->second != shown;
     }
     const std::map<std::string, std::string> label = {{"min", "minimum"}, {"intermediate", "intermediate"}, {"max", "maximum"}};
     for (const auto& [axis, run] : runs) {
@@ -151,13 +110,14 @@ TEST_CASE("the answers agree with the student's own simulation", "[book][answers
         const auto given = answers.stability.find(label.at(axis));
         const std::string value = given == answers.stability.end() ? "missing" : given->second;
         const bool saysUnstable = value == "unstable", saysSteady = value == "stable" || value == "neutrally stable";
-        if ((w.spinReverses && !saysUnstable) || (!w.spinReverses && w.largestWobble < 1 && !saysSteady)) {
-            disagreements += (disagreements.empty() ? "" : "; ") + label.at(axis) + " axis: your numbers say " +
-                             (w.spinReverses ? "unstable" : "stable");
-        }
+        if (!w.spinReverses && w.largestWobble >= 1) continue;  // the run does not say
+        ++compared;
+        disagree += (w.spinReverses && !saysUnstable) || (!w.spinReverses && !saysSteady);
     }
-    INFO(disagreements);
-    CHECK(disagreements.empty());
+    grading::measured(disagree, "disagreements",
+                      std::to_string(disagree) + " of " + std::to_string(compared) +
+                          " answers disagree with what your own simulation shows");
+    CHECK(disagree == 0);
 }
 
 TEST_CASE("spin about the intermediate axis tumbles while the others hold steady", "[book][stability]") {
@@ -166,7 +126,7 @@ TEST_CASE("spin about the intermediate axis tumbles while the others hold steady
     std::string problems;
     for (const std::string& axis : axisNames()) {
         const Scene scene = spun(Scene{}, axis);
-        const Wobble w = wobbleOf(scene, axis, simulate(scene));
+        const Wobble w = wobbleOf(scene, axis, simulateWhole(scene));
         if (axis == "intermediate" && !w.spinReverses) problems += "the intermediate-axis spin never reverses; ";
         if (axis != "intermediate" && (w.spinReverses || w.largestWobble >= 1)) {
             problems += "about the " + axis + " axis the wobble grows to " + grading::show(w.largestWobble) + " rad/s; ";
@@ -178,10 +138,7 @@ TEST_CASE("spin about the intermediate axis tumbles while the others hold steady
 
 TEST_CASE("the model has only the three rotational degrees of freedom a spin about a fixed point needs",
           "[book][model]") {
-    const Scene scene;
-    Model model;
-    buildModel(scene, model);
-    checkDegreesOfFreedom(simlab::describeModel(model.matter, initialState(scene, model)), 3,
+    checkDegreesOfFreedom(simlab::observe::model(Scene{}), 3,
                           "a rotation about the book's center",
                           "a Ball mobilizer at its center gives the book exactly its three rotations");
 }

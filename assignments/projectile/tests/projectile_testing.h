@@ -8,6 +8,7 @@
 #include "projectile/ProjectileMotion.h"
 #include "projectile/exact.h"
 #include "projectile/landing.h"
+#include "projectile/observations.h"
 #include "simlab/digits.h"
 #include "simlab/testing.h"
 
@@ -18,7 +19,7 @@ using namespace simlab::testing;
 using Run = simlab::RunResult<Sample>;
 
 inline Run simulate(const Scene& scene, const simlab::RunSettings& settings = defaultRunSettings()) {
-    return simlab::testing::simulate<Model, Sample>(scene, settings);
+    return simlab::testing::simulate<Sample>(scene, settings);
 }
 
 inline simlab::RunSettings settingsFor(double finalTime, double dt, double accuracy = 1e-7) {
@@ -44,6 +45,13 @@ inline double parabolaDigits(const Scene& scene, const Run& run) {
     return worst;
 }
 
+/// The student's simulation of `scene` run until their event handler ends it at the ground (simulateLanding).
+inline Landing observeLanding(const Scene& scene, const simlab::RunSettings& run) {
+    return simlab::observe::decode<Landing>(
+        simlab::observe::ask("landing", {{"scene", simlab::wire::toJson(scene)}, {"settings", simlab::wire::toJson(run)}}),
+        "landing");
+}
+
 /// The ground hit's digits of time and of range (relative to v0 t*, so a vertical launch counts too), 0 if the
 /// student's handler recorded none. Sampled every `dt`: an event handler does not care, a scan of samples does.
 struct HitDigits {
@@ -52,7 +60,7 @@ struct HitDigits {
 inline HitDigits groundHitDigits(const Scene& scene, double dt) {
     simlab::RunSettings run = defaultRunSettings();
     run.dt = dt;
-    const Landing landing = simulateLanding(scene, run);
+    const Landing landing = observeLanding(scene, run);
     INFO("no ground hit was recorded (the simulation ran to t = " << landing.endTime << " s)");
     CHECK(landing.hit.found);
     if (!landing.hit.found) return {};

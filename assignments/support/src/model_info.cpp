@@ -39,6 +39,14 @@ ModelInfo describeModel(const SimTK::SimbodyMatterSubsystem& matter, const SimTK
     info.bodies = matter.getNumBodies() - 1;
     info.mobilities = s.getNU();
     info.constraintEquations = s.getNUErr();
+    if (info.constraintEquations > 0) {
+        // The constraints' Jacobian G (one row per constraint equation, one column per mobility) in the initial
+        // state: its rank is how many motions they really remove. Velocity-level constraints need that stage.
+        matter.getSystem().realize(s, SimTK::Stage::Velocity);
+        SimTK::Matrix G;
+        matter.calcG(s, G);
+        info.independentConstraints = G.nrow() > 0 ? SimTK::FactorQTZ(G).getRank() : 0;
+    }
     for (int i = 1; i < matter.getNumBodies(); ++i) {
         const SimTK::MobilizedBody& b = matter.getMobilizedBody(SimTK::MobilizedBodyIndex(i));
         info.mobilizers.push_back({i, mobilizerKind(matter, i), b.getNumQ(s), b.getNumU(s), b.getBodyMass(s)});
@@ -55,7 +63,10 @@ std::string ModelInfo::summary() const {
             << " mobilizer (" << m.nu << " dof)";
         separator = ", ";
     }
-    if (constraintEquations > 0) out << "; " << constraintEquations << " constraint equations";
+    if (constraintEquations > 0) {
+        out << "; " << constraintEquations << " constraint equations";
+        if (independentConstraints != constraintEquations) out << " (" << independentConstraints << " independent)";
+    }
     out << "; " << degreesOfFreedom() << (degreesOfFreedom() == 1 ? " degree" : " degrees") << " of freedom";
     return out.str();
 }

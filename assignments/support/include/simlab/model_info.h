@@ -20,13 +20,15 @@ struct MobilizerInfo {
 };
 
 struct ModelInfo {
-    int bodies = 0;               ///< bodies other than Ground
-    int mobilities = 0;           ///< sum of nu over the mobilizers
-    int constraintEquations = 0;  ///< velocity-level constraint equations
+    int bodies = 0;                  ///< bodies other than Ground
+    int mobilities = 0;              ///< sum of nu over the mobilizers
+    int constraintEquations = 0;     ///< velocity-level constraint equations
+    int independentConstraints = 0;  ///< of those, how many constrain independently: the rank of their Jacobian
+                                     ///< (a constraint written twice removes one motion, not two)
     std::vector<MobilizerInfo> mobilizers;
 
-    /// Independent motions the model allows: mobilities minus constraint equations.
-    int degreesOfFreedom() const { return mobilities - constraintEquations; }
+    /// Independent motions the model allows: mobilities minus independent constraints.
+    int degreesOfFreedom() const { return mobilities - independentConstraints; }
     /// Bodies with mass (massless ones only join mobilizers together).
     int massiveBodies() const;
     /// One line, e.g. "1 body: body 1 on a Free mobilizer (6 dof)".

@@ -1,6 +1,7 @@
-// What every assignment's grader tests share: driving a student's simulation, and the checks that are the
+// What every assignment's grader tests share: observing a student's simulation, and the checks that are the
 // same from one lab to the next (samples present, the integrator honoured, the degrees of freedom the scene
-// needs). Each assignment's tests call these inside their own TEST_CASEs, under their own names.
+// needs). Each assignment's tests call these inside their own TEST_CASEs, under their own names. The tests run
+// in the judge, which never holds student code: what they know of it, they observe (simlab/observe.h).
 #pragma once
 
 #include <catch2/catch.hpp>
@@ -9,15 +10,15 @@
 
 #include "simlab/driver.h"
 #include "simlab/grading.h"
+#include "simlab/observe.h"
 #include "simlab/run_settings.h"
 
 namespace simlab::testing {
 
 /// The student's simulation of `scene`, driven as the lab program drives it.
-template <class Model, class Sample, class Scene>
+template <class Sample, class Scene>
 RunResult<Sample> simulate(const Scene& scene, const RunSettings& settings) {
-    Model model;
-    return run<Sample>(scene, model, settings);
+    return observe::run<Sample>(scene, settings);
 }
 
 /// `base` with another final time, sampling interval and accuracy.
@@ -71,7 +72,7 @@ void checkSampleTimes(const RunResult<Sample>& run, const RunSettings& settings)
 }
 
 /// makeIntegrator gives the integrator asked for at the accuracy asked for, and takes fixed steps when asked.
-template <class Model, class Sample, class Scene>
+template <class Sample, class Scene>
 void checkIntegratorRequests(const Scene& scene, const RunSettings& base) {
     struct Request {
         const char* name;
@@ -81,7 +82,7 @@ void checkIntegratorRequests(const Scene& scene, const RunSettings& base) {
         RunSettings settings = base;
         settings.integrator = request.name;
         settings.accuracy = request.accuracy;
-        const RunResult<Sample> run = simulate<Model, Sample>(scene, settings);
+        const RunResult<Sample> run = simulate<Sample>(scene, settings);
         const std::string& method = run.integrator.method;
         const bool sameMethod =
             method == request.name || (std::string(request.name) == "CPodes" && method.rfind("CPodes", 0) == 0);
@@ -93,27 +94,33 @@ void checkIntegratorRequests(const Scene& scene, const RunSettings& base) {
     RunSettings fixed = base;
     fixed.integrator = "RungeKutta2";
     fixed.fixedStep = true;
-    const RunResult<Sample> run = simulate<Model, Sample>(scene, fixed);
+    const RunResult<Sample> run = simulate<Sample>(scene, fixed);
     INFO("asked for fixed steps of " << fixed.dt << " s over " << fixed.finalTime << " s (" << fixed.sampleCount()
                                      << " steps), the integrator took " << run.integrator.stepsTaken);
     CHECK(run.integrator.stepsTaken == fixed.sampleCount());
 }
 
-/// The model has `dof` degrees of freedom and one body with mass. `scene` says what the motion is ("a fall
-/// along y"); `advice` what models exactly that. A Free, Translation or Planar mobilizer gets a feedback line.
+/// The model has `dof` degrees of freedom, one body with mass, and no more mobilities than it has degrees of
+/// freedom: a scene's motions given by its mobilizers, not by a Free mobilizer held back with constraints. `scene`
+/// says what the motion is ("a fall along y"); `advice` what models exactly that. A Free, Translation or Planar
+/// mobilizer gets a feedback line.
 inline void checkDegreesOfFreedom(const ModelInfo& info, int dof, const std::string& scene, const std::string& advice) {
     grading::measured(info.degreesOfFreedom(), "degrees of freedom", info.summary());
     for (const char* kind : {"Free", "Translation", "Planar", "Gimbal", "Ball"}) {
-        if (info.uses(kind) && info.degreesOfFreedom() != dof) {
+        if (info.uses(kind) && (info.degreesOfFreedom() != dof || info.mobilities != dof)) {
             grading::feedback(std::string("a ") + kind + " mobilizer allows motions " + scene +
                               " never calls for; " + advice);
             break;
         }
     }
+    if (info.constraintEquations > 0) {
+        grading::feedback("constraints take back motions the mobilizers gave; " + advice);
+    }
     INFO(info.summary() << "; " << scene << " needs one body with " << dof
-                        << (dof == 1 ? " degree" : " degrees") << " of freedom");
+                        << (dof == 1 ? " degree" : " degrees") << " of freedom, given by its mobilizers");
     CHECK(info.massiveBodies() == 1);
     CHECK(info.degreesOfFreedom() == dof);
+    CHECK(info.mobilities == dof);
 }
 
 }  // namespace simlab::testing

@@ -5,8 +5,9 @@
 //     submission = "NewtonsApple.cpp"      # the file each student hands in
 //     extra_files = ["BookAnswers.toml"]   # optional: more files handed in beside it, which tests may read
 //
-//     [limits]                             # per test case, each in its own process
-//     wall_seconds = 5
+//     [limits]                             # per test case: the student's process (the probe)
+//     cpu_seconds = 5                      # CPU time: past it the test has "timed out"
+//     wall_seconds = 30                    # a net for code that sleeps or blocks ("stalled")
 //
 //     [[test]]
 //     name = "y at the final time has the target accuracy digits"   # the Catch2 test case's name
@@ -29,15 +30,34 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-/// Resource limits for one test case.
+/// Resource limits for one test case's student process, and for what a student hands in. CPU time decides "timed
+/// out", whatever the machine's load; the wall clock is only a net for code that sleeps or blocks.
 struct Limits {
-    double wallSeconds = 5;   ///< real time
-    double cpuSeconds = 5;    ///< processor time
-    long memoryMiB = 2048;    ///< address space
-    long outputKiB = 1024;    ///< stdout + stderr; more is cut off and the test is stopped
-    long fileMiB = 16;        ///< largest file the test may write
-    long processes = 32;      ///< processes and threads at once
+    double wallSeconds = 30;   ///< real time: a generous net ("stalled")
+    double cpuSeconds = 5;     ///< processor time ("timed out")
+    long memoryMiB = 2048;     ///< address space
+    long outputKiB = 1024;     ///< stdout + stderr; more is cut off and the test is stopped
+    long fileMiB = 16;         ///< largest file the test may write, and the size of its scratch folders
+    long processes = 32;       ///< processes and threads at once
+    long observationMiB = 64;  ///< largest answer the student's process may send the judge
+    long submissionKiB = 1024; ///< largest file a student may hand in
+
+    /// Throws std::invalid_argument naming the limit, its value and its range, unless every limit is within its
+    /// range (see limitRanges) and the wall-clock net is at least the CPU time.
+    void check() const;
 };
+
+/// A limit's rubric key, its range and its unit: the one table the rubric reader and the command line check.
+struct LimitRange {
+    const char* key;
+    double min, max;
+    const char* unit;
+};
+const std::vector<LimitRange>& limitRanges();
+/// The range of the rubric key `key` ("cpu_seconds"); throws std::invalid_argument for an unknown key.
+const LimitRange& limitRange(const std::string& key);
+/// "cpu_seconds must be between 0.1 and 3600 s, got 1e+10"; empty if `value` is within the range.
+std::string outOfRange(const LimitRange& range, double value);
 
 struct RubricTest {
     std::string name;

@@ -9,7 +9,11 @@
 // Each student's files are written atomically as they finish, record.json last, and gradebook.csv is rewritten
 // (atomically) from the records after each one. A run killed at any moment loses at most the students being
 // graded; the next run regrades exactly those whose record is missing or whose key changed (the submission's
-// content, the grader, the rubric or the limits).
+// content, the grader, the rubric or the limits). An interrupt records nothing for a student it cut short.
+//
+// Folder and file names, compiler messages and test output are bytes from students: every writer makes them
+// safe for its format (valid UTF-8 in JSON, control characters escaped for terminals and Markdown, formulas
+// neutralized in CSV), and a student's files are read as data (files.h: readHandedIn).
 #pragma once
 
 #include <functional>
@@ -23,24 +27,41 @@ namespace simlab::engine {
 
 /// Which file of a student's folder is graded.
 struct Submission {
-    std::string file;    ///< empty when none was found
+    std::string folder;  ///< the folder that holds it: the student's, or one of its subfolders
+    std::string name;    ///< its file name; empty when none was found
+    std::string shown;   ///< its path relative to the student's folder, as reports show it
     std::string status;  ///< "graded", "misnamed file" (the one C++ file there is graded) or "missing file"
     std::string note;    ///< e.g. "graded apple.cpp; expected NewtonsApple.cpp"
 };
 
-/// Look for `expected` in `folder` (and its subfolders when `recursive`); failing that, a lone C++ file.
-Submission findSubmission(const std::string& folder, const std::string& expected, bool recursive);
+/// Look for `expected` in `folder` (and its subfolders when `recursive`), never following a link; failing that,
+/// a lone C++ file. `followFolder` false: `folder` itself must not be a link (a student's folder in a class).
+Submission findSubmission(const std::string& folder, const std::string& expected, bool recursive,
+                          bool followFolder = false);
+
+/// A student's folder made ready to grade: the file found and read with the rubric's extra files, or why not
+/// (status "missing file", "unsafe file" or "file too large", with a one-line note).
+struct Gathered {
+    Submission found;
+    std::optional<SubmissionFiles> files;  ///< empty when there is nothing to grade
+    std::string status;                    ///< found.status, or why nothing is graded
+    std::string note;
+};
+Gathered gatherSubmission(const std::string& folder, const Rubric& rubric, const Limits& limits, bool recursive,
+                          bool followFolder);
 
 /// A student's grade as kept in record.json and shown in the gradebook.
 struct StudentRecord {
     std::string id;
     std::string key;     ///< what the grade was made from; a different key means regrade
-    std::string status;  ///< graded, misnamed file, missing file, did not compile, did not link
+    std::string status;  ///< graded, misnamed file, missing file, unsafe file, file too large, did not compile,
+                         ///< forbidden code, did not link, grader error
     std::string note;
     std::string file;    ///< the file graded, relative to the student's folder
     double score = 0;
     double maxScore = 0;
     double seconds = 0;
+    std::string compiler;  ///< the compiler's message: why it failed, or its warnings (first lines)
     std::vector<TestResult> tests;
 };
 
@@ -54,6 +75,19 @@ struct ClassProgress {
     bool lastReused = false;
 };
 
+/// An entry of the submissions folder that is not a student: a hidden folder (its name starts with a dot), a
+/// file, a link. Listed, never dropped silently.
+struct Skipped {
+    std::string name;
+    std::string why;
+};
+
+struct ClassResult {
+    std::vector<StudentRecord> records;  ///< every student in the folder, sorted by id
+    std::vector<Skipped> skipped;
+    int graderErrors = 0;                ///< students simlab itself could not grade (recorded; retried next run)
+};
+
 struct ClassOptions {
     int jobs = 1;
     std::vector<std::string> only;  ///< regrade just these students; keep everyone else's row
@@ -61,12 +95,11 @@ struct ClassOptions {
 };
 
 /// Grade every student folder of `submissionsDir` into `outDir`. Returns the records of every student in the
-/// folder, sorted by id, including those reused from an earlier run. Throws Interrupted after writing what
-/// finished if interruptChildren() was called.
-std::vector<StudentRecord> gradeClass(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
-                                      const std::string& submissionsDir, const std::string& outDir,
-                                      const ClassOptions& options,
-                                      const std::function<void(const ClassProgress&)>& onProgress);
+/// folder, including those reused from an earlier run, and what was skipped. Throws Interrupted after writing
+/// what finished if interruptChildren() was called.
+ClassResult gradeClass(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
+                       const std::string& submissionsDir, const std::string& outDir, const ClassOptions& options,
+                       const std::function<void(const ClassProgress&)>& onProgress);
 
 /// The class summary, per test: pass rate and median, min and max of its measured figure. As a text table and
 /// as CSV (what summary.csv holds).
@@ -80,8 +113,9 @@ std::string junitXml(const Assignment& assignment, const std::vector<StudentReco
 std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& record);
 
 /// Grade one student folder the way gradeClass does (used by Gradescope's run_autograder, where the folder is
-/// the uploaded submission): find the file, grade it on every test, or report it missing.
+/// the uploaded submission, and by the corpus): find the file, read it with care, grade it on every test, or
+/// say why not.
 GradeReport gradeFolder(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
-                        const std::string& folder, bool recursive, const GradeOptions& options);
+                        const std::string& folder, bool recursive, bool followFolder, const GradeOptions& options);
 
 }  // namespace simlab::engine

@@ -1,8 +1,11 @@
-// Building student code: compile the one file (with the precompiled Simbody header, cached by content) and
-// link it with the grader's or the lab program's prebuilt objects.
+// Building student code: compile the one file against its assignment's contract (with the precompiled Simbody
+// header, cached by content), check that the object adds to the course's code without replacing any of it, and
+// link it after the course's objects into the probe - or into the lab program.
 #pragma once
 
+#include <map>
 #include <string>
+#include <vector>
 
 #include "simlab/engine/manifest.h"
 
@@ -10,34 +13,65 @@ namespace simlab::engine {
 
 struct BuildResult {
     bool ok = false;
-    std::string stage;        ///< where it failed: "compile" or "link"
-    std::string log;          ///< the first lines of the compiler's or linker's message
-    std::string warnings;     ///< compiler warnings when it succeeded
-    bool cached = false;      ///< the object came from the cache
+    bool interrupted = false;  ///< simlab's own interrupt stopped the compiler or linker: no outcome at all
+    std::string stage;         ///< where it failed: "compile", "check" (forbidden code) or "link"
+    std::string log;           ///< the first lines of the compiler's or linker's message, or the check's reasons
+    std::string warnings;      ///< compiler warnings when it succeeded
+    bool cached = false;       ///< the object came from the cache
     double compileSeconds = 0;
     double linkSeconds = 0;
     std::string binary;
 };
+
+/// A symbol the course's side of a probe defines or refers to - in its objects, the libraries it links or the C
+/// and C++ runtime.
+struct CourseSymbol {
+    bool defined = false;     ///< somewhere in the course
+    bool strong = false;      ///< some definition of it is strong (not weak or inline)
+    bool inObjects = false;   ///< the course's objects define it (their copy is the one linked)
+    bool inLibraries = false; ///< a shared library or the runtime defines it
+    bool required = false;    ///< the course's objects need it and nothing of the course's defines it: a contract
+                              ///< function the student writes
+    bool referenced = false;  ///< something of the course's refers to it
+    std::string from;         ///< where it is defined: "course", or a library's file name such as "libc.so.6"
+};
+using CourseSymbols = std::map<std::string, CourseSymbol>;
+
+/// What a student's object may not do, one line each ("NewtonsApple.cpp defines simlab::describeModel(...), which
+/// the course's code defines: a submission may define only the contract's functions and its own helpers"): hold
+/// a section a compiler does not make from C++ (LTO code, .preinit_array, .init, a constructor or destructor with a
+/// priority, ...), define an ifunc, define a symbol the course defines (or redefine inline one it defines out of
+/// line, or export its own copy of one a library exports, which would take the library's place for every caller),
+/// or define a hook the course's runtime calls when it exists (__gmon_start__, say). Empty when it is clean.
+std::vector<std::string> forbiddenCode(const std::string& objectPath, const std::string& sourceName,
+                                       const CourseSymbols& course);
 
 class Builder {
 public:
     /// Objects are cached in <build>/cache/objects, or in $SIMLAB_CACHE.
     explicit Builder(const Manifest& manifest);
 
-    /// Compile `source` in `workDir` and link it with `assignment`'s grader into the program `binary`.
-    BuildResult buildGrader(const Assignment& assignment, const std::string& source, const std::string& workDir,
-                            const std::string& binary) const;
-    /// Compile `source` and link it with the course's main into the lab program at `output`.
-    BuildResult buildProgram(const Assignment& assignment, const std::string& source, const std::string& output) const;
-    /// Key of a source file's object in the cache: its content, the compile command and the precompiled header.
-    std::string objectKey(const std::string& sourceText) const;
-    /// Changes whenever the grader a submission is linked with might: the compile and link commands, the
-    /// precompiled header, the assignment's test objects and the libraries (by path, size and time stamp).
+    /// Compile the student's file (`name`, its bytes `text`) in `workDir` as the sandbox user of `slot`, check the
+    /// object, and link it after the course's probe objects into the program `binary`.
+    BuildResult buildProbe(const Assignment& assignment, const std::string& name, const std::string& text,
+                           const std::string& workDir, const std::string& binary, int slot) const;
+    /// Compile the student's file and link it with the course's main into the lab program at `output`.
+    BuildResult buildProgram(const Assignment& assignment, const std::string& name, const std::string& text,
+                             const std::string& output) const;
+    /// Key of a source file's object in the cache: its content, the compile command, the contract's headers and
+    /// the precompiled header.
+    std::string objectKey(const Assignment& assignment, const std::string& sourceText) const;
+    /// Changes whenever what a submission is graded with might: the object key's parts, the link command, the
+    /// course's probe objects, the libraries and the judge (by path, size and time stamp).
     std::string graderKey(const Assignment& assignment) const;
+    /// The course's symbols for `assignment`'s probe, found once (and kept in the cache).
+    const CourseSymbols& courseSymbols(const Assignment& assignment) const;
 
 private:
-    BuildResult compile(const std::string& source, const std::string& workDir, std::string* object) const;
-    void link(const std::vector<std::string>& inputs, const std::string& output, BuildResult& result) const;
+    BuildResult compile(const Assignment& assignment, const std::string& name, const std::string& text,
+                        const std::string& workDir, int slot, std::string* object) const;
+    void link(const std::vector<std::string>& inputs, const std::vector<std::string>& flags, const std::string& output,
+              int slot, BuildResult& result) const;
 
     const Manifest& manifest_;
     std::string cacheDir_;

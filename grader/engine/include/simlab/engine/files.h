@@ -1,8 +1,8 @@
 // Small file-system helpers the engine shares.
 #pragma once
 
-#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace simlab::engine {
 
@@ -25,21 +25,62 @@ std::string readFile(const std::string& path);
 /// Write `text` to `path` atomically: a temporary file in the same directory, renamed over `path`.
 void writeFileAtomically(const std::string& path, const std::string& text);
 
-/// 64-bit FNV-1a, for change detection (not security).
+/// SHA-256 of the fields added, for cache and resume keys: a student must not be able to make two files share a
+/// key (with a weak hash, a crafted starter could take a finished file's cached object, or its grade).
 class Hash {
 public:
+    Hash();
+    ~Hash();
+    Hash(const Hash& other);
+    Hash& operator=(const Hash& other);
+    /// Adds `bytes` as one field: ("ab", "c") and ("a", "bc") differ.
     Hash& add(const std::string& bytes);
     /// Adds the file's path, size and modification time (cheap; enough to notice a rebuilt file).
     Hash& addFileStamp(const std::string& path);
-    std::uint64_t value() const { return state_; }
+    /// 64 hexadecimal digits. The hash can go on being added to afterwards.
     std::string hex() const;
 
 private:
-    std::uint64_t state_ = 1469598103934665603ull;
+    void* context_;  // OpenSSL's EVP_MD_CTX
 };
 
-/// Checks that `path` names a readable C++ source file (.cpp, .cc, .cxx, .c++ or .C). Throws UsageError with
-/// one line saying what is wrong otherwise.
+/// A file a student handed in, read as data (readHandedIn).
+struct HandedIn {
+    std::string name;     ///< its name in the folder
+    bool found = false;   ///< an entry of that name exists
+    bool ok = false;      ///< read: `text` holds it
+    std::string text;
+    std::string status;   ///< when found but not read: "unsafe file" or "file too large"
+    std::string refusal;  ///< why, in one line: "NewtonsApple.cpp is a symbolic link; hand in the file itself"
+};
+
+/// Read `name` from the folder `folder` as untrusted data: a regular file only - a symbolic link, folder, named
+/// pipe, device or socket is refused without being opened or followed, as is a hard link to a file that others
+/// may not read when simlab runs as root - opened without following links and without blocking, and at most
+/// `limit` bytes (larger is refused, unread). `followFolder` false: `folder` itself must not be a symbolic link
+/// either (a student's folder); true: it is a path the user named.
+HandedIn readHandedIn(const std::string& folder, const std::string& name, std::size_t limit, bool followFolder);
+
+/// What lstat says an entry of a folder is.
+enum class EntryType { Regular, Directory, Symlink, Other };
+struct FolderEntry {
+    std::string name;      ///< relative to the folder listed (with '/' below it, for walkFolder)
+    std::string folder;    ///< the folder that holds it
+    EntryType type = EntryType::Other;
+};
+/// The entries of `folder` (not "." or ".."), sorted by name, without following any link. `followFolder` as for
+/// readHandedIn. Throws std::runtime_error if the folder cannot be opened.
+std::vector<FolderEntry> listFolder(const std::string& folder, bool followFolder);
+/// The entries of `folder` and of its subfolders, never following a link, to a depth of 8 and at most 10000
+/// entries (what lies beyond is left out).
+std::vector<FolderEntry> walkFolder(const std::string& folder);
+
+/// "3.0 GiB", "12 KiB", "512 bytes".
+std::string byteSize(std::uint64_t bytes);
+
+/// Checks that `path` names something that exists, is not a folder and has a C++ source file's extension (.cpp,
+/// .cc, .cxx, .c++ or .C). Throws UsageError with one line saying what is wrong otherwise. (Reading it is for
+/// readHandedIn, which refuses what is not a regular file.)
 void requireCppSource(const std::string& path);
 
 }  // namespace simlab::engine

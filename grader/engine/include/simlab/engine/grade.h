@@ -1,5 +1,6 @@
-// Grading one submission: build it against the assignment's grader and run each rubric test in its own
-// limited process.
+// Grading one submission: build its probe, then run each rubric test as two limited processes - the judge, which
+// holds the tests and decides, and the probe, which holds the student's code and answers the judge's questions
+// with observations - and name how each test ended.
 #pragma once
 
 #include <optional>
@@ -7,6 +8,7 @@
 #include <vector>
 
 #include "simlab/engine/build.h"
+#include "simlab/engine/files.h"
 #include "simlab/engine/manifest.h"
 #include "simlab/rubric.h"
 
@@ -14,11 +16,12 @@ namespace simlab::engine {
 
 /// How a test ended. Every outcome has a name in the report.
 enum class Outcome {
-    Passed, Failed, TimedOut, OutOfMemory, Crashed, OutputTruncated, DidNotFinish, DidNotCompile, MissingFile
+    Passed, Failed, TimedOut, Stalled, OutOfMemory, Crashed, OutputTruncated, BadReport, DidNotFinish,
+    DidNotCompile, Refused, MissingFile
 };
 
-/// "passed", "failed", "timed out", "killed for memory", "crashed", "output truncated", "did not finish",
-/// "did not compile", "missing file".
+/// "passed", "failed", "timed out", "stalled", "killed for memory", "crashed", "output truncated", "bad report",
+/// "did not finish", "did not compile", "refused", "missing file".
 std::string outcomeName(Outcome outcome);
 /// The outcome of that name; throws std::invalid_argument for another.
 Outcome outcomeNamed(const std::string& name);
@@ -34,20 +37,23 @@ struct TestResult {
     std::optional<double> figure;       ///< what the test measured, e.g. 14.8
     std::string unit;                   ///< e.g. "digits"
     double seconds = 0;
-    std::string output;                 ///< what the test process printed (cut short), for instructors
+    double cpuSeconds = 0;              ///< the student's process's CPU time
+    std::string output;                 ///< what the student's process printed (cut short), for instructors
 };
 
 struct GradeReport {
     std::string assignment;
     std::string title;
-    std::string source;
+    std::string source;             ///< the file graded, as reports name it
     BuildResult build;
     std::vector<TestResult> tests;  ///< those that ran (all, or the visible ones in a self-check)
     int notRunCount = 0;            ///< tests left for the instructor in a self-check
     double notRunPoints = 0;
     double seconds = 0;
-    std::string status = "graded";  ///< or "misnamed file", "missing file", "did not compile", "did not link"
-    std::string note;               ///< about the file: "graded apple.cpp; expected NewtonsApple.cpp"
+    std::string status = "graded";  ///< or "misnamed file", "missing file", "unsafe file", "file too large",
+                                    ///< "did not compile", "forbidden code", "did not link"
+    std::string note;               ///< about the files: "graded apple.cpp; expected NewtonsApple.cpp"
+    std::string graderOutput;       ///< what the judge printed (Catch2's account of the tests), for instructors
 
     double score() const;
     double maxScore() const;
@@ -57,20 +63,29 @@ struct GradeOptions {
     bool includeHidden = false;          ///< run every test (instructors), not only the visible ones
     std::optional<Limits> limits;        ///< instead of the rubric's
     std::string workRoot;                ///< parent of the temporary directories; $TMPDIR when empty
-    int slot = 0;                        ///< which sandbox user runs the tests (one per concurrent grading)
+    int slot = 0;                        ///< which sandbox users run it (one pair per concurrent grading)
     std::vector<std::string> onlyTests;  ///< run just these tests (by name); all selected ones when empty
 };
 
-/// Grade `source` for `assignment` with `rubric`. Never throws for anything the student's code does; throws
-/// UsageError for a source that is not a readable C++ file.
-GradeReport gradeSource(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
-                        const std::string& source, const GradeOptions& options);
+/// What a student handed in, read as data (readHandedIn): the source and the rubric's extra files.
+struct SubmissionFiles {
+    std::string name;              ///< the source's file name, as the compiler's messages give it
+    std::string shown;             ///< how reports name it (a path)
+    std::string text;              ///< its bytes
+    std::vector<HandedIn> extras;  ///< the rubric's extra files that are there, read or refused
+};
+
+/// Grade `files` for `assignment` with `rubric`. Never throws for anything the student's code or files do; throws
+/// UsageError for a test name the rubric does not have, Interrupted if interruptChildren() cut it short.
+GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
+                            const SubmissionFiles& files, const GradeOptions& options);
 
 /// Round a score to hundredths, as reports show it.
 double roundScore(double points);
 
-/// The report of a submission that has no file to grade: every selected test scores 0 as "missing file".
-GradeReport missingReport(const Assignment& assignment, const Rubric& rubric, const std::string& note,
-                          bool includeHidden);
+/// The report of a submission that was not graded (status "missing file", "unsafe file", "file too large"):
+/// every selected test scores 0 with the note as its reason.
+GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, const std::string& status,
+                            const std::string& note, bool includeHidden);
 
 }  // namespace simlab::engine

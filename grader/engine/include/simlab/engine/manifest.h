@@ -16,11 +16,14 @@ struct Assignment {
     std::string referenceProgramPath;  ///< built from the solution; empty without solutions/
     std::string dir;               ///< assignments/<id>
     std::string rubric;
+    std::string contractInclude;   ///< the one include folder a student file sees: the contract and support headers
     std::string starter;
     std::string solution;          ///< empty in the student bundle
     bool hiddenTestsBuilt = false;
     std::vector<std::string> hiddenTests;  ///< the hidden tests' source files (absent from the student bundle)
-    std::vector<std::string> graderObjects;
+    std::string judge;                     ///< the tests' program, which decides every verdict
+    std::vector<std::string> probeObjects;  ///< the course's side of the probe, linked before the student's object
+    std::vector<std::string> floorObjects;  ///< tests and probe in one program (the benchmark's floor)
     std::vector<std::string> programObjects;
 };
 
@@ -31,9 +34,11 @@ struct Manifest {
     std::string buildDir;
     std::string sampleClass;           ///< <build>/sample-class: one folder per assignment, made from tests/corpus
     std::string catch2Include;         ///< the folder holding catch2/catch.hpp (Catch2 2.13)
-    std::vector<std::string> compile;  ///< compiler and flags; append -c SOURCE -o OBJECT
+    std::vector<std::string> compile;  ///< compiler and flags; append -I<contract> -c SOURCE -o OBJECT
     std::vector<std::string> link;     ///< linker driver and flags
-    std::vector<std::string> graderLibraries;
+    std::vector<std::string> probeLibraries;  ///< shared libraries a probe links after the student's object
+    std::vector<std::string> probeLink;       ///< flags a probe's link adds: export nothing (see cmake/Simlab.cmake)
+    std::vector<std::string> floorLibraries;
     std::vector<std::string> programLibraries;
     std::vector<Assignment> assignments;
 

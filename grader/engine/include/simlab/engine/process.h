@@ -1,11 +1,13 @@
-// Running untrusted programs: one child process group with resource limits, a wall-clock deadline, a cap on
-// its output, and optionally the private report channel a grader test writes its verdict to and a sandbox.
+// Running untrusted programs: one child process group with resource limits, a CPU-time limit that decides
+// "timed out", a generous wall-clock net for what sleeps or blocks, a cap on its output, optionally a report
+// channel (descriptor 3) and other descriptors handed to it, and a sandbox.
 //
 // The sandbox. Run as root (CI, Gradescope), the child becomes a throwaway user of its own, so the process limit
-// applies to it alone (root is exempt from that limit). With bubblewrap it also gets no network, its own process
-// namespace and a filesystem holding only the system's programs and libraries, the paths it is lent read-only and
-// its working directory: nothing of other students'. Without bubblewrap it gets a private network namespace where
-// the kernel allows one, and the limits.
+// applies to it alone (root is exempt from that limit); a judge and the probe it questions get different users.
+// With bubblewrap it also gets no network, its own process namespace and a filesystem holding only the system's
+// programs and libraries, the paths it is lent read-only and a working directory: nothing of other students' or
+// of simlab's. Its /tmp and, for tests, its working directory are memory file systems capped at the file-size
+// limit. Without bubblewrap it gets a private network namespace where the kernel allows one, and the limits.
 #pragma once
 
 #include <string>
@@ -20,13 +22,18 @@ struct ProcessRequest {
     std::vector<std::string> env;   ///< the child's whole environment, "NAME=value"
     std::string workDir;            ///< the child's working directory (must exist)
     Limits limits;
-    bool reportChannel = false;     ///< give the child a report pipe (fd 3) and its token (read from fd 4)
+    bool reportChannel = false;     ///< descriptor 3 of the child is a pipe to simlab; its lines are `reports`
+    std::vector<std::pair<int, int>> passFds;  ///< {descriptor in the child, simlab's descriptor}: handed to the
+                                               ///< child and closed in simlab once the child has started
     std::size_t keepOutput = 16 * 1024;  ///< bytes of output kept for the report (all of it is counted)
     bool isolate = false;           ///< run in the sandbox (see above)
     std::vector<std::string> readOnlyPaths;  ///< with isolate: what the child may read, at the same paths
-    bool ownUser = true;            ///< with isolate as root: run as a throwaway user (false: a trusted tool
-                                    ///< that needs only the private filesystem, such as the compiler)
-    int slot = 0;                   ///< with isolate as root: which throwaway user (one per concurrent child)
+    std::vector<std::string> maskedPaths;    ///< with isolate: never visible, even inside a system folder
+    bool scratchWorkDir = false;    ///< with bubblewrap: the working directory is an empty memory file system
+                                    ///< (nothing the child writes there comes back) instead of workDir itself
+    bool ownUser = true;            ///< with isolate as root: run as a throwaway user
+    bool judgeUser = false;         ///< with ownUser: the slot's second user, so a judge never shares its probe's
+    int slot = 0;                   ///< with isolate as root: which throwaway users (one per concurrent grading)
 };
 
 struct ProcessResult {
@@ -37,12 +44,13 @@ struct ProcessResult {
     bool wallTimeout = false;    ///< killed at the wall-clock deadline
     bool cpuTimeout = false;     ///< stopped by the CPU-time limit
     bool outputLimit = false;    ///< killed for printing more than the output limit
-    bool interrupted = false;    ///< killed because interruptChildren() was called
+    bool interrupted = false;    ///< killed, or never started, because interruptChildren() was called
     double wallSeconds = 0;
     double cpuSeconds = 0;
+    long maxRssKiB = 0;          ///< the child's peak resident memory
     std::size_t outputBytes = 0; ///< everything it printed, counted
     std::string output;          ///< the first keepOutput bytes of stdout and stderr, interleaved
-    std::vector<std::string> reports;  ///< report-channel lines that carried the token, token removed
+    std::vector<std::string> reports;  ///< complete lines from the report channel (at most 1 MiB of them)
 
     bool exitedCleanly() const { return started && signal == 0 && exitCode == 0; }
 };
@@ -55,12 +63,14 @@ struct SandboxSupport {
     bool bubblewrap = false;  ///< namespaces and a private filesystem
     std::string bwrap;        ///< bubblewrap's path
     bool ownUser = false;     ///< each child runs as a throwaway user (we are root)
+    bool rootBubblewrap = false;  ///< as root, bubblewrap runs as root and setpriv hands over to that user, so that
+                                  ///< it can lend paths below folders only root may enter
     std::string summary;      ///< one line, e.g. "bubblewrap, one user per test"
     std::string warning;      ///< why isolation is partial; empty when it is complete
 };
 const SandboxSupport& sandboxSupport();
 
-/// Stop every running child and make runProcess return; safe to call from a signal handler.
+/// Stop every running child, start no other, and make runProcess return; safe to call from a signal handler.
 void interruptChildren();
 bool childrenInterrupted();
 

@@ -1,0 +1,15 @@
+// What the grader can observe of a student's ProjectileMotion.cpp: its simulation of a scene, its model, and the
+// ground hit its event handler records when the simulation runs until the handler ends it.
+#include "projectile/observations.h"
+#include "simlab/probe.h"
+
+SIMLAB_PROBE(projectileObservations) {
+    using namespace projectile;
+    simlab::probe::addLab<Sample, Scene, Model>();
+    simlab::probe::add("landing", [](const nlohmann::json& arguments) {
+        Landing landing = simulateLanding(simlab::probe::argument<Scene>(arguments, "scene"),
+                                          simlab::probe::argument<simlab::RunSettings>(arguments, "settings"));
+        if (!landing.hit.found) landing.hit.time = landing.hit.x = 0;  // nothing recorded: no time, no range
+        return simlab::wire::toJson(landing);
+    });
+}

@@ -1,0 +1,61 @@
+// What several simlab commands share: limit options checked against the rubric's ranges, and a student's file
+// read from the command line the way grading reads it.
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <filesystem>
+
+#include "commands.h"
+#include "simlab/engine/errors.h"
+#include "simlab/engine/files.h"
+#include "simlab/engine/text.h"
+
+namespace fs = std::filesystem;
+
+namespace simlab::cli {
+
+CLI::Validator limitOption(const std::string& key) {
+    const LimitRange& range = limitRange(key);
+    return CLI::Validator(
+        [range](std::string& text) {
+            double value = 0;
+            if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value)) return "must be a number, got " + text;
+            const std::string bad = outOfRange(range, value);
+            return bad.empty() ? std::string() : "must be between " + bad.substr(bad.find("between ") + 8);
+        },
+        "NUMBER");
+}
+
+Limits limitsWith(const Limits& rubric, double timeout, double memory) {
+    Limits limits = rubric;
+    if (timeout > 0) {
+        limits.cpuSeconds = timeout;
+        limits.wallSeconds = std::max(limits.wallSeconds, 6 * timeout);
+    }
+    if (memory > 0) limits.memoryMiB = static_cast<long>(memory);
+    try {
+        limits.check();
+    } catch (const std::invalid_argument& e) {
+        throw engine::UsageError(e.what());
+    }
+    return limits;
+}
+
+engine::SubmissionFiles readSubmission(const std::string& path, const Rubric& rubric, const Limits& limits) {
+    const fs::path file(path);
+    const std::string folder = file.has_parent_path() ? file.parent_path().string() : ".";
+    const std::size_t cap = static_cast<std::size_t>(limits.submissionKiB) * 1024;
+    engine::HandedIn source = engine::readHandedIn(folder, file.filename().string(), cap, /*followFolder=*/true);
+    if (!source.found) throw engine::UsageError("source file '" + engine::printable(path) + "' does not exist");
+    if (!source.ok) throw engine::UsageError(engine::printable(source.refusal));
+    engine::SubmissionFiles files;
+    files.name = source.name;
+    files.shown = path;
+    files.text = std::move(source.text);
+    for (const std::string& name : rubric.extraFiles) {
+        engine::HandedIn extra = engine::readHandedIn(folder, name, cap, /*followFolder=*/true);
+        if (extra.found) files.extras.push_back(std::move(extra));
+    }
+    return files;
+}
+
+}  // namespace simlab::cli

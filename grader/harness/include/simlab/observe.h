@@ -1,0 +1,95 @@
+// Observations: what a grader test learns about a student's simulation, and the only way it learns it.
+//
+// A grader test runs in the judge, a process that never loads student code. When it needs to know what the
+// student's code does, it asks: observe::run(scene, settings) sends the request to the probe, a separate
+// sandboxed process that holds the student's code, calls the contract through the course's driver and answers
+// with data (the samples, the model's description, the integrator's statistics). The answer is validated here
+// before any test sees it: one line of JSON, under a size cap, answering the request that was made, in the shape
+// the wire format gives. Anything else is a BadReport, whose outcome is "bad report", never a pass. The judge
+// then computes every figure and every point from those observations, the exact solutions and the rubric.
+//
+//     TEST_CASE("y at the final time has the target accuracy digits", "[apple]") {
+//         const auto run = simlab::observe::run<Sample>(Scene{}, defaultRunSettings());
+//         ...
+//     }
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "simlab/driver.h"
+#include "simlab/model_info.h"
+#include "simlab/run_settings.h"
+#include "simlab/wire.h"
+
+namespace simlab::observe {
+
+/// The student's code threw while answering (a SIMLAB_TODO, say): the test fails with its message.
+class StudentError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// The answer broke the protocol (not JSON, too large, out of turn, the wrong shape): outcome "bad report".
+class BadReport : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// The student's process ended before it answered (it exited, crashed or ran out of a limit). The engine names
+/// the outcome from how the process ended.
+class ProcessEnded : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// An answer held a number that is not finite: the test fails, saying where ("samples[37].yLocation").
+class NonFinite : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Ask the probe for an observation of `kind` ("run", "model", ...) with `arguments`; returns the answer,
+/// checked to be well formed and finite. Throws the exceptions above.
+nlohmann::json ask(const std::string& kind, const nlohmann::json& arguments);
+
+/// `answer` read as a T; a field missing or of the wrong type is a BadReport naming it.
+template <class T>
+T decode(const nlohmann::json& answer, const std::string& kind) {
+    T value{};
+    try {
+        wire::readValue(answer, value, "");
+    } catch (const wire::WireError& e) {
+        throw BadReport("the answer to '" + kind + "' is malformed: " + e.what());
+    }
+    return value;
+}
+
+/// The student's simulation of `scene` with `settings`, driven by the course's driver as the lab program drives
+/// it: every sample, the model's description and the integrator's statistics.
+template <class Sample, class Scene>
+RunResult<Sample> run(const Scene& scene, const RunSettings& settings) {
+    return decode<RunResult<Sample>>(ask("run", {{"scene", wire::toJson(scene)}, {"settings", wire::toJson(settings)}}),
+                                     "run");
+}
+
+/// The model the student builds for `scene`: its bodies, mobilizers and degrees of freedom.
+template <class Scene>
+ModelInfo model(const Scene& scene) {
+    return decode<ModelInfo>(ask("model", {{"scene", wire::toJson(scene)}}), "model");
+}
+
+/// A test case begins: the next question goes to a new student's process of its own. Called by the harness.
+void startTest(const std::string& test);
+
+/// What the channel said when the test ended: empty if all was well, else why it is a bad report (bytes nobody
+/// asked for, say). Called once by the harness after each test case; closes the channel.
+std::string finishTest();
+
+/// How the last failure of the channel is to be reported (set when ask() throws BadReport or ProcessEnded).
+enum class ChannelFailure { None, BadReport, ProcessEnded };
+ChannelFailure lastFailure();
+void clearFailure();
+
+}  // namespace simlab::observe

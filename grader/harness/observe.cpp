@@ -1,0 +1,105 @@
+// The judge's side of observations: each question to the student's process, and the checks its answer has to
+// pass before a test may look at it (see observe.h).
+#include "simlab/observe.h"
+
+#include <cstdlib>
+
+#include "transport.h"
+
+namespace simlab::observe {
+
+namespace {
+
+int gLastId = 0;
+ChannelFailure gFailure = ChannelFailure::None;
+
+// The largest answer the judge reads: SIMLAB_ANSWER_LIMIT bytes (set by the engine from the rubric), else 64 MiB.
+std::size_t answerLimit() {
+    const char* limit = std::getenv("SIMLAB_ANSWER_LIMIT");
+    const unsigned long long bytes = limit ? std::strtoull(limit, nullptr, 10) : 0;
+    return bytes > 0 ? static_cast<std::size_t>(bytes) : std::size_t{64} << 20;
+}
+
+[[noreturn]] void badReport(const std::string& why) {
+    gFailure = ChannelFailure::BadReport;
+    throw BadReport(why);
+}
+
+// " at t = 0.37 s" when `where` names a sample ("samples[37].yLocation") whose time is a number.
+std::string sampleTime(const nlohmann::json& answer, const std::string& where) {
+    if (where.rfind("samples[", 0) != 0 || !answer.contains("samples")) return "";
+    const std::size_t index = std::strtoul(where.c_str() + 8, nullptr, 10);
+    const nlohmann::json& samples = answer["samples"];
+    if (!samples.is_array() || index >= samples.size() || !samples[index].is_object()) return "";
+    const auto time = samples[index].find("time");
+    if (time == samples[index].end() || !time->is_number()) return "";
+    char text[48];
+    std::snprintf(text, sizeof text, " at t = %g s", time->get<double>());
+    return text;
+}
+
+}  // namespace
+
+nlohmann::json ask(const std::string& kind, const nlohmann::json& arguments) {
+    const int id = ++gLastId;
+    const nlohmann::json request = {{"id", id}, {"kind", kind}, {"arguments", arguments}};
+    std::string line;
+    try {
+        line = detail::exchange(request.dump() + "\n", answerLimit());
+    } catch (const ProcessEnded&) {
+        gFailure = ChannelFailure::ProcessEnded;
+        throw;
+    } catch (const BadReport&) {
+        gFailure = ChannelFailure::BadReport;
+        throw;
+    }
+    const std::string what = "the answer to request " + std::to_string(id) + " ('" + kind + "')";
+    if (wire::nestingDepth(line) > wire::kMaxNesting) {
+        badReport(what + " nests deeper than " + std::to_string(wire::kMaxNesting) + " levels");
+    }
+    const nlohmann::json reply = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
+    if (reply.is_discarded() || !reply.is_object()) badReport(what + " is not a JSON object");
+    const auto number = reply.find("id");
+    if (number == reply.end() || !number->is_number_integer()) badReport(what + " carries no request number");
+    if (number->get<long long>() != id) {
+        badReport(what + " carries the number " + number->dump() + ": an answer out of turn, twice or unasked");
+    }
+    const bool answered = reply.contains("answer"), threw = reply.contains("threw");
+    if (reply.size() != 2 || answered == threw) badReport(what + " must hold its number and one answer or exception");
+    if (threw) {
+        const nlohmann::json& e = reply["threw"];
+        if (!e.is_object() || !e.contains("type") || !e["type"].is_string() || !e.contains("message") ||
+            !e["message"].is_string()) {
+            badReport(what + " reports an exception in the wrong shape");
+        }
+        const std::string type = e["type"], message = e["message"];
+        // A SIMLAB_TODO speaks for itself: "not done yet (NewtonsApple.cpp:39): build the model: ...".
+        throw StudentError(type == "simlab::NotDoneYet" ? message : "threw " + type + ": " + message);
+    }
+    const nlohmann::json& value = reply["answer"];
+    const std::string where = wire::firstNull(value);
+    if (!where.empty()) {
+        throw NonFinite("the student's " + kind + " produced a value that is not a finite number (NaN or infinity): " +
+                        where + sampleTime(value, where));
+    }
+    return value;
+}
+
+void startTest(const std::string& test) {
+    gFailure = ChannelFailure::None;
+    detail::beginTest(test);
+}
+
+std::string finishTest() {
+    const std::string extra = detail::drain();
+    if (extra.empty()) return "";
+    gFailure = ChannelFailure::BadReport;
+    return "the student's process sent " + std::to_string(extra.size()) +
+           " bytes after its last answer, which nobody asked for";
+}
+
+ChannelFailure lastFailure() { return gFailure; }
+
+void clearFailure() { gFailure = ChannelFailure::None; }
+
+}  // namespace simlab::observe

@@ -1,0 +1,102 @@
+// The probe's main: answers the judge's requests, one line each, until the judge closes the channel.
+//
+// Descriptors, set up by the engine: 3 carries events to the engine (running out of memory, std::terminate with
+// what was in flight), 4 brings requests from the judge, 5 takes answers to it. Student code shares this process
+// and can write to any of them; whatever it writes is data the judge and the engine check, never a verdict.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <iostream>
+#include <new>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <typeinfo>
+
+#include "simlab/probe.h"
+
+namespace {
+
+constexpr int kEventFd = 3, kRequestFd = 4, kAnswerFd = 5;
+constexpr std::size_t kRequestLimit = 1 << 20;  // the judge's requests are small
+
+void writeAll(int fd, const std::string& text) {
+    for (std::size_t sent = 0; sent < text.size();) {
+        const ssize_t n = ::write(fd, text.data() + sent, text.size() - sent);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return;
+        sent += static_cast<std::size_t>(n);
+    }
+}
+
+// Out of memory: say so, then stop. No allocation here.
+void onOutOfMemory() {
+    static const char line[] = "{\"event\":\"memory\"}\n";
+    (void)!::write(kEventFd, line, sizeof line - 1);
+    std::_Exit(137);
+}
+
+// std::terminate: say what was in flight, then abort as C++ would.
+void onTerminate() {
+    std::string what = "no exception was active";
+    try {
+        if (const std::exception_ptr active = std::current_exception()) {
+            try {
+                std::rethrow_exception(active);
+            } catch (const std::exception& e) {
+                what = simlab::probe::typeName(typeid(e)) + ": " + e.what();
+            } catch (...) {
+                what = "an exception that is not a std::exception";
+            }
+        }
+        writeAll(kEventFd, nlohmann::json{{"event", "terminate"}, {"what", what}}.dump(
+                               -1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    } catch (...) {
+        static const char line[] = "{\"event\":\"terminate\",\"what\":\"\"}\n";
+        (void)!::write(kEventFd, line, sizeof line - 1);
+    }
+    std::abort();
+}
+
+// Before any static initializer of the student's (the course's code alone may use priorities): handlers in
+// place, and the channel kept from programs the student's code might execute.
+__attribute__((constructor(101))) void prepare() {
+    std::set_new_handler(onOutOfMemory);
+    std::set_terminate(onTerminate);
+    for (int fd : {kEventFd, kRequestFd, kAnswerFd}) ::fcntl(fd, F_SETFD, FD_CLOEXEC);
+}
+
+// One request line; false at the end of the channel.
+bool readRequest(std::string& pending, std::string& line) {
+    char buffer[4096];
+    for (;;) {
+        const std::size_t end = pending.find('\n');
+        if (end != std::string::npos) {
+            line = pending.substr(0, end);
+            pending.erase(0, end + 1);
+            return true;
+        }
+        if (pending.size() > kRequestLimit) return false;
+        const ssize_t n = ::read(kRequestFd, buffer, sizeof buffer);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return false;
+        pending.append(buffer, static_cast<std::size_t>(n));
+    }
+}
+
+}  // namespace
+
+int main() {
+    simlab::probe::seal();
+    std::string pending, request;
+    while (readRequest(pending, request)) writeAll(kAnswerFd, simlab::probe::answer(request) + "\n");
+    // The judge has what it asked for. Leave without running the student's static destructors or atexit
+    // handlers: what they might do no longer concerns the test.
+    std::cout.flush();
+    std::cerr.flush();
+    std::fflush(nullptr);
+    ::_exit(0);
+}

@@ -1,0 +1,34 @@
+# A grade does not depend on load: the same class - the sample class and the hostile cases whose time matters -
+# graded on an idle machine and beside four CPU-bound processes gets identical scores and outcomes.
+source "$(dirname "$0")/../smoke/lib.sh"
+
+mkdir class
+cp -r "$BIN_DIR/../sample-class/apple/." class/
+"$CORPUS" materialize apple "$SOURCE_DIR"/tests/corpus/apple/hostile/{read-other-students,spin-forever,fork-bomb,sleep-forever,allocate-until-killed}.toml --out class
+scores() {  # each student's row, and each test's outcome from results.json
+  tail -n +2 "$1/gradebook.csv"
+  for f in "$1"/students/*/results.json; do
+    echo "${f%/results.json}" | sed 's|.*/||'; grep -o '"outcome": "[^"]*"' "$f"
+  done
+}
+
+SECONDS=0
+run_capture idle "$SIMLAB" grade apple class --out idle --jobs 2
+idle_seconds=$SECONDS
+check "graded on an idle machine" test "$(status_of idle)" -eq 0
+
+hogs=()
+for _ in 1 2 3 4; do (while :; do :; done) & hogs+=($!); done
+SECONDS=0
+run_capture busy "$SIMLAB" grade apple class --out busy --jobs 2
+busy_seconds=$SECONDS
+kill "${hogs[@]}"
+wait "${hogs[@]}" 2>/dev/null
+check "graded beside four CPU-bound processes" test "$(status_of busy)" -eq 0
+echo "idle: ${idle_seconds} s; beside four CPU-bound processes: ${busy_seconds} s"
+scores idle >idle.scores
+scores busy >busy.scores
+check "the gradebooks are identical" cmp -s idle/gradebook.csv busy/gradebook.csv
+check "every test's outcome is identical" cmp -s idle.scores busy.scores
+diff idle.scores busy.scores | head -20
+finish
