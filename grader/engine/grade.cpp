@@ -1,6 +1,7 @@
 #include "simlab/engine/grade.h"
 
 #include <fcntl.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -10,15 +11,14 @@
 #include <csignal>
 #include <cstring>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <map>
 #include <mutex>
-#include <sys/socket.h>
+#include <nlohmann/json.hpp>
 #include <thread>
 
+#include "simlab/bounded_json.h"
 #include "simlab/engine/errors.h"
 #include "simlab/engine/process.h"
-#include "simlab/bounded_json.h"
 
 namespace fs = std::filesystem;
 
@@ -50,8 +50,8 @@ Limits judgeLimits(const Limits& probe, std::size_t tests) {
 // too; the events only ever name a failure, so a forged one costs its writer.
 struct ProbeEvents {
     bool memory = false;
-    std::string terminate;  // what was in flight when std::terminate ran
-    bool terminated = false;
+    bool terminated = false;  // std::terminate ran
+    std::string type, what;   // the exception in flight then, if there was one
 };
 
 ProbeEvents probeEvents(const std::vector<std::string>& lines) {
@@ -63,7 +63,8 @@ ProbeEvents probeEvents(const std::vector<std::string>& lines) {
         if (event == "memory") e.memory = true;
         if (event == "terminate") {
             e.terminated = true;
-            e.terminate = record.contains("what") && record["what"].is_string() ? record["what"].get<std::string>() : "";
+            e.type = record.contains("type") && record["type"].is_string() ? record["type"].get<std::string>() : "";
+            e.what = record.contains("what") && record["what"].is_string() ? record["what"].get<std::string>() : "";
         }
     }
     return e;
@@ -83,11 +84,9 @@ std::optional<nlohmann::json> judgeVerdict(const std::vector<std::string>& lines
 std::string crashReason(const ProcessResult& probe, const ProbeEvents& events) {
     std::string reason = "crashed (" + signalName(probe.signal) + ")";
     if (probe.signal == SIGABRT && events.terminated) {
-        if (events.terminate.empty() || events.terminate == "no exception was active") {
-            return reason + ": std::terminate was called with no exception in flight";
-        }
-        return reason + ": " + events.terminate +
-               " was thrown and never caught (or thrown from a destructor or a noexcept function)";
+        if (events.type.empty()) return reason + ": std::terminate was called with no exception in flight";
+        return reason + ": " + events.type + (events.what.empty() ? "" : " \"" + events.what + "\"") +
+               " escaped: nothing caught it, or it left a destructor or a noexcept function";
     }
     if (probe.signal == SIGABRT) {
         const std::size_t at = probe.output.find("Assertion `");
@@ -266,11 +265,19 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
         }
     });
 
+    // Without bubblewrap the judge runs as its throwaway user straight from the disk: from a copy of its own here,
+    // since the build tree may lie below a folder that user cannot enter.
+    std::string judgeProgram = assignment.judge;
+    if (!sandboxSupport().bubblewrap) {
+        judgeProgram = w.judgeFiles + "/judge";
+        fs::copy_file(assignment.judge, judgeProgram, fs::copy_options::overwrite_existing);
+        makeReadable(judgeProgram);
+    }
     ProcessRequest judge;
     // One test spec naming every test: Catch2 reads commas as "or" (a rubric's names hold none).
     std::string names;
     for (const RubricTest* test : tests) names += (names.empty() ? "" : ",") + test->name;
-    judge.argv = {assignment.judge, "--use-colour", "no", names};
+    judge.argv = {judgeProgram, "--use-colour", "no", names};
     judge.env = {"PATH=/usr/bin:/bin", "HOME=" + w.root + "/judge-home", "TMPDIR=/tmp", "LC_ALL=C",
                  "SIMLAB_RUBRIC=" + w.judgeFiles + "/rubric.toml", "SIMLAB_SUBMISSION_DIR=" + w.submission,
                  "SIMLAB_ANSWER_LIMIT=" + std::to_string(static_cast<unsigned long long>(limits.observationMiB) << 20)};
@@ -280,7 +287,7 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     judge.reportChannel = true;
     judge.passFds = {{6, socket[1]}};
     judge.isolate = true;
-    judge.readOnlyPaths = {assignment.judge, w.judgeFiles};
+    judge.readOnlyPaths = {judgeProgram, w.judgeFiles};
     judge.scratchWorkDir = true;
     judge.judgeUser = true;
     judge.slot = slot;

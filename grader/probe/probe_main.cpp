@@ -41,21 +41,21 @@ void onOutOfMemory() {
 
 // std::terminate: say what was in flight, then abort as C++ would.
 void onTerminate() {
-    std::string what = "no exception was active";
+    nlohmann::json event = {{"event", "terminate"}};
     try {
         if (const std::exception_ptr active = std::current_exception()) {
             try {
                 std::rethrow_exception(active);
             } catch (const std::exception& e) {
-                what = simlab::probe::typeName(typeid(e)) + ": " + e.what();
+                event["type"] = simlab::probe::typeName(typeid(e));
+                event["what"] = e.what();
             } catch (...) {
-                what = "an exception that is not a std::exception";
+                event["type"] = "something that is not a std::exception";
             }
         }
-        writeAll(kEventFd, nlohmann::json{{"event", "terminate"}, {"what", what}}.dump(
-                               -1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+        writeAll(kEventFd, event.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     } catch (...) {
-        static const char line[] = "{\"event\":\"terminate\",\"what\":\"\"}\n";
+        static const char line[] = "{\"event\":\"terminate\"}\n";
         (void)!::write(kEventFd, line, sizeof line - 1);
     }
     std::abort();
