@@ -103,6 +103,9 @@ function(simlab_add_assignment id)
 
   set(tests ${A_TESTS})
   set(hidden_built false)
+  if(NOT A_HIDDEN_TESTS)
+    set(hidden_built true)  # nothing hidden to miss
+  endif()
   set(hidden_paths "")
   foreach(file IN LISTS A_HIDDEN_TESTS)
     list(APPEND hidden_paths ${dir}/${file})

@@ -1,5 +1,6 @@
 // simlab check: a student's self-check on the visible tests (or, for instructors, on all of them).
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -51,10 +52,28 @@ void runCheck(const CheckOptions& o) {
     }
     const Builder builder(manifest);
     const GradeReport report = gradeSubmission(builder, assignment, rubric, files, options);
+    // Drawings a test made of the model land beside the student's file (replaced, never written through a link).
+    const std::string folder = std::filesystem::absolute(source).parent_path().string();
+    std::vector<std::string> written;
+    for (const TestResult& t : report.tests) {
+        for (const auto& [name, text] : t.attachments) {
+            try {
+                writeFileAtomically(folder + "/" + name, text);
+                written.push_back(name);
+            } catch (const std::exception& e) {
+                std::cerr << "simlab: could not write " << printable(name) << ": " << printable(e.what()) << '\n';
+            }
+        }
+    }
     if (o.format == "json") {
         std::cout << toGradescope(report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
     } else {
         std::cout << renderText(report);
+        if (!written.empty()) {
+            std::cout << "Drawn from your model:";
+            for (const std::string& name : written) std::cout << ' ' << printable(folder + "/" + name);
+            std::cout << '\n';
+        }
     }
 }
 

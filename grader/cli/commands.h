@@ -31,5 +31,6 @@ void addBuild(CLI::App& app);
 void addList(CLI::App& app);
 void addPackage(CLI::App& app);
 void addAutograde(CLI::App& app);
+void addProject(CLI::App& app);
 
 }  // namespace simlab::cli

@@ -111,6 +111,8 @@ std::string gradebookCsv(const Rubric& rubric, const std::vector<StudentRecord>&
     std::ostringstream out;
     out << "student,score,max,status";
     for (const RubricTest& t : rubric.tests) out << "," << csvCell(t.name);
+    // Items a person grades: a column each, "pending" until the instructor fills in the points.
+    for (const ManualItem& m : rubric.manual) out << "," << csvCell("manual (" + points(m.points) + "): " + m.name);
     out << "\n";
     for (const StudentRecord& r : records) {
         out << csvCell(r.id) << "," << points(r.score) << "," << points(r.maxScore) << "," << csvCell(r.status);
@@ -119,6 +121,7 @@ std::string gradebookCsv(const Rubric& rubric, const std::vector<StudentRecord>&
                                             [&](const TestResult& x) { return x.name == t.name; });
             out << "," << (found == r.tests.end() ? "" : points(found->score));
         }
+        for (std::size_t i = 0; i < rubric.manual.size(); ++i) out << ",pending";
         out << "\n";
     }
     return out.str();
@@ -352,7 +355,16 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
             }
             writeFileAtomically(dir + "/output.txt", output);
         }
-        writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, record));
+        std::vector<std::string> attached;
+        if (report) {
+            for (const TestResult& t : report->tests) {
+                for (const auto& [name, text] : t.attachments) {
+                    writeFileAtomically(dir + "/" + name, text);
+                    attached.push_back(name);
+                }
+            }
+        }
+        writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, record, rubric.manual, attached));
         if (writeRecord) writeFileAtomically(dir + "/record.json", jsonText(toJson(record)));  // last: the commit
 
         std::lock_guard<std::mutex> guard(lock);
@@ -491,7 +503,8 @@ std::string junitXml(const Assignment& assignment, const std::vector<StudentReco
     return out.str();
 }
 
-std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& r) {
+std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& r, const std::vector<ManualItem>& manual,
+                             const std::vector<std::string>& attached) {
     std::ostringstream out;
     out << "# " << markdownText(assignment.title) << ": " << markdownText(r.id) << "\n\n";
     out << "**Score: " << points(r.score) << "/" << points(r.maxScore) << "**";
@@ -538,6 +551,18 @@ std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& 
         if (t.outcome != Outcome::Passed && t.visibility == "visible") {
             out << "Reproduce: " << command(" --test \"" + t.name + "\"") << "\n\n";
         }
+    }
+    if (!attached.empty()) {
+        out << "Drawn from your model, beside this file:";
+        for (const std::string& name : attached) out << " " << markdownText(name);
+        out << "\n\n";
+    }
+    if (!manual.empty()) {
+        double pending = 0;
+        for (const ManualItem& m : manual) pending += m.points;
+        out << "Graded by hand, pending (" << points(pending) << " points):\n\n";
+        for (const ManualItem& m : manual) out << "- " << markdownText(m.name) << " (" << points(m.points) << ")\n";
+        out << "\n";
     }
     out << "Check your file on the visible tests with " << command("") << ".\n";
     return out.str();

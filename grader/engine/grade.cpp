@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "simlab/attachments.h"
 #include "simlab/bounded_json.h"
 #include "simlab/engine/errors.h"
 #include "simlab/engine/process.h"
@@ -171,6 +172,15 @@ TestResult interpret(const RubricTest& test, const ProcessResult& probe, const P
         if (verdict->contains("feedback") && (*verdict)["feedback"].is_array()) {
             for (const auto& line : (*verdict)["feedback"]) {
                 if (line.is_string()) t.feedback.push_back(line.get<std::string>());
+            }
+        }
+        if (verdict->contains("attachments") && (*verdict)["attachments"].is_array()) {
+            for (const auto& file : (*verdict)["attachments"]) {
+                if (!file.is_object() || t.attachments.size() >= wire::kMaxAttachments) continue;
+                const std::string name = file.value("name", ""), text = file.value("text", "");
+                if (wire::isAttachmentName(name) && text.size() <= wire::kMaxAttachmentBytes) {
+                    t.attachments.emplace_back(name, text);
+                }
             }
         }
         if (verdict->contains("figure") && (*verdict)["figure"].is_object()) {
@@ -346,6 +356,7 @@ GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, 
     GradeReport report;
     report.assignment = assignment.id;
     report.title = assignment.title;
+    report.manual = rubric.manual;
     report.status = status;
     report.note = note;
     report.build.stage = "missing";
@@ -386,6 +397,7 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
     GradeReport report;
     report.assignment = assignment.id;
     report.title = assignment.title;
+    report.manual = rubric.manual;
     report.source = files.shown;
     for (const HandedIn& extra : files.extras) {
         if (!extra.ok) report.note += (report.note.empty() ? "" : "; ") + extra.refusal;

@@ -71,7 +71,9 @@ PackageSummary copyFiles(const Manifest& manifest, const std::vector<Rule>& rule
 
 std::vector<Rule> instructorOnly() {
     return {
-        {"solutions/", [](const std::string& f) { return startsWith(f, "solutions/"); }},
+        // The project's reference solution is its worked example, the baby boot, which students are given.
+        {"solutions/ (but the worked example project, solutions/biosim/)",
+         [](const std::string& f) { return startsWith(f, "solutions/") && !startsWith(f, "solutions/biosim/"); }},
         {"tests/: the corpus is made from the solutions and holds expected scores",
          [](const std::string& f) { return startsWith(f, "tests/"); }},
         {".ci/ and bench/", [](const std::string& f) { return startsWith(f, ".ci/") || startsWith(f, "bench/"); }},

@@ -55,6 +55,18 @@ std::string notRunLine(const GradeReport& r) {
            " left for instructor grading.";
 }
 
+/// "Graded by hand, pending: 25 points (the schematic is clear, 10; ...)"; empty without manual items.
+std::string manualLine(const GradeReport& r) {
+    if (r.manual.empty()) return "";
+    double total = 0;
+    std::string items;
+    for (const ManualItem& m : r.manual) {
+        total += m.points;
+        items += (items.empty() ? "" : "; ") + m.name + ", " + points(m.points);
+    }
+    return "Graded by hand, pending: " + points(total) + " points (" + items + ").";
+}
+
 }  // namespace
 
 std::string points(double value) {
@@ -93,6 +105,8 @@ std::string renderText(const GradeReport& r) {
     out << "Score: " << points(r.score()) << "/" << points(r.maxScore()) << "\n";
     const std::string left = notRunLine(r);
     if (!left.empty()) out << left << "\n";
+    const std::string manual = manualLine(r);
+    if (!manual.empty()) out << manual << "\n";
     return out.str();
 }
 
@@ -122,6 +136,15 @@ nlohmann::json toGradescope(const GradeReport& r) {
     output += warningLines(r.build, 20);
     const std::string left = notRunLine(r);
     if (!left.empty()) output += left + "\n";
+    const std::string manual = manualLine(r);
+    if (!manual.empty()) output += manual + "\n";
+    // The items a person grades: Gradescope grades them as questions of their own beside the autograder's score.
+    nlohmann::json pending = nlohmann::json::array();
+    double pendingPoints = 0;
+    for (const ManualItem& m : r.manual) {
+        pending.push_back({{"name", m.name}, {"max_score", m.points}, {"status", "pending"}});
+        pendingPoints += m.points;
+    }
     // Everything is plain text (never HTML or Markdown a student's bytes could shape), valid UTF-8.
     return {{"score", r.score()},
             {"execution_time", static_cast<int>(std::ceil(r.seconds))},
@@ -135,7 +158,9 @@ nlohmann::json toGradescope(const GradeReport& r) {
               {"status", r.status},
               {"max_score", r.maxScore()},
               {"hidden_tests_not_run", r.notRunCount},
-              {"hidden_points_not_run", r.notRunPoints}}}};
+              {"hidden_points_not_run", r.notRunPoints},
+              {"manual_pending", pending},
+              {"manual_points_pending", pendingPoints}}}};
 }
 
 }  // namespace simlab::engine

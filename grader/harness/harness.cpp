@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "simlab/attachments.h"
 #include "simlab/grading.h"
 #include "simlab/observe.h"
 #include "simlab/rubric.h"
@@ -74,6 +75,7 @@ struct Verdict {
     std::string text;
     std::optional<double> credit;
     std::vector<std::string> feedback;
+    nlohmann::json attachments = nlohmann::json::array();
     std::string firstFailure;  // reason taken from the first failed assertion
     bool failureIsException = false;
     bool failureHasInfo = false;
@@ -145,6 +147,15 @@ void partialCredit(double fraction) {
 }
 
 void feedback(const std::string& line) { verdict().feedback.push_back(oneLine(line)); }
+
+void attach(const std::string& name, const std::string& text) {
+    using wire::isAttachmentName;
+    using wire::kMaxAttachmentBytes;
+    if (verdict().attachments.size() >= wire::kMaxAttachments) throw std::invalid_argument("attach: too many files");
+    if (!isAttachmentName(name)) throw std::invalid_argument("attach: '" + name + "' is not a plain file name");
+    if (text.size() > kMaxAttachmentBytes) throw std::invalid_argument("attach: " + name + " is over 256 KiB");
+    verdict().attachments.push_back({{"name", name}, {"text", text}});
+}
 
 bool atLeast(double value, double floor, double target, const std::string& unit) {
     if (!std::isfinite(value)) {
@@ -222,7 +233,8 @@ struct Listener : Catch::TestEventListenerBase {
                                  {"passed", passed},
                                  {"credit", passed ? 1.0 : v.credit.value_or(0.0)},
                                  {"reason", reason},
-                                 {"feedback", v.feedback}};
+                                 {"feedback", v.feedback},
+                                 {"attachments", v.attachments}};
         if (channel == observe::ChannelFailure::BadReport) record["channel"] = "bad report";
         if (channel == observe::ChannelFailure::ProcessEnded) record["channel"] = "process ended";
         if (v.figure) record["figure"] = {{"value", std::isfinite(*v.figure) ? *v.figure : 0.0}, {"unit", v.unit}};

@@ -90,6 +90,29 @@ RubricTest readTest(const std::string& path, const toml::table& table) {
     return test;
 }
 
+ManualItem readManual(const std::string& path, const toml::table& table) {
+    ManualItem item;
+    bool hasName = false, hasPoints = false;
+    for (auto&& [key, node] : table) {
+        const std::string k(key.str());
+        if (k == "name") {
+            item.name = text(path, node, k);
+            hasName = !item.name.empty();
+        } else if (k == "points") {
+            item.points = number(path, node, k);
+            if (!(item.points >= 0 && item.points <= 1e6)) fail(path, node, "'points' must be between 0 and 1e6");
+            hasPoints = true;
+        } else if (k == "description") {
+            item.description = text(path, node, k);
+        } else {
+            fail(path, node, "unknown key '" + k + "' in a [[manual]] item (known: name, points, description)");
+        }
+    }
+    if (!hasName) fail(path, table, "a [[manual]] item has no name");
+    if (!hasPoints) fail(path, table, "manual item '" + item.name + "' has no points");
+    return item;
+}
+
 }  // namespace
 
 const std::vector<LimitRange>& limitRanges() {
@@ -138,6 +161,12 @@ bool isValidTestName(const std::string& name, std::string* why) {
     if (name.rfind("exclude:", 0) == 0) return no("starts with 'exclude:'");
     if (name[0] == '-') return no("starts with '-', which Catch2 reads as an option");
     return true;
+}
+
+double Rubric::manualPoints() const {
+    double total = 0;
+    for (const ManualItem& m : manual) total += m.points;
+    return total;
 }
 
 double Rubric::totalPoints() const {
@@ -194,9 +223,20 @@ Rubric loadRubric(const std::string& path) {
                 rubric.tests.push_back(std::move(test));
             }
             hasTests = true;
+        } else if (k == "manual") {
+            const toml::array* items = node.as_array();
+            if (!items) fail(path, node, "items graded by hand are written [[manual]]");
+            for (const toml::node& m : *items) {
+                if (!m.is_table()) fail(path, m, "items graded by hand are written [[manual]]");
+                ManualItem item = readManual(path, *m.as_table());
+                for (const ManualItem& other : rubric.manual) {
+                    if (other.name == item.name) fail(path, m, "two manual items are named '" + item.name + "'");
+                }
+                rubric.manual.push_back(std::move(item));
+            }
         } else {
-            fail(path, node,
-                 "unknown key '" + k + "' (known: assignment, title, submission, extra_files, [limits], [[test]])");
+            fail(path, node, "unknown key '" + k +
+                                 "' (known: assignment, title, submission, extra_files, [limits], [[test]], [[manual]])");
         }
     }
     if (rubric.assignment.empty()) throw RubricError(path + ": 'assignment' is missing");

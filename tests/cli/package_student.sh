@@ -4,7 +4,8 @@ source "$(dirname "$0")/../smoke/lib.sh"
 
 run_capture package "$SIMLAB" package student -o bundle
 check "package student succeeds" test "$(status_of package)" -eq 0
-check "the bundle has no solutions/" test ! -e bundle/solutions
+check "the bundle has no solutions/ but the worked example project's" \
+  bash -c "test \"\$(ls bundle/solutions)\" = biosim -a -f bundle/solutions/biosim/Project.cpp"
 check "the bundle has no hidden tests" test ! -e bundle/assignments/apple/tests/hidden.cpp
 check "the bundle has no corpus or CI" test ! -e bundle/tests -a ! -e bundle/.ci
 check "the bundle keeps the starter and the handout" test -f bundle/starter/apple/NewtonsApple.cpp -a -f bundle/handouts/apple.md

@@ -109,6 +109,12 @@ void prepare(const Manifest& manifest, const std::string& root, bool solution) {
         const std::string built = solution ? a["reference_program_path"] : a["program_path"];
         if (solution && built.empty()) throw std::runtime_error("no reference solution for " + id);
         fs::create_symlink(built, root + "/build/bin/" + program);
+        // A reference program with a name of its own (the project's worked example, babyboot) is there too.
+        const std::string reference = a["reference_program_path"];
+        const std::string referenceName = fs::path(reference).filename().string();
+        if (!reference.empty() && referenceName != program + "-reference" && referenceName != program) {
+            fs::create_symlink(reference, root + "/build/bin/" + referenceName);
+        }
         if (solution) {
             // The whole finished folder: the solution and what is handed in beside it (answers, say).
             const fs::path finished = fs::path(a["solution"].get<std::string>()).parent_path();

@@ -79,3 +79,28 @@ TEST_CASE("malformed rubrics are refused with the file, line and what is wrong",
     CHECK_THROWS_WITH(loadText("[[test]]\nname = \"x\"\npoints = 1\n"), Contains("'assignment' is missing"));
     CHECK_THROWS_WITH(simlab::loadRubric("no-such-rubric.toml"), Contains("no-such-rubric.toml"));
 }
+
+TEST_CASE("the project's rubric grades 75 points and leaves 25 to be graded by hand", "[rubric]") {
+    const simlab::Rubric rubric = simlab::loadRubric(SIMLAB_SOURCE_DIR "/assignments/biosim/rubric.toml");
+    CHECK(rubric.totalPoints() == 75);
+    CHECK(rubric.manualPoints() == 25);
+    REQUIRE(rubric.manual.size() == 3);
+    CHECK(rubric.manual[0].name == "the schematic shows the points, bodies and joints clearly");
+    CHECK(rubric.manual[0].points == 10);
+    CHECK(rubric.extraFiles == std::vector<std::string>{"project.toml"});
+}
+
+TEST_CASE("a manual item needs a name and points, and nothing else unknown", "[rubric]") {
+    const std::string test = "[[test]]\nname = \"a test\"\npoints = 1\n";
+    CHECK_THROWS_WITH(loadText(kHeader + test + "[[manual]]\npoints = 5\n"), Catch::Contains("has no name"));
+    CHECK_THROWS_WITH(loadText(kHeader + test + "[[manual]]\nname = \"clarity\"\n"), Catch::Contains("has no points"));
+    CHECK_THROWS_WITH(loadText(kHeader + test + "[[manual]]\nname = \"clarity\"\npoints = 5\nfloor = 2\n"),
+                      Catch::Contains("unknown key 'floor' in a [[manual]] item"));
+    CHECK_THROWS_WITH(loadText(kHeader + test + "[[manual]]\nname = \"a\"\npoints = 5\n[[manual]]\nname = \"a\"\npoints = 1\n"),
+                      Catch::Contains("two manual items are named 'a'"));
+    CHECK_THROWS_WITH(loadText(kHeader + test + "[[manual]]\nname = \"a\"\npoints = -1\n"),
+                      Catch::Contains("'points' must be between 0 and 1e6"));
+    const simlab::Rubric r = loadText(kHeader + test + "[[manual]]\nname = \"clarity\"\npoints = 5\n");
+    CHECK(r.totalPoints() == 1);
+    CHECK(r.manualPoints() == 5);
+}

@@ -35,6 +35,10 @@ bool atLeast(double value, double floor, double target, const std::string& unit)
 /// Returns value <= allowed (false for NaN).
 bool atMost(double value, double allowed, const std::string& what);
 
+/// A file for the student's feedback folder, e.g. attach("schematic-tree.svg", svg): a plain name (letters,
+/// digits, '.', '-', '_'; no leading dot), at most 256 KiB, three per test. simlab writes it beside the report.
+void attach(const std::string& name, const std::string& text);
+
 /// The path of a file the student handed in beside their source (one of the rubric's extra_files). Throws,
 /// saying where the file belongs, if they did not.
 std::string submissionFile(const std::string& name);

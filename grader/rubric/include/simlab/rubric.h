@@ -15,6 +15,10 @@
 //     visibility = "visible"               # or hidden, after_due_date, after_published (Gradescope's words)
 //     floor = 4                            # any other key is a number the test reads with grading::param
 //     target = 10
+//
+//     [[manual]]                           # graded by a person: listed as pending, with its points
+//     name = "the schematic is clear"
+//     points = 10
 #pragma once
 
 #include <map>
@@ -70,6 +74,13 @@ struct RubricTest {
     bool visible() const { return visibility == "visible"; }
 };
 
+/// A part of the grade only a person can judge (the clarity of a drawing, say): listed with its points as pending.
+struct ManualItem {
+    std::string name;
+    double points = 0;
+    std::string description;
+};
+
 struct Rubric {
     std::string path;
     std::string assignment;
@@ -78,8 +89,12 @@ struct Rubric {
     std::vector<std::string> extraFiles;  ///< handed in beside the submission; tests read them by name
     Limits limits;
     std::vector<RubricTest> tests;
+    std::vector<ManualItem> manual;  ///< graded by hand, beside the tests
 
+    /// Points of the tests (what simlab grades).
     double totalPoints() const;
+    /// Points of the manual items (pending until a person grades them).
+    double manualPoints() const;
     /// The test of that name, or nullptr.
     const RubricTest* find(const std::string& name) const;
 };

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -67,8 +68,21 @@ auto readValue(const nlohmann::json& j, T& value, const std::string& where) -> d
 template <class T>
 void readValue(const nlohmann::json& j, std::vector<T>& values, const std::string& where) {
     if (!j.is_array()) throw WireError(where + " is not a list");
-    values.assign(j.size(), T{});
-    for (std::size_t i = 0; i < j.size(); ++i) readValue(j[i], values[i], where + "[" + std::to_string(i) + "]");
+    values.clear();
+    values.reserve(j.size());
+    for (std::size_t i = 0; i < j.size(); ++i) {
+        T value{};  // every field is read before it is kept (a SimTK::Vec3 starts uninitialized)
+        readValue(j[i], value, where + "[" + std::to_string(i) + "]");
+        values.push_back(value);
+    }
+}
+
+/// A JSON object read as a map from its keys.
+template <class T>
+void readValue(const nlohmann::json& j, std::map<std::string, T>& values, const std::string& where) {
+    if (!j.is_object()) throw WireError(where + " is not an object");
+    values.clear();
+    for (auto it = j.begin(); it != j.end(); ++it) readValue(it.value(), values[it.key()], where + "." + it.key());
 }
 
 /// Field `key` of the object `j`.
@@ -92,6 +106,13 @@ nlohmann::json toJson(const std::vector<T>& values) {
     nlohmann::json list = nlohmann::json::array();
     for (const T& v : values) list.push_back(toJson(v));
     return list;
+}
+
+template <class T>
+nlohmann::json toJson(const std::map<std::string, T>& values) {
+    nlohmann::json object = nlohmann::json::object();
+    for (const auto& [key, v] : values) object[key] = toJson(v);
+    return object;
 }
 
 /// The first null (a non-finite number) in `j`, as a path like "samples[37].yLocation"; empty if there is none.

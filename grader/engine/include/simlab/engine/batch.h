@@ -110,7 +110,8 @@ std::string summaryCsv(const Rubric& rubric, const std::vector<StudentRecord>& r
 std::string junitXml(const Assignment& assignment, const std::vector<StudentRecord>& records);
 
 /// What a student reads: each test with its points, outcome and reason, and how to reproduce it.
-std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& record);
+std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& record,
+                             const std::vector<ManualItem>& manual = {}, const std::vector<std::string>& attached = {});
 
 /// Grade one student folder the way gradeClass does (used by Gradescope's run_autograder, where the folder is
 /// the uploaded submission, and by the corpus): find the file, read it with care, grade it on every test, or

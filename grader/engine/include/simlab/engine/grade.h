@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "simlab/engine/build.h"
@@ -39,6 +40,8 @@ struct TestResult {
     double seconds = 0;
     double cpuSeconds = 0;              ///< the student's process's CPU time
     std::string output;                 ///< what the student's process printed (cut short), for instructors
+    /// Files the test made for the student's feedback (a drawing of the model): name and contents.
+    std::vector<std::pair<std::string, std::string>> attachments;
 };
 
 struct GradeReport {
@@ -49,6 +52,7 @@ struct GradeReport {
     std::vector<TestResult> tests;  ///< those that ran (all, or the visible ones in a self-check)
     int notRunCount = 0;            ///< tests left for the instructor in a self-check
     double notRunPoints = 0;
+    std::vector<ManualItem> manual; ///< the rubric's items graded by a person: pending, not in score()
     double seconds = 0;
     std::string status = "graded";  ///< or "misnamed file", "missing file", "unsafe file", "file too large",
                                     ///< "did not compile", "forbidden code", "did not link"

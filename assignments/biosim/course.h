@@ -1,0 +1,63 @@
+// The course's side of a biosimulation project: checking a declaration, resolving --set values against it, and
+// driving the student's model (the course owns the stepping loop, so that every project is sampled, timed and
+// observed the same way). Used by the lab program and by the probe; the student's file never includes it.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "biosim/Project.h"
+#include "simlab/driver.h"
+#include "simlab/model_info.h"
+
+namespace biosim {
+
+/// Throws std::invalid_argument, in one line, unless the declaration is usable: a program name, parameters with
+/// valid unique names and finite ranges holding their defaults, at least one column, unique column names, claims
+/// that name declared parameters and columns, and run settings that validate.
+void checkDeclaration(const Declaration& declaration);
+
+/// The declared defaults, changed by `changes`. A name that was not declared, a non-finite value or one outside
+/// its range is std::invalid_argument in one line naming it and the range.
+Parameters resolve(const Declaration& declaration, const std::map<std::string, double>& changes = {});
+
+/// "NAME=VALUE" read as a change; anything else is std::invalid_argument in one line.
+std::pair<std::string, double> parseSetting(const std::string& text);
+
+/// The index of the declared column `name`; std::invalid_argument if there is none.
+int columnIndex(const Declaration& declaration, const std::string& name);
+
+/// What the course observes of one run: the student's rows, and beside them what the course reads from the
+/// state itself (generalized coordinates and speeds, kinetic and potential energy from Simbody's own sums).
+struct Observed {
+    std::vector<double> time;
+    std::vector<std::vector<double>> rows;  ///< sample()'s values, one per declared column
+    std::vector<std::vector<double>> q;     ///< the state's generalized coordinates at each sample
+    std::vector<std::vector<double>> u;     ///< and its generalized speeds
+    std::vector<double> kinetic;            ///< J
+    std::vector<double> potential;          ///< J
+    simlab::ModelInfo model;
+    simlab::IntegratorStats integrator;
+};
+
+/// Digits to which two runs of one model agree at their last samples, in every generalized coordinate and speed:
+/// each q relative to the largest |q| of run `b` and each u to the largest |u|, so that one that stays at zero is
+/// measured against the motion, never against its own round-off.
+double agreementDigits(const Observed& a, const Observed& b);
+
+/// Hooks for the lab program between the course's steps; each may be empty.
+struct ObserveHooks {
+    std::function<void(Model&)> afterBuild;  ///< e.g. attach a visualizer
+    std::function<void(double time, const std::vector<double>& row)> onRow;
+    std::function<void()> afterRun;
+};
+
+/// Build the model for `parameters`, set its initial state, integrate with the integrator `settings` name at its
+/// accuracy and sample at t = 0 and at every settings.sampleTime(k). A row of the wrong length, an integrator
+/// failure or a non-finite value throws std::runtime_error saying where (the time and the column).
+Observed observe(const Declaration& declaration, const Parameters& parameters, const simlab::RunSettings& settings,
+                 const ObserveHooks& hooks = {});
+
+}  // namespace biosim

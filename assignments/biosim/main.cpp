@@ -1,0 +1,156 @@
+// A project's lab program (the course's side): runs the model written in Project.cpp with its declared
+// parameters, changed by --set NAME=VALUE, prints its table as it goes and writes the results file. It also draws
+// the model's schematic (--schematic), lists the parameters (--parameters) and computes the answer to the
+// project's question (--answer).
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+
+#include "biosim/course.h"
+#include "biosim/schematic.h"
+#include "simlab/program.h"
+#include "simlab/results_table.h"
+
+namespace {
+
+using biosim::Declaration;
+using biosim::Parameters;
+
+struct Options {
+    simlab::ProgramOptions program;
+    std::vector<std::string> settings;  ///< --set NAME=VALUE, as given
+    bool schematic = false;
+    bool listParameters = false;
+    bool answer = false;
+};
+
+Parameters parametersFrom(const Declaration& d, const Options& o) {
+    std::map<std::string, double> changes;
+    for (const std::string& text : o.settings) {
+        const auto [name, value] = biosim::parseSetting(text);
+        changes[name] = value;
+    }
+    return biosim::resolve(d, changes);
+}
+
+std::vector<std::string> headerOf(const Declaration& d) {
+    std::vector<std::string> columns{"time"};
+    for (const biosim::Column& c : d.columns) columns.push_back(c.name);
+    return columns;
+}
+
+int listParameters(const Declaration& d) {
+    std::printf("%s: %s\n\n%-10s %-8s %12s %12s %12s  %s\n", d.program.c_str(), d.title.c_str(), "parameter", "unit",
+                "default", "min", "max", "meaning");
+    for (const biosim::Parameter& p : d.parameters) {
+        std::printf("%-10s %-8s %12.6g %12.6g %12.6g  %s\n", p.name.c_str(), p.unit.c_str(), p.value, p.min, p.max,
+                    p.meaning.c_str());
+    }
+    std::printf("\n%-10s %-8s  %s\n", "column", "unit", "meaning");
+    for (const biosim::Column& c : d.columns) std::printf("%-10s %-8s  %s\n", c.name.c_str(), c.unit.c_str(), c.meaning.c_str());
+    return 0;
+}
+
+int drawSchematic(const Declaration& d, const Parameters& p, const Options& o) {
+    biosim::Model model;
+    biosim::buildModel(p, model);
+    const biosim::Schematic schematic =
+        biosim::schematicOf(model, biosim::initialState(p, model), d.title);
+    const std::string base = d.program;
+    const std::string dot = biosim::treeDot(schematic);
+    auto write = [](const std::string& path, const std::string& text) {
+        std::ofstream out(path, std::ios::binary);
+        if (!(out << text)) throw std::runtime_error("cannot write " + path);
+    };
+    write(base + "-tree.dot", dot);
+    write(base + "-t0.svg", biosim::pictureSvg(schematic));
+    std::printf("Wrote %s-tree.dot and %s-t0.svg (the model at t = 0)\n", base.c_str(), base.c_str());
+    write(base + "-tree.svg", biosim::renderSvg(dot));
+    std::printf("Wrote %s-tree.svg (the multibody tree)\n", base.c_str());
+    (void)o;
+    return 0;
+}
+
+int runOnce(const Declaration& d, const Parameters& p, const Options& o) {
+    const simlab::RunSettings& run = o.program.run;
+    simlab::ResultsTable table(headerOf(d), o.program.output, o.program.quiet ? nullptr : &std::cout);
+    std::printf("%s: %s; %s, accuracy %g, dt %g s, 0 <= t <= %g s\n", d.program.c_str(), d.title.c_str(),
+                run.integrator.c_str(), run.accuracy, run.dt, run.finalTime);
+    std::fflush(stdout);
+    biosim::ObserveHooks hooks;
+    std::function<void()> finishAnimation;
+    if (o.program.animate) {
+        hooks.afterBuild = [&](biosim::Model& m) {
+            finishAnimation = simlab::attachVisualizer(m.system, 1.0 / 30, 0.02);
+        };
+        hooks.afterRun = [&] { finishAnimation(); };
+    }
+    hooks.onRow = [&](double t, const std::vector<double>& row) {
+        std::vector<double> values{t};
+        values.insert(values.end(), row.begin(), row.end());
+        table.add(values);
+    };
+    const biosim::Observed observed = biosim::observe(d, p, run, hooks);
+    std::printf("\nResults written to %s (%s, %d steps; the model has %d degrees of freedom)\n", table.path().c_str(),
+                observed.integrator.method.c_str(), observed.integrator.stepsTaken,
+                observed.model.degreesOfFreedom());
+    return 0;
+}
+
+int runTrade(const Declaration& d, const Parameters& p, const Options& o) {
+    // No exact solution is known for a project in general: digits are measured against the same model run with
+    // Runge-Kutta-Merson at accuracy 1e-13, whose own error is far below what the table shows, in every generalized
+    // coordinate and speed at the final time (see biosim::agreementDigits).
+    simlab::RunSettings best = o.program.run;
+    best.integrator = "RungeKuttaMerson";
+    best.accuracy = 1e-13;
+    best.fixedStep = false;
+    const biosim::Observed reference = biosim::observe(d, p, best);
+    char figure[96];
+    std::snprintf(figure, sizeof figure, "q and u at t = %g s (against accuracy 1e-13)", o.program.run.finalTime);
+    simlab::printTrade(std::cout, o.program.run, figure, [&](const simlab::RunSettings& run) {
+        const biosim::Observed observed = biosim::observe(d, p, run);
+        return simlab::TradePoint{biosim::agreementDigits(observed, reference), observed.integrator.stepsTaken,
+                                  observed.integrator.realizations};
+    }, o.program.repeats);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string program = argc > 0 ? argv[0] : "project";
+    if (const std::size_t slash = program.rfind('/'); slash != std::string::npos) program = program.substr(slash + 1);
+    return simlab::runGuarded(program, [&] {
+        const Declaration d = biosim::declare();
+        biosim::checkDeclaration(d);
+        Options o;
+        o.program.run = d.run;
+        o.program.output = d.program + "Results.txt";
+
+        CLI::App app{d.title + "\nA biosimulation project: its parameters are set with --set NAME=VALUE (see --parameters).",
+                     program};
+        simlab::addProgramOptions(app, o.program);
+        app.add_option("--set", o.settings, "change a declared parameter, e.g. --set g=0 (repeatable)")
+            ->type_name("NAME=VALUE");
+        app.add_flag("--parameters", o.listParameters, "list the parameters (units, defaults, ranges) and columns");
+        app.add_flag("--schematic", o.schematic,
+                     "draw the model: <program>-tree.svg (the multibody tree) and <program>-t0.svg (the model at t = 0)");
+        app.add_flag("--answer", o.answer, "compute the number that answers the project's question");
+        if (const int status = simlab::parseCommandLine(app, argc, argv); status >= 0) return status;
+
+        simlab::validate(o.program.run);
+        const Parameters p = parametersFrom(d, o);
+        if (o.listParameters) return listParameters(d);
+        if (o.schematic) return drawSchematic(d, p, o);
+        if (o.answer) {
+            const double value = biosim::answer(p);
+            std::printf("%s: the answer to the project's question is %.6g\n", d.program.c_str(), value);
+            return std::isfinite(value) ? 0 : 1;
+        }
+        return o.program.trade ? runTrade(d, p, o) : runOnce(d, p, o);
+    });
+}

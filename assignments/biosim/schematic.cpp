@@ -1,0 +1,599 @@
+#include "biosim/schematic.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "biosim/Project.h"
+#include "simlab/model_info.h"
+
+extern char** environ;
+
+namespace biosim {
+
+namespace {
+
+// ---- Text ---------------------------------------------------------------------------------------------------
+
+/// The length of the valid UTF-8 sequence starting at text[i], or 0 if it is not one.
+std::size_t utf8Length(const std::string& text, std::size_t i) {
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned char c = byte(i);
+    if (c < 0x80) return 1;
+    const std::size_t n = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+    if (n == 0) return 0;
+    unsigned int code = c & (0x7Fu >> n);  // the lead byte's payload
+    if (i + n > text.size()) return 0;
+    for (std::size_t k = 1; k < n; ++k) {
+        if ((byte(i + k) & 0xC0u) != 0x80u) return 0;
+        code = (code << 6) | (byte(i + k) & 0x3Fu);
+    }
+    const bool overlong = (n == 3 && code < 0x800) || (n == 4 && code < 0x10000);
+    const bool surrogate = code >= 0xD800 && code <= 0xDFFF;
+    const bool c1Control = code >= 0x80 && code <= 0x9F;
+    if (overlong || surrogate || c1Control || code > 0x10FFFF) return 0;
+    return n;
+}
+
+/// The text as valid UTF-8 without control characters: a line break or tab becomes `lineBreak` (or a space), any
+/// other control character or invalid byte is dropped.
+std::string plainText(const std::string& text, const std::string& lineBreak = " ") {
+    std::string out;
+    for (std::size_t i = 0; i < text.size();) {
+        const char c = text[i];
+        if (c == '\n') {
+            out += lineBreak;
+            ++i;
+        } else if (c == '\t' || c == '\r') {
+            out += ' ';
+            ++i;
+        } else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) {
+            ++i;
+        } else if (const std::size_t n = utf8Length(text, i)) {
+            out.append(text, i, n);
+            i += n;
+        } else {
+            ++i;
+        }
+    }
+    return out;
+}
+
+/// Text for the inside of a DOT double-quoted string. A line break becomes DOT's own "\n" (centred line); a
+/// backslash is doubled, so that "\N", "\G", ... in a name are not taken for Graphviz's escapes.
+std::string dotEscape(const std::string& text) {
+    std::string out;
+    for (const char c : plainText(text, "\x01")) {
+        if (c == '\x01') out += "\\n";
+        else if (c == '\\') out += "\\\\";
+        else if (c == '"') out += "\\\"";
+        else out += c;
+    }
+    return out;
+}
+
+std::string xmlEscape(const std::string& text) {
+    std::string out;
+    for (const char c : plainText(text)) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            case '\'': out += "&apos;"; break;
+            default: out += c;
+        }
+    }
+    return out;
+}
+
+/// Four significant digits; round-off below `tiny` shows as 0.
+std::string number(double value, double tiny = 0) {
+    if (!std::isfinite(value)) return std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf");
+    if (std::abs(value) <= tiny || value == 0) return "0";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", value);
+    return text;
+}
+
+std::string vector3(const SimTK::Vec3& v, double tiny) {
+    return "(" + number(v[0], tiny) + ", " + number(v[1], tiny) + ", " + number(v[2], tiny) + ")";
+}
+
+/// A coordinate for SVG: two decimals are a hundredth of a pixel.
+std::string px(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", std::isfinite(value) ? value : 0.0);
+    return std::strcmp(text, "-0.00") == 0 ? "0.00" : text;
+}
+
+// ---- The schematic ------------------------------------------------------------------------------------------
+
+/// Each named body's index, from Model::bodies (the first name in the map's order if a body has two).
+std::map<int, std::string> namesByIndex(const Model& model) {
+    std::map<int, std::string> names;
+    for (const auto& [name, body] : model.bodies) {
+        if (body.isEmptyHandle()) continue;
+        names.emplace(static_cast<int>(body.getMobilizedBodyIndex()), name);
+    }
+    return names;
+}
+
+/// The unit directions of a mobilizer's motion, as columns of its inboard frame F. Simbody's Pin turns about
+/// F's z, the Slider moves along F's x, the Universal turns about F's x then y, the Cylinder and Screw turn about
+/// (and slide along) z, the Planar turns about z (and slides in F's xy plane).
+std::vector<int> motionAxesInF(const std::string& kind) {
+    if (kind == "Pin" || kind == "Cylinder" || kind == "Screw" || kind == "Planar") return {2};
+    if (kind == "Slider") return {0};
+    if (kind == "Universal") return {0, 1};
+    return {};
+}
+
+SchematicBody describeBody(const SimTK::SimbodyMatterSubsystem& matter, const SimTK::State& s, int index,
+                           const std::map<int, std::string>& names) {
+    const SimTK::MobilizedBody& body = matter.getMobilizedBody(SimTK::MobilizedBodyIndex(index));
+    const SimTK::MobilizedBody& parent = body.getParentMobilizedBody();
+    SchematicBody b;
+    const auto named = names.find(index);
+    b.name = named != names.end() ? named->second : "body " + std::to_string(index);
+    b.index = index;
+    b.parent = static_cast<int>(parent.getMobilizedBodyIndex());
+
+    // Simbody keeps the inertia about the body's origin; the schematic shows it about the mass center.
+    const SimTK::MassProperties& mp = body.getBodyMassProperties(s);
+    b.mass = mp.getMass();
+    b.com = mp.getMassCenter();
+    const SimTK::Inertia central = mp.calcCentralInertia();
+    b.moments = central.getMoments();
+    b.products = central.getProducts();
+
+    b.joint = simlab::mobilizerKind(matter, index);
+    b.dof = body.getNumU(s);
+    // The inboard frame F is fixed on the parent: X_GF = X_GP * X_PF.
+    const SimTK::Transform X_GF = parent.getBodyTransform(s) * body.getInboardFrame(s);
+    for (const int axis : motionAxesInF(b.joint)) b.axes.push_back(SimTK::Vec3(X_GF.R().col(axis)));
+    b.jointLocation = X_GF.p();
+    b.origin = body.getBodyOriginLocation(s);
+    b.massCenter = body.findMassCenterLocationInGround(s);
+    return b;
+}
+
+// ---- The tree in DOT ----------------------------------------------------------------------------------------
+
+std::string nodeLabel(const SchematicBody& b) {
+    std::string label = dotEscape(b.name);
+    if (b.mass == 0) return label + "\\nmassless";
+    label += "\\nm = " + number(b.mass) + " kg";
+    // Round-off in the shift to the mass center is not a product of inertia.
+    const double scale = std::max({std::abs(b.moments[0]), std::abs(b.moments[1]), std::abs(b.moments[2])});
+    const double tiny = 1e-9 * scale;
+    label += "\\nI = diag" + vector3(b.moments, tiny) + " kg m²";
+    const SimTK::Vec3& p = b.products;
+    if (std::abs(p[0]) > tiny || std::abs(p[1]) > tiny || std::abs(p[2]) > tiny) {
+        label += "\\nIxy, Ixz, Iyz = " + vector3(p, tiny) + " kg m²";
+    }
+    return label;
+}
+
+std::string edgeLabel(const SchematicBody& b) {
+    std::string label = dotEscape(b.joint) + "\\n" + std::to_string(b.dof) + " dof";
+    for (std::size_t i = 0; i < b.axes.size(); ++i) {
+        label += (i == 0 ? (b.axes.size() == 1 ? "\\naxis " : "\\naxes ") : ", ") + vector3(b.axes[i], 1e-9);
+    }
+    return label;
+}
+
+// ---- The picture ----------------------------------------------------------------------------------------------
+
+// The page: a heading, two panels side by side, a scale bar and a legend under them. Pixels.
+constexpr double kPanelWidth = 400, kPanelGap = 20, kSide = 10;
+constexpr double kPanelTop = 34, kPanelHeight = 360, kPlotMargin = 40, kTitleHeight = 26;
+constexpr double kPageWidth = 2 * kSide + 2 * kPanelWidth + kPanelGap, kPageHeight = 460;
+
+/// An orthographic view: which Ground coordinates go right and up on the page.
+struct View {
+    std::string title;
+    SimTK::Vec3 right, up;
+};
+
+const View kViews[2] = {{"front: x right, y up", {1, 0, 0}, {0, 1, 0}},  // looking along -z
+                        {"side: z left, y up", {0, 0, -1}, {0, 1, 0}}};  // looking along -x
+
+SimTK::Vec3 finite(const SimTK::Vec3& v) {
+    SimTK::Vec3 out;
+    for (int i = 0; i < 3; ++i) out[i] = std::isfinite(v[i]) ? v[i] : 0.0;
+    return out;
+}
+
+/// Meters to page pixels: one scale for both views, so that their heights (both y) agree.
+struct Frame {
+    double scale = 1;   ///< px per m
+    SimTK::Vec3 center;  ///< m, the middle of the points' bounding box
+
+    /// The point as seen in `view`, on the panel whose left edge is `left`.
+    std::pair<double, double> page(const View& view, double left, const SimTK::Vec3& p) const {
+        const SimTK::Vec3 d = finite(p) - center;
+        const double middleX = left + kPanelWidth / 2;
+        const double middleY = kPanelTop + kTitleHeight + (kPanelHeight - kTitleHeight) / 2;
+        return {middleX + scale * SimTK::dot(d, view.right), middleY - scale * SimTK::dot(d, view.up)};
+    }
+};
+
+Frame fitFrame(const Schematic& schematic) {
+    SimTK::Vec3 low(0), high(0);
+    bool any = false;
+    for (const SchematicBody& b : schematic.bodies) {
+        for (const SimTK::Vec3& p : {b.jointLocation, b.origin, b.massCenter}) {
+            const SimTK::Vec3 q = finite(p);
+            for (int i = 0; i < 3; ++i) {
+                low[i] = any ? std::min(low[i], q[i]) : q[i];
+                high[i] = any ? std::max(high[i], q[i]) : q[i];
+            }
+            any = true;
+        }
+    }
+    Frame frame;
+    frame.center = (low + high) / 2;
+    SimTK::Vec3 span = high - low;
+    // All points at one spot (or none): show a 1 m box around it.
+    if (std::max({span[0], span[1], span[2]}) < 1e-9) span = SimTK::Vec3(1);
+    const double tiny = 1e-6 * std::max({span[0], span[1], span[2]});
+    const double width = kPanelWidth - 2 * kPlotMargin;
+    const double height = kPanelHeight - kTitleHeight - 2 * kPlotMargin;
+    frame.scale = std::min(width / std::max({span[0], span[2], tiny}), height / std::max(span[1], tiny));
+    return frame;
+}
+
+/// The largest 1, 2 or 5 times a power of ten not longer than `meters`.
+double roundLength(double meters) {
+    const double decade = std::pow(10.0, std::floor(std::log10(meters)));
+    for (const double step : {5.0, 2.0, 1.0}) {
+        if (step * decade <= meters * (1 + 1e-12)) return step * decade;
+    }
+    return decade;
+}
+
+/// A disk's radius in px: its area grows with the mass, between 2.5 and 10 px.
+double diskRadius(double mass, double heaviest) {
+    if (!(mass > 0) || !(heaviest > 0)) return 2.5;
+    return std::clamp(10 * std::sqrt(mass / heaviest), 2.5, 10.0);
+}
+
+void line(std::ostringstream& svg, std::pair<double, double> a, std::pair<double, double> b,
+          const char* style = "stroke=\"#555\" stroke-width=\"2\"") {
+    svg << "<line x1=\"" << px(a.first) << "\" y1=\"" << px(a.second) << "\" x2=\"" << px(b.first) << "\" y2=\""
+        << px(b.second) << "\" " << style << "/>\n";
+}
+
+void text(std::ostringstream& svg, double x, double y, const std::string& content, const char* extra = "") {
+    svg << "<text x=\"" << px(x) << "\" y=\"" << px(y) << "\"" << extra << ">" << xmlEscape(content)
+        << "</text>\n";
+}
+
+/// A ground support: a triangle with its apex at the joint and hatching along its base, on the side away from
+/// the body (above a hanging pendulum, below a standing one). `away` is +1 for below, -1 for above.
+void groundMark(std::ostringstream& svg, std::pair<double, double> at, double away) {
+    const auto [x, y] = at;
+    svg << "<path d=\"M" << px(x) << " " << px(y + away * 5) << " L" << px(x - 8) << " " << px(y + away * 15)
+        << " L" << px(x + 8) << " " << px(y + away * 15) << " Z\" fill=\"#ddd\" stroke=\"#000\"/>\n";
+    for (int k = 0; k < 4; ++k) {
+        const double x0 = x - 10 + 5 * k;
+        line(svg, {x0 + 4, y + away * 15}, {x0, y + away * 20}, "stroke=\"#000\" stroke-width=\"1\"");
+    }
+}
+
+void drawPanel(std::ostringstream& svg, const Schematic& schematic, const View& view, double left,
+               const Frame& frame) {
+    svg << "<rect x=\"" << px(left) << "\" y=\"" << px(kPanelTop) << "\" width=\"" << px(kPanelWidth)
+        << "\" height=\"" << px(kPanelHeight) << "\" fill=\"none\" stroke=\"#bbb\"/>\n";
+    text(svg, left + kPanelWidth / 2, kPanelTop + 18, view.title, " text-anchor=\"middle\" font-weight=\"bold\"");
+    const auto at = [&](const SimTK::Vec3& p) { return frame.page(view, left, p); };
+    // The links: a body from its joint to its mass center, and on from there to the joints it carries.
+    for (const SchematicBody& b : schematic.bodies) {
+        line(svg, at(b.jointLocation), at(b.massCenter));
+        for (const SchematicBody& child : schematic.bodies) {
+            if (child.parent == b.index) line(svg, at(b.massCenter), at(child.jointLocation));
+        }
+    }
+    double heaviest = 0;
+    for (const SchematicBody& b : schematic.bodies) heaviest = std::max(heaviest, b.mass);
+    for (const SchematicBody& b : schematic.bodies) {
+        const auto origin = at(b.origin);
+        line(svg, {origin.first - 3, origin.second - 3}, {origin.first + 3, origin.second + 3},
+             "stroke=\"#08c\" stroke-width=\"1\"");
+        line(svg, {origin.first - 3, origin.second + 3}, {origin.first + 3, origin.second - 3},
+             "stroke=\"#08c\" stroke-width=\"1\"");
+        const auto joint = at(b.jointLocation);
+        if (b.parent == 0) groundMark(svg, joint, at(b.massCenter).second > joint.second + 0.5 ? -1 : 1);
+        svg << "<circle cx=\"" << px(joint.first) << "\" cy=\"" << px(joint.second)
+            << "\" r=\"5\" fill=\"#fff\" stroke=\"#000\" stroke-width=\"1.5\"/>\n";
+    }
+    for (const SchematicBody& b : schematic.bodies) {
+        const auto center = at(b.massCenter);
+        const double r = diskRadius(b.mass, heaviest);
+        svg << "<circle cx=\"" << px(center.first) << "\" cy=\"" << px(center.second) << "\" r=\"" << px(r)
+            << "\" fill=\"" << (b.mass > 0 ? "#c33" : "#999") << "\"/>\n";
+        text(svg, center.first + r + 4, center.second - r - 2, b.name);
+    }
+}
+
+void drawScaleBar(std::ostringstream& svg, const Frame& frame) {
+    const double length = roundLength(120 / frame.scale);  // about a hundred pixels
+    const double x = kSide + 10, y = kPanelTop + kPanelHeight + 30, w = length * frame.scale;
+    line(svg, {x, y}, {x + w, y}, "stroke=\"#000\" stroke-width=\"2\"");
+    line(svg, {x, y - 5}, {x, y + 5}, "stroke=\"#000\" stroke-width=\"2\"");
+    line(svg, {x + w, y - 5}, {x + w, y + 5}, "stroke=\"#000\" stroke-width=\"2\"");
+    char label[32];
+    std::snprintf(label, sizeof label, "%g m", length);
+    text(svg, x + w + 8, y + 4, label);
+}
+
+void drawLegend(std::ostringstream& svg) {
+    const double y = kPageHeight - 18, x = kPageWidth / 2 - 60;
+    svg << "<circle cx=\"" << px(x) << "\" cy=\"" << px(y - 4) << "\" r=\"5\" fill=\"#fff\" stroke=\"#000\"/>\n";
+    text(svg, x + 10, y, "joint");
+    svg << "<circle cx=\"" << px(x + 70) << "\" cy=\"" << px(y - 4) << "\" r=\"5\" fill=\"#c33\"/>\n";
+    text(svg, x + 80, y, "mass center (area grows with mass)");
+    line(svg, {x + 310, y - 7}, {x + 316, y - 1}, "stroke=\"#08c\" stroke-width=\"1\"");
+    line(svg, {x + 310, y - 1}, {x + 316, y - 7}, "stroke=\"#08c\" stroke-width=\"1\"");
+    text(svg, x + 322, y, "body origin");
+}
+
+// ---- Running dot ----------------------------------------------------------------------------------------------
+
+constexpr std::size_t kMaxOutput = 8u << 20;  // bytes of SVG
+constexpr std::size_t kMaxErrors = 64u << 10;  // bytes of dot's stderr kept
+constexpr int kTimeLimit = 60;                 // s
+
+[[noreturn]] void fail(const std::string& what) { throw std::runtime_error(plainText(what)); }
+
+/// A file descriptor closed when it goes out of scope.
+struct Fd {
+    int fd = -1;
+    Fd() = default;
+    Fd(const Fd&) = delete;
+    Fd& operator=(const Fd&) = delete;
+    ~Fd() { close(); }
+    void close() {
+        if (fd >= 0) ::close(fd);
+        fd = -1;
+    }
+};
+
+void makePipe(Fd& readEnd, Fd& writeEnd) {
+    int ends[2];
+    if (pipe2(ends, O_CLOEXEC) != 0) fail(std::string("dot failed: cannot make a pipe: ") + std::strerror(errno));
+    readEnd.fd = ends[0];
+    writeEnd.fd = ends[1];
+}
+
+/// The child process, killed (if it still runs) and reaped when it goes out of scope.
+struct Child {
+    pid_t pid = -1;
+    Child() = default;
+    Child(const Child&) = delete;
+    Child& operator=(const Child&) = delete;
+    ~Child() {
+        if (pid > 0) {
+            ::kill(pid, SIGKILL);
+            wait();
+        }
+    }
+    int wait() {
+        int status = 0;
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        }
+        pid = -1;
+        return status;
+    }
+};
+
+/// Spawn `dot -Tsvg` with its stdin, stdout and stderr on the given pipe ends (no shell). The child gets an empty
+/// signal mask and the default SIGPIPE action whatever the caller has.
+void spawnDot(Child& child, int in, int out, int err) {
+    posix_spawn_file_actions_t actions;
+    posix_spawnattr_t attributes;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawnattr_init(&attributes);
+    posix_spawn_file_actions_adddup2(&actions, in, 0);
+    posix_spawn_file_actions_adddup2(&actions, out, 1);
+    posix_spawn_file_actions_adddup2(&actions, err, 2);
+    sigset_t none, pipeSignal;
+    sigemptyset(&none);
+    sigemptyset(&pipeSignal);
+    sigaddset(&pipeSignal, SIGPIPE);
+    posix_spawnattr_setsigmask(&attributes, &none);
+    posix_spawnattr_setsigdefault(&attributes, &pipeSignal);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+    char program[] = "dot", format[] = "-Tsvg";
+    char* argv[] = {program, format, nullptr};
+    const int error = posix_spawnp(&child.pid, "dot", &actions, &attributes, argv, environ);
+    posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attributes);
+    if (error == ENOENT) {
+        child.pid = -1;
+        fail("Graphviz's dot is not installed; run scripts/install-deps");
+    }
+    if (error != 0) {
+        child.pid = -1;
+        fail(std::string("dot failed: cannot start it: ") + std::strerror(error));
+    }
+}
+
+/// SIGPIPE blocked in this thread while it lives, so that writing to a pipe dot has closed is EPIPE instead of
+/// the end of the program. A SIGPIPE raised meanwhile (it goes to the writing thread) is consumed before the
+/// mask is restored; one that was already pending stays pending. No process-wide signal disposition changes.
+class SigpipeBlocked {
+public:
+    SigpipeBlocked() {
+        sigemptyset(&pipe_);
+        sigaddset(&pipe_, SIGPIPE);
+        sigset_t pending;
+        sigpending(&pending);
+        wasPending_ = sigismember(&pending, SIGPIPE) == 1;
+        pthread_sigmask(SIG_BLOCK, &pipe_, &old_);
+    }
+    SigpipeBlocked(const SigpipeBlocked&) = delete;
+    SigpipeBlocked& operator=(const SigpipeBlocked&) = delete;
+    ~SigpipeBlocked() {
+        if (!wasPending_) {
+            const timespec zero{0, 0};
+            while (sigtimedwait(&pipe_, nullptr, &zero) < 0 && errno == EINTR) {
+            }
+        }
+        pthread_sigmask(SIG_SETMASK, &old_, nullptr);
+    }
+
+private:
+    sigset_t pipe_, old_;
+    bool wasPending_ = false;
+};
+
+void setNonBlocking(int fd) { fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK); }
+
+/// Read what is there; false at end of file. What would go past `cap` bytes is dropped, and `overflow` set.
+bool drain(int fd, std::string& into, std::size_t cap, bool& overflow) {
+    char buffer[65536];
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n == 0) return false;
+    if (n < 0) return errno == EAGAIN || errno == EINTR;
+    const std::size_t room = cap - std::min(cap, into.size());
+    into.append(buffer, std::min(room, static_cast<std::size_t>(n)));
+    if (static_cast<std::size_t>(n) > room) overflow = true;
+    return true;
+}
+
+std::string firstLine(const std::string& text) {
+    std::size_t start = text.find_first_not_of(" \t\r\n");
+    if (start == std::string::npos) return "";
+    return text.substr(start, text.find('\n', start) - start);
+}
+
+std::string exitReason(int status) {
+    if (WIFSIGNALED(status)) return "killed by signal " + std::to_string(WTERMSIG(status));
+    return "exit status " + std::to_string(WEXITSTATUS(status));
+}
+
+}  // namespace
+
+Schematic schematicOf(const Model& model, const SimTK::State& state, const std::string& title) {
+    // A copy, realized to Position: the caller's state stays as it was.
+    SimTK::State s = state;
+    model.system.realize(s, SimTK::Stage::Position);
+    const simlab::ModelInfo info = simlab::describeModel(model.matter, s);
+    Schematic schematic;
+    schematic.title = title;
+    schematic.degreesOfFreedom = info.degreesOfFreedom();
+    schematic.constraints = info.constraintEquations;
+    const std::map<int, std::string> names = namesByIndex(model);
+    for (int i = 1; i < model.matter.getNumBodies(); ++i) {
+        schematic.bodies.push_back(describeBody(model.matter, s, i, names));
+    }
+    return schematic;
+}
+
+std::string treeDot(const Schematic& schematic) {
+    std::ostringstream dot;
+    const int n = schematic.degreesOfFreedom;
+    std::string graphLabel = dotEscape(schematic.title) + "\\n" + std::to_string(n) +
+                             (n == 1 ? " degree" : " degrees") + " of freedom";
+    if (schematic.constraints > 0) {
+        graphLabel += ", " + std::to_string(schematic.constraints) + " constraint equations";
+    }
+    dot << "digraph \"tree\" {\n"
+        << "  graph [label=\"" << graphLabel << "\", labelloc=\"t\", fontname=\"Helvetica\"];\n"
+        << "  node [shape=\"box\", style=\"rounded\", fontname=\"Helvetica\", fontsize=\"11\"];\n"
+        << "  edge [fontname=\"Helvetica\", fontsize=\"10\"];\n"
+        << "  \"n0\" [label=\"Ground\", shape=\"box\", style=\"filled\", fillcolor=\"#dddddd\"];\n";
+    for (const SchematicBody& b : schematic.bodies) {
+        dot << "  \"n" << b.index << "\" [label=\"" << nodeLabel(b) << "\"];\n";
+    }
+    for (const SchematicBody& b : schematic.bodies) {
+        dot << "  \"n" << b.parent << "\" -> \"n" << b.index << "\" [label=\"" << edgeLabel(b) << "\"];\n";
+    }
+    dot << "}\n";
+    return dot.str();
+}
+
+std::string pictureSvg(const Schematic& schematic) {
+    const Frame frame = fitFrame(schematic);
+    std::ostringstream svg;
+    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << px(kPageWidth)
+        << "\" height=\"" << px(kPageHeight) << "\" viewBox=\"0 0 " << px(kPageWidth) << " " << px(kPageHeight)
+        << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
+        << "<title>" << xmlEscape(schematic.title) << "</title>\n"
+        << "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
+    text(svg, kPageWidth / 2, 22, schematic.title + " at t = 0", " text-anchor=\"middle\" font-size=\"14\"");
+    for (int v = 0; v < 2; ++v) drawPanel(svg, schematic, kViews[v], kSide + v * (kPanelWidth + kPanelGap), frame);
+    drawScaleBar(svg, frame);
+    drawLegend(svg);
+    svg << "</svg>\n";
+    return svg.str();
+}
+
+std::string renderSvg(const std::string& dot) {
+    Fd inRead, inWrite, outRead, outWrite, errRead, errWrite;
+    makePipe(inRead, inWrite);
+    makePipe(outRead, outWrite);
+    makePipe(errRead, errWrite);
+    Child child;
+    spawnDot(child, inRead.fd, outWrite.fd, errWrite.fd);
+    inRead.close();
+    outWrite.close();
+    errWrite.close();
+
+    // One poll loop feeds dot's stdin and drains its stdout and stderr, so neither side waits on a full pipe.
+    std::string output, errors;
+    bool outputOverflow = false, errorsOverflow = false;
+    std::size_t written = 0;
+    {
+        const SigpipeBlocked guard;
+        setNonBlocking(inWrite.fd);
+        setNonBlocking(outRead.fd);
+        setNonBlocking(errRead.fd);
+        if (dot.empty()) inWrite.close();
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kTimeLimit);
+        // Until dot has read all (or stopped reading: EPIPE) and closed its outputs.
+        while (inWrite.fd >= 0 || outRead.fd >= 0 || errRead.fd >= 0) {
+            pollfd fds[3] = {{inWrite.fd, POLLOUT, 0}, {outRead.fd, POLLIN, 0}, {errRead.fd, POLLIN, 0}};
+            if (std::chrono::steady_clock::now() > deadline) fail("dot failed: it took longer than 60 s");
+            if (poll(fds, 3, 1000) < 0 && errno != EINTR) fail(std::string("dot failed: ") + std::strerror(errno));
+            if (inWrite.fd >= 0 && (fds[0].revents & (POLLOUT | POLLERR | POLLHUP))) {
+                const ssize_t n = ::write(inWrite.fd, dot.data() + written, dot.size() - written);
+                if (n > 0) written += static_cast<std::size_t>(n);
+                // Done, or dot stopped reading (EPIPE: it has failed and says why on stderr).
+                if (written == dot.size() || (n < 0 && errno != EAGAIN && errno != EINTR)) inWrite.close();
+            }
+            if (outRead.fd >= 0 && fds[1].revents && !drain(outRead.fd, output, kMaxOutput, outputOverflow)) {
+                outRead.close();
+            }
+            if (errRead.fd >= 0 && fds[2].revents && !drain(errRead.fd, errors, kMaxErrors, errorsOverflow)) {
+                errRead.close();
+            }
+            if (outputOverflow) fail("dot failed: its SVG is larger than 8 MiB");
+        }
+    }
+    const int status = child.wait();
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        const std::string why = firstLine(errors);
+        fail("dot failed: " + (why.empty() ? exitReason(status) : why));
+    }
+    if (output.empty()) fail("dot failed: it wrote nothing");
+    return output;
+}
+
+}  // namespace biosim

@@ -1,0 +1,386 @@
+// The biosimulation project: the experiments the grader runs on any project through its contract, and the checks
+// of its description. Points and thresholds are in ../rubric.toml; the parts only a person can judge are its
+// [[manual]] items.
+#include <functional>
+#include <iomanip>
+#include <set>
+#include <sstream>
+
+#include "biosim_testing.h"
+
+namespace biosim::testing {
+
+namespace {
+
+std::string show(double value) { return grading::show(value); }
+
+/// One of the five parts of project.toml: whether it is there with substance, and if not, what to do.
+struct Part {
+    std::string name;
+    std::string missing;  ///< empty when the part is complete
+};
+
+Part schematicPart(const toml::table& t, const Schematic& model) {
+    Part part{"schematic", ""};
+    const toml::array* bodies = t["schematic"]["bodies"].as_array();
+    const toml::array* points = t["schematic"]["points"].as_array();
+    if (!bodies || bodies->empty() || !points || points->empty()) {
+        part.missing = "[schematic] lists the model's points and bodies: points = [...], bodies = [...]";
+        return part;
+    }
+    std::set<std::string> listed, built;
+    for (const auto& b : *bodies) listed.insert(b.value_or(std::string()));
+    for (const SchematicBody& b : model.bodies) built.insert(b.name);
+    if (listed != built) {
+        std::string names;
+        for (const std::string& n : built) names += (names.empty() ? "" : ", ") + n;
+        part.missing = "[schematic] bodies must name the bodies the model builds (" + names + ")";
+    }
+    return part;
+}
+
+Part paragraphPart(const toml::table& t) {
+    const std::string text = t["description"]["text"].value_or(std::string());
+    if (isPlaceholder(text) || wordCount(text) < 40) {
+        return {"description", "[description] text is a paragraph of at least 40 words about the system (has " +
+                                   std::to_string(wordCount(text)) + ")"};
+    }
+    return {"description", ""};
+}
+
+Part considerationsPart(const toml::table& t) {
+    const toml::array* list = t["considerations"]["list"].as_array();
+    int substantial = 0;
+    if (list) {
+        for (const auto& item : *list) {
+            const std::string text = item.value_or(std::string());
+            if (!isPlaceholder(text) && wordCount(text) >= 3) ++substantial;
+        }
+    }
+    if (substantial < 3) {
+        return {"considerations", "[considerations] list holds at least 3 modelling considerations of 3 words or more (has " +
+                                      std::to_string(substantial) + ")"};
+    }
+    return {"considerations", ""};
+}
+
+Part questionPart(const toml::table& t) {
+    const std::string text = t["question"]["text"].value_or(std::string());
+    const auto answer = t["question"]["answer"].value<double>();
+    if (isPlaceholder(text) || wordCount(text) < 6 || text.find('?') == std::string::npos) {
+        return {"question", "[question] text asks an interesting question, of 6 words or more, ending in '?'"};
+    }
+    if (!answer || !std::isfinite(*answer) || t["question"]["unit"].value_or(std::string()).empty()) {
+        return {"question", "[question] gives the answer your program computes (answer = <number>, unit = \"...\")"};
+    }
+    return {"question", ""};
+}
+
+Part experimentsPart(const toml::table& t, const std::vector<ExperimentInfo>& inCode, int minimum) {
+    const toml::array* list = t["experiment"].as_array();
+    std::set<std::string> described;
+    if (list) {
+        for (const auto& item : *list) {
+            const toml::table* e = item.as_table();
+            if (!e) continue;
+            const std::string name = (*e)["name"].value_or(std::string());
+            const std::string shows = (*e)["shows"].value_or(std::string());
+            if (!name.empty() && !isPlaceholder(shows) && wordCount(shows) >= 4) described.insert(name);
+        }
+    }
+    std::set<std::string> coded;
+    for (const ExperimentInfo& e : inCode) coded.insert(e.name);
+    if (static_cast<int>(described.size()) < minimum) {
+        return {"experiments", "[[experiment]] entries describe at least " + std::to_string(minimum) +
+                                   " of your experiments (name = ..., shows = \"what it validates\")"};
+    }
+    for (const std::string& name : described) {
+        if (!coded.count(name)) return {"experiments", "experiment '" + name + "' is described but experiments() has none of that name"};
+    }
+    for (const std::string& name : coded) {
+        if (!described.count(name)) return {"experiments", "experiment '" + name + "' is in experiments() but not described in project.toml"};
+    }
+    return {"experiments", ""};
+}
+
+/// Relative departure of `column` from its value at t = 0, against the column's largest magnitude.
+double relativeDrift(const std::vector<double>& column) {
+    double drift = 0;
+    for (const double v : column) drift = std::max(drift, std::abs(v - column.front()));
+    return drift / scaleOf(column);
+}
+
+/// The outcome of one of the student's own experiments: the figure it measured and whether it holds.
+struct Verdict {
+    bool holds = false;
+    std::string line;
+};
+
+Verdict judgeExperiment(const Declaration& d, const ExperimentInfo& e) {
+    if (!(e.tolerance >= 1e-15 && e.tolerance <= 1e-2)) {
+        return {false, "tolerance " + show(e.tolerance) + " is outside [1e-15, 1e-2]: too loose to test anything"};
+    }
+    const bool needsColumn = e.kind != "at rest";
+    int column = -1;
+    if (needsColumn) {
+        try {
+            column = columnIndex(d, e.column);
+        } catch (const std::invalid_argument&) {
+            return {false, "names no declared column ('" + e.column + "')"};
+        }
+    }
+    auto within = [&](double figure, const std::string& what) {
+        return Verdict{figure <= e.tolerance, what + " " + show(figure) + ", allowed " + show(e.tolerance)};
+    };
+    if (e.kind == "periodic") {
+        if (!(e.period > 0 && e.period <= 1e4)) return {false, "period " + show(e.period) + " s is not a positive time"};
+        const Observed run = runWith(e.set, settingsFor(d, e.period));
+        const std::vector<double> c = columnOf(run, static_cast<std::size_t>(column));
+        return within(std::abs(c.back() - c.front()) / scaleOf(c), e.column + "(T) - " + e.column + "(0), relative,");
+    }
+    const Observed run = runWith(e.set, settingsFor(d, e.finalTime));
+    if (e.kind == "at rest") {
+        return within(std::max(largestDrift(run.q), largestDrift(run.u)), "largest change of q or u");
+    }
+    const std::vector<double> c = columnOf(run, static_cast<std::size_t>(column));
+    if (e.kind == "conserved") return within(relativeDrift(c), "relative drift of " + e.column);
+    if (e.kind == "symmetric") {
+        const Observed mirrored = runWith(merged(e.set, e.mirror), settingsFor(d, e.finalTime));
+        const std::vector<double> m = columnOf(mirrored, static_cast<std::size_t>(column));
+        double worst = 0;
+        for (std::size_t k = 0; k < std::min(c.size(), m.size()); ++k) worst = std::max(worst, std::abs(m[k] - e.sign * c[k]));
+        return within(worst / scaleOf(c), "largest mirror mismatch, relative,");
+    }
+    if (e.kind == "formula") {
+        if (!e.hasFormula) return {false, "has no formula"};
+        const std::vector<double> f = observe::decode<std::vector<double>>(
+            observe::ask("formula", {{"name", e.name}, {"times", simlab::wire::toJson(run.time)}}), "formula");
+        if (f.size() != c.size()) return {false, "its formula gave " + std::to_string(f.size()) + " values for " + std::to_string(c.size()) + " samples"};
+        double worst = 0;
+        for (std::size_t k = 0; k < c.size(); ++k) worst = std::max(worst, std::abs(c[k] - f[k]));
+        return within(worst / scaleOf(c), "largest departure from the formula, relative,");
+    }
+    return {false, "unknown kind '" + e.kind + "'"};
+}
+
+/// The value of parameter `p` that the "changes the motion" test tries: halfway to the far end of its range.
+double otherValue(const Parameter& p) {
+    return p.max - p.value >= p.value - p.min ? p.value + (p.max - p.value) / 2 : p.value - (p.value - p.min) / 2;
+}
+
+}  // namespace
+
+TEST_CASE("the description has all five parts", "[biosim][description]") {
+    const toml::table t = description();
+    // The schematic's bodies and the experiments' names are checked against the code; the rest is text.
+    auto fromCode = [](const std::string& part, const std::function<Part()>& check) {
+        try {
+            return check();
+        } catch (const observe::StudentError& e) {
+            return Part{part, "the code must run to check this part: " + std::string(e.what())};
+        }
+    };
+    const int minimum = static_cast<int>(grading::param("minimum_experiments"));
+    const std::vector<Part> parts = {
+        fromCode("schematic", [&] { return schematicPart(t, schematicWith({})); }), paragraphPart(t),
+        considerationsPart(t), questionPart(t),
+        fromCode("experiments", [&] { return experimentsPart(t, declaredExperiments(), minimum); })};
+    int complete = 0;
+    for (const Part& part : parts) {
+        if (part.missing.empty()) ++complete;
+        else grading::feedback("next: " + part.missing);
+    }
+    grading::measured(complete, "parts", std::to_string(complete) + " of 5 parts complete");
+    grading::partialCredit(complete / 5.0);
+    CHECK(complete == 5);
+}
+
+TEST_CASE("the default scene runs from t = 0 to the final time", "[biosim][run]") {
+    const Declaration d = declared();
+    const Observed run = runWith({}, d.run);
+    const std::size_t expected = static_cast<std::size_t>(d.run.sampleCount()) + 1;
+    grading::measured(static_cast<double>(run.time.size()), "samples",
+                      std::to_string(run.time.size()) + " samples to t = " + show(run.time.back()) + " s (" +
+                          run.integrator.method + ", " + std::to_string(run.integrator.stepsTaken) + " steps)");
+    CHECK(run.time.size() == expected);
+    CHECK(run.time.back() == Approx(d.run.finalTime).margin(1e-9));
+}
+
+TEST_CASE("with no gravity and no motion the model stays at rest", "[biosim][rest]") {
+    const Declaration d = declared();
+    if (d.claims.atRest.empty()) {
+        FAIL("the declaration's claims.atRest gives no settings for a scene at rest (no gravity, no initial motion)");
+    }
+    const Observed run = runWith(d.claims.atRest, d.run);
+    const double moved = std::max(largestDrift(run.q), largestDrift(run.u));
+    CHECK(grading::atMost(moved, grading::param("tolerance"), "largest change of any q (rad or m) or u (rad/s or m/s)"));
+}
+
+TEST_CASE("the mechanical energy is conserved when nothing is claimed to dissipate", "[biosim][energy]") {
+    const Declaration d = declared();
+    if (!d.claims.energyConserved) {
+        grading::measured(0, "", "not claimed: the declaration says the model dissipates energy");
+        SUCCEED();
+        return;
+    }
+    const Observed run = runWith(d.claims.energyWhen, d.run);
+    // Near a zero of the total, a relative error means nothing: the drift is measured against the energy the
+    // motion exchanges, the largest kinetic energy or change of potential energy in the run.
+    double scale = 0, drift = 0;
+    const double e0 = run.kinetic.front() + run.potential.front();
+    for (std::size_t k = 0; k < run.time.size(); ++k) {
+        scale = std::max({scale, run.kinetic[k], std::abs(run.potential[k] - run.potential.front())});
+        drift = std::max(drift, std::abs(run.kinetic[k] + run.potential[k] - e0));
+    }
+    if (!(scale > 0)) FAIL("nothing moved, so there is no energy to conserve: choose claims.energyWhen with some motion");
+    const double allowed = grading::param("tolerance") * d.run.accuracy;
+    CHECK(grading::atMost(drift / scale, allowed, "energy drift relative to the energy exchanged"));
+}
+
+TEST_CASE("a tenfold tighter accuracy gains digits until double precision runs out", "[biosim][convergence]") {
+    const Declaration d = declared();
+    // Runs at accuracy 1e-3 ... 1e-10 with RungeKuttaMerson, sampled only ten times so that the sampling never
+    // caps the steps. Each is compared with the next, ten times tighter, in every generalized coordinate and speed
+    // at the final time (read from the state).
+    simlab::RunSettings s = d.run;
+    s.integrator = "RungeKuttaMerson";
+    s.fixedStep = false;
+    s.dt = s.finalTime / 10;
+    std::vector<Observed> runs;
+    for (int exponent = 3; exponent <= 10; ++exponent) {
+        s.accuracy = std::pow(10.0, -exponent);
+        runs.push_back(runWith({}, s));
+    }
+    std::vector<double> digits;
+    std::ostringstream list;
+    for (std::size_t k = 0; k + 1 < runs.size(); ++k) {
+        digits.push_back(agreementDigits(runs[k], runs[k + 1]));
+        list << (k ? ", " : "") << std::fixed << std::setprecision(1) << digits.back();
+    }
+    // The gain per decade over the last three decades before double precision's limit (or the end): where the
+    // error is the integrator's own, not yet swamped by round-off, and past any start where the runs have not
+    // converged at all (a chaotic model's loose runs share no digits).
+    const double saturated = grading::param("saturated");
+    std::size_t last = 0;
+    while (last + 1 < digits.size() && digits[last] < saturated) ++last;
+    const std::size_t first = last >= 3 ? last - 3 : 0;
+    const double gain = last > first ? (digits[last] - digits[first]) / static_cast<double>(last - first) : 0.0;
+    grading::feedback("digits agreed at t = " + show(s.finalTime) + " s between accuracies 1e-3/1e-4 ... 1e-9/1e-10: " +
+                      list.str());
+    CHECK(grading::atLeast(gain, grading::param("floor"), grading::param("target"), "digits gained per decade"));
+}
+
+TEST_CASE("the model has exactly the degrees of freedom claimed", "[biosim][model]") {
+    const Declaration d = declared();
+    // The schematic, drawn from the model the student built, goes to their feedback.
+    const Schematic schematic = schematicWith({});
+    grading::attach("schematic-t0.svg", pictureSvg(schematic));
+    const std::string dot = treeDot(schematic);
+    try {
+        grading::attach("schematic-tree.svg", renderSvg(dot));
+    } catch (const std::runtime_error& e) {
+        grading::attach("schematic-tree.dot", dot);
+        grading::feedback(std::string("the tree is in schematic-tree.dot: ") + e.what());
+    }
+    const Observed run = runWith({}, settingsFor(d, std::min(d.run.finalTime, d.run.dt)));
+    const simlab::ModelInfo& info = run.model;
+    grading::measured(info.degreesOfFreedom(), "degrees of freedom",
+                      info.summary() + "; claimed " + std::to_string(d.claims.degreesOfFreedom));
+    if (info.mobilities != info.degreesOfFreedom()) {
+        grading::feedback("constraints take back motions the mobilizers gave: give each body a mobilizer with only "
+                          "the motions the scene needs");
+    }
+    INFO(info.summary() << "; the declaration claims " << d.claims.degreesOfFreedom << " degrees of freedom");
+    CHECK(d.claims.degreesOfFreedom > 0);
+    CHECK(info.degreesOfFreedom() == d.claims.degreesOfFreedom);
+    CHECK(info.mobilities == d.claims.degreesOfFreedom);
+}
+
+TEST_CASE("every parameter changes the motion", "[biosim][parameters]") {
+    const Declaration d = declared();
+    REQUIRE_FALSE(d.parameters.empty());
+    const simlab::RunSettings s = settingsFor(d, std::min(d.run.finalTime, grading::param("seconds")));
+    const Observed base = runWith({}, s);
+    int changing = 0;
+    std::string inert;
+    for (const Parameter& p : d.parameters) {
+        const Observed other = runWith({{p.name, otherValue(p)}}, s);
+        // The motion (q, u) or, for a parameter the motion does not depend on (a mass, say), the energy
+        // Simbody computes from the model: read from the state, never from the student's own columns.
+        double energyChange = 0;
+        for (std::size_t k = 0; k < std::min(base.time.size(), other.time.size()); ++k) {
+            energyChange = std::max(energyChange, std::abs(base.kinetic[k] + base.potential[k] - other.kinetic[k] - other.potential[k]));
+        }
+        const bool changes = largestDifference(base.q, other.q) > 1e-9 || largestDifference(base.u, other.u) > 1e-9 ||
+                             energyChange > 1e-12;
+        if (changes) ++changing;
+        else inert += (inert.empty() ? "" : ", ") + p.name;
+    }
+    const int n = static_cast<int>(d.parameters.size());
+    grading::measured(changing, "parameters", std::to_string(changing) + " of " + std::to_string(n) +
+                                                   " parameters change the motion" +
+                                                   (inert.empty() ? "" : "; not: " + inert));
+    if (!inert.empty()) grading::feedback("is a number hard-wired where " + inert + " belongs? Read it with p[\"name\"]");
+    grading::partialCredit(static_cast<double>(changing) / n);
+    CHECK(changing == n);
+}
+
+TEST_CASE("no NaN or Inf or integrator failure across the parameter ranges", "[biosim][ranges]") {
+    const Declaration d = declared();
+    int tried = 0, ran = 0;
+    std::string first;
+    for (const Parameter& p : d.parameters) {
+        for (const double value : {p.min, p.max}) {
+            ++tried;
+            try {
+                runWith({{p.name, value}}, d.run);
+                ++ran;
+            } catch (const observe::StudentError& e) {
+                if (first.empty()) first = p.name + " = " + show(value) + ": " + e.what();
+            } catch (const observe::NonFinite& e) {
+                if (first.empty()) first = p.name + " = " + show(value) + ": " + e.what();
+            }
+        }
+    }
+    grading::measured(ran, "runs", std::to_string(ran) + " of " + std::to_string(tried) +
+                                       " runs at the ends of the ranges finished" + (first.empty() ? "" : "; first failure: " + first));
+    grading::partialCredit(tried ? static_cast<double>(ran) / tried : 0);
+    CHECK(ran == tried);
+}
+
+TEST_CASE("the project's own experiments pass", "[biosim][experiments]") {
+    const Declaration d = declared();
+    const std::vector<ExperimentInfo> list = declaredExperiments();
+    const int minimum = static_cast<int>(grading::param("minimum_experiments"));
+    int passed = 0;
+    for (const ExperimentInfo& e : list) {
+        Verdict v;
+        try {
+            v = judgeExperiment(d, e);
+        } catch (const observe::StudentError& error) {
+            v = {false, std::string("threw: ") + error.what()};
+        } catch (const observe::NonFinite& error) {
+            v = {false, error.what()};
+        }
+        if (v.holds) ++passed;
+        grading::feedback((v.holds ? "holds: " : "fails: ") + e.name + " (" + e.kind + "): " + v.line);
+    }
+    const int counted = std::max(static_cast<int>(list.size()), minimum);
+    grading::measured(passed, "experiments", std::to_string(passed) + " of " + std::to_string(list.size()) +
+                                                 " experiments hold (at least " + std::to_string(minimum) + " needed)");
+    grading::partialCredit(static_cast<double>(passed) / counted);
+    CHECK(passed == counted);
+}
+
+TEST_CASE("the question is answered with the number the program computes", "[biosim][answer]") {
+    const toml::table t = description();
+    const auto written = t["question"]["answer"].value<double>();
+    if (!written) FAIL("project.toml's [question] has no answer = <number>");
+    const double computed = observe::decode<Answer>(observe::ask("answer", nlohmann::json::object()), "answer").value;
+    const double difference = std::abs(*written - computed) / std::max(std::abs(computed), 1e-300);
+    grading::measured(computed, t["question"]["unit"].value_or(std::string()),
+                      "the program computes " + show(computed) + "; project.toml says " + show(*written));
+    CHECK(difference <= grading::param("tolerance"));
+}
+
+}  // namespace biosim::testing

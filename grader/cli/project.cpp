@@ -1,0 +1,119 @@
+// simlab project new: a biosimulation project of one's own, from the template (or from the worked example), in a
+// folder that builds with CMake against this simlab.
+#include <CLI/CLI.hpp>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "commands.h"
+#include "simlab/engine/errors.h"
+#include "simlab/engine/files.h"
+#include "simlab/engine/manifest.h"
+#include "simlab/engine/text.h"
+
+namespace simlab::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ProjectOptions {
+    std::string name;
+    std::string dir = ".";
+    std::string from = "template";
+};
+
+std::string readText(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw engine::UsageError("cannot read " + path.string());
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+std::string replaceAll(std::string text, const std::string& from, const std::string& to) {
+    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+        text.replace(at, from.size(), to);
+    }
+    return text;
+}
+
+void requireProjectName(const std::string& name) {
+    bool ok = !name.empty() && name.size() <= 40 && std::isalpha(static_cast<unsigned char>(name[0]));
+    for (const char c : name) ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
+    if (!ok) {
+        throw engine::UsageError("a project's name is a letter, then up to 39 letters, digits or _ (it names its "
+                                 "program), not '" + engine::printable(name) + "'");
+    }
+}
+
+void runNew(const ProjectOptions& o) {
+    requireProjectName(o.name);
+    const engine::Manifest manifest = engine::loadManifest();
+    const engine::Assignment& biosim = manifest.find("biosim");
+    fs::path source;
+    if (o.from == "template") {
+        source = fs::path(biosim.starter).parent_path();
+    } else {
+        if (biosim.solution.empty()) throw engine::UsageError("this copy of simlab has no worked example");
+        source = fs::path(biosim.solution).parent_path();
+    }
+    if (!fs::is_directory(o.dir)) throw engine::UsageError("no folder " + engine::printable(o.dir));
+    const fs::path folder = fs::absolute(fs::path(o.dir) / o.name).lexically_normal();
+    if (fs::exists(fs::symlink_status(folder)) && !(fs::is_directory(folder) && fs::is_empty(folder))) {
+        throw engine::UsageError(engine::printable(folder.string()) + " already exists; choose another name or folder");
+    }
+    fs::create_directories(folder);
+
+    std::string code = readText(source / "Project.cpp");
+    std::string description = readText(source / "project.toml");
+    if (o.from == "template") {
+        code = replaceAll(replaceAll(code, "PROJECT_NAME", o.name), "PROJECT_TITLE", o.name);
+        description = replaceAll(replaceAll(description, "PROJECT_NAME", o.name), "PROJECT_TITLE", o.name);
+    } else {
+        code = replaceAll(code, "d.program = \"babyboot\";", "d.program = \"" + o.name + "\";");
+        description = replaceAll(description, "name = \"babyboot\"", "name = \"" + o.name + "\"");
+    }
+    engine::writeFileAtomically((folder / "Project.cpp").string(), code);
+    engine::writeFileAtomically((folder / "project.toml").string(), description);
+    engine::writeFileAtomically(
+        (folder / "CMakeLists.txt").string(),
+        "# " + o.name + ": a biosimulation project, built against the simlab in " + manifest.buildDir +
+            " (made by `simlab project new`).\n"
+            "cmake_minimum_required(VERSION 3.25)\n"
+            "project(" + o.name + " CXX)\n"
+            "include(\"" + manifest.buildDir + "/simlab-project.cmake\")\n"
+            "simlab_project(" + o.name + " Project.cpp)\n");
+    engine::writeFileAtomically((folder / ".gitignore").string(), "build/\n*Results.txt\n");
+
+    const std::string shown = engine::printable(folder.string());
+    std::cout << "Made " << shown << " from the " << (o.from == "template" ? "project template" : "baby boot")
+              << ": Project.cpp, project.toml, CMakeLists.txt.\n"
+              << "Next:\n"
+              << "  cd " << shown << "\n"
+              << "  cmake -S . -B build && cmake --build build     # build the lab program ./build/" << o.name << "\n"
+              << "  ./build/" << o.name << " --help\n"
+              << "  simlab check biosim Project.cpp                # what is done, and what to do next\n";
+}
+
+}  // namespace
+
+void addProject(CLI::App& app) {
+    CLI::App* project = app.add_subcommand("project", "Biosimulation projects: start one of your own.");
+    project->require_subcommand(1);
+    auto options = std::make_shared<ProjectOptions>();
+    CLI::App* make = project->add_subcommand(
+        "new", "Make a project folder DIR/NAME from the template: Project.cpp (your model), project.toml (its "
+               "description) and a CMakeLists.txt that builds its lab program ./build/NAME.");
+    make->add_option("name", options->name, "the project's name, which is also its program's")->required();
+    make->add_option("dir", options->dir, "the folder to make it in")->capture_default_str();
+    make->add_option("--from", options->from, "template, or babyboot: start from the worked example")
+        ->check(CLI::IsMember({"template", "babyboot"}))
+        ->capture_default_str();
+    make->callback([options] { runNew(*options); });
+}
+
+}  // namespace simlab::cli

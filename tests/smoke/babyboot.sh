@@ -1,0 +1,51 @@
+# The baby boot and the project template, headless: the boot's results file has the columns the handout names, it
+# conserves energy to the accuracy asked for, --set changes the run and refuses unknown or out-of-range names in
+# one line, --schematic draws the tree and the model at t = 0, the trade table runs; the template stops at its first
+# SIMLAB_TODO; `simlab project new` makes a project that builds with CMake and runs.
+source "$(dirname "$0")/lib.sh"
+boot="$BIN_DIR/babyboot"
+
+run_capture default "$boot" --quiet --output boot.txt
+check "the boot runs at its defaults" test "$(status_of default)" -eq 0
+check "the results file has the columns time, qA, qB, uA, uB, energy" test "$(head -n 1 boot.txt)" = \
+  "$(printf 'time\tqA\tqB\tuA\tuB\tenergy')"
+check "a row for t = 0, 0.01, ..., 10" test "$(($(wc -l <boot.txt) - 1))" -eq 1001
+# The energy starts at zero (the rod horizontal, at rest); the swing exchanges g (mA LA + mB LB) = 0.2 J.
+check "the energy stays within 1e-7 J of zero" awk -F'\t' 'NR > 1 && ($6 > 1e-7 || $6 < -1e-7) { bad = 1 } END { exit bad }' boot.txt
+
+run_capture still "$boot" --quiet --set g=0 --set uA=0 --set uB=0 --output still.txt
+check "--set g=0 with no initial rates: the boot stays at rest" \
+  awk -F'\t' 'NR > 1 && ($2 != 90 || $3 != 1) { moved = 1 } END { exit moved }' still.txt
+run_capture typo "$boot" --set qa=10
+check "a misspelt parameter is a one-line error" \
+  bash -c "test $(status_of typo) -ne 0 && test \$(wc -l <typo.err) -eq 1 && grep -q \"no parameter named 'qa'\" typo.err"
+run_capture range "$boot" --set IBz=1
+check "an out-of-range value is a one-line error naming the range" \
+  bash -c "test $(status_of range) -ne 0 && grep -q 'IBz = 1 is outside its range \[0.0002, 0.0003\]' range.err"
+run_capture notnumber "$boot" --set g=heavy
+check "a value that is not a number is refused" grep -q "'heavy' is not a number" notnumber.err
+
+run_capture schematic "$boot" --schematic
+check "--schematic draws the tree (Graphviz) and the model at t = 0" \
+  bash -c "grep -q '<svg' babyboot-tree.svg && grep -q 'Pin' babyboot-tree.svg && grep -q 'front: x right, y up' babyboot-t0.svg"
+
+run_capture trade "$boot" --trade --final-time 1 --repeats 1
+check "the trade table lists all nine integrators" \
+  test "$(grep -cE '^(RungeKutta|ExplicitEuler|SemiExplicit|Verlet|CPodes)' trade.out)" -eq 9
+
+run_capture template "$BIN_DIR/project"
+check "the template stops with status 3 at its first TODO" \
+  bash -c "test $(status_of template) -eq 3 && grep -q 'not done yet (Project.cpp:' template.err"
+
+run_capture new "$SIMLAB" project new myboot --from babyboot
+check "simlab project new --from babyboot makes a project folder" \
+  test -f myboot/Project.cpp -a -f myboot/project.toml -a -f myboot/CMakeLists.txt
+run_capture again "$SIMLAB" project new myboot
+check "and will not overwrite it" bash -c "test $(status_of again) -eq 2 && grep -q 'already exists' again.err"
+run_capture badname "$SIMLAB" project new 'my boot'
+check "a name that cannot name a program is refused" test "$(status_of badname)" -eq 2
+(cmake -S myboot -B myboot/build >cmake.log 2>&1 && cmake --build myboot/build >>cmake.log 2>&1)
+check "the project builds with CMake against this simlab" test -x myboot/build/myboot || tail -20 cmake.log
+run_capture myboot myboot/build/myboot --quiet --final-time 1
+check "and runs as its own lab program" grep -q '^myboot: A swinging baby boot' myboot.out
+finish
