@@ -62,7 +62,8 @@ struct Claims {
     bool energyConserved = false;              ///< no dissipation: the mechanical energy keeps its value ...
     std::map<std::string, double> energyWhen;  ///< ... when the parameters take these values
     std::vector<Conserved> conserved;          ///< further columns that keep their value
-    /// Parameter values with no gravity, no other forces and no initial motion: the model must stay at rest.
+    /// Parameter values with no gravity, no other forces and no initial motion: the model must stay at rest, from
+    /// its initial configuration and from one nearby (the grader moves every coordinate a little).
     std::map<std::string, double> atRest;
 };
 

@@ -21,7 +21,39 @@ std::string show(double value) {
     return s.str();
 }
 
+/// Simbody's messages run over several lines: one line, and short.
+std::string oneLine(const std::string& text) {
+    std::string line;
+    for (const char c : text) {
+        const bool space = c == '\n' || c == '\t' || c == ' ';
+        if (!space) line += c;
+        else if (!line.empty() && line.back() != ' ') line += ' ';
+    }
+    if (line.size() > 240) line = line.substr(0, 240) + "...";
+    return line;
+}
+
+int simulations = 0;
+bool simulationRefused = false;
+
+/// The potential energy of the force elements Simbody implements itself (gravity, springs, ...), never a
+/// Force::Custom's, which is the student's own code.
+double builtInPotentialEnergy(const Model& model, const SimTK::State& state) {
+    double energy = 0;
+    for (int i = 0; i < model.forces.getNumForces(); ++i) {
+        const SimTK::Force& force = model.forces.getForce(SimTK::ForceIndex(i));
+        if (SimTK::Force::Custom::isInstanceOf(force) || force.isDisabled(state)) continue;
+        energy += force.calcPotentialEnergyContribution(state);
+    }
+    return energy;
+}
+
 }  // namespace
+
+int simulationCount() { return simulations; }
+
+NoSimulation::NoSimulation() { simulationRefused = true; }
+NoSimulation::~NoSimulation() { simulationRefused = false; }
 
 std::vector<double> Run::column(const std::string& name) const {
     const Declaration declaration = declare();
@@ -33,6 +65,8 @@ std::vector<double> Run::column(const std::string& name) const {
 }
 
 Run simulate(const Parameters& parameters, const simlab::RunSettings& settings) {
+    if (simulationRefused) throw std::logic_error("a formula may not call simulate(): it must compute its value itself");
+    ++simulations;
     const Declaration declaration = declare();
     // The student's values are checked like the command line's: declared names, within their ranges.
     const Parameters checked = resolve(declaration, parameters.values());
@@ -45,12 +79,19 @@ Observed observe(const Declaration& declaration, const Parameters& parameters, c
     using namespace SimTK;
     simlab::validate(settings);
     Model model;
+    const int courseSubsystems = model.system.getNumSubsystems();
     buildModel(parameters, model);
     if (hooks.afterBuild) hooks.afterBuild(model);
-    const State initial = initialState(parameters, model);
+    State initial = initialState(parameters, model);
+    if (hooks.initial) hooks.initial(initial);
 
     Observed observed;
     observed.model = simlab::describeModel(model.matter, initial);
+    observed.auxiliaryStates = initial.getNZ();
+    observed.addedSubsystems = model.system.getNumSubsystems() - courseSubsystems;
+    for (int i = 0; i < model.forces.getNumForces(); ++i) {
+        if (Force::Custom::isInstanceOf(model.forces.getForce(ForceIndex(i)))) ++observed.customForces;
+    }
     std::unique_ptr<Integrator> integrator = simlab::integratorNamed(settings.integrator, model.system, settings.dt);
     integrator->setAccuracy(settings.accuracy);
     if (settings.fixedStep) integrator->setFixedStepSize(settings.dt);
@@ -78,30 +119,26 @@ Observed observe(const Declaration& declaration, const Parameters& parameters, c
         observed.q.push_back(listOf(state.getQ()));
         observed.u.push_back(listOf(state.getU()));
         observed.kinetic.push_back(model.system.calcKineticEnergy(state));
-        observed.potential.push_back(model.system.calcPotentialEnergy(state));
+        observed.potential.push_back(builtInPotentialEnergy(model, state));
         observed.time.push_back(t);
         if (hooks.onRow) hooks.onRow(t, row);
         observed.rows.push_back(std::move(row));
     };
 
     TimeStepper stepper(model.system, *integrator);
-    stepper.initialize(initial);
+    try {
+        stepper.initialize(initial);
+    } catch (const std::exception& e) {
+        throw std::runtime_error("the integrator could not start from the initial state: " + oneLine(e.what()));
+    }
     record(stepper.getState());
     for (int k = 1; k <= settings.sampleCount(); ++k) {
         const double target = settings.sampleTime(k);
         try {
             stepper.stepTo(target);
         } catch (const std::exception& e) {
-            // Simbody's messages run over several lines: one line, and short.
-            std::string what;
-            for (const char c : std::string(e.what())) {
-                const bool space = c == '\n' || c == '\t' || c == ' ';
-                if (!space) what += c;
-                else if (!what.empty() && what.back() != ' ') what += ' ';
-            }
-            if (what.size() > 240) what = what.substr(0, 240) + "...";
             throw std::runtime_error("the integrator failed between t = " + show(stepper.getState().getTime()) +
-                                     " s and " + show(target) + " s: " + what);
+                                     " s and " + show(target) + " s: " + oneLine(e.what()));
         }
         record(stepper.getState());
     }

@@ -37,8 +37,13 @@ struct Observed {
     std::vector<std::vector<double>> q;     ///< the state's generalized coordinates at each sample
     std::vector<std::vector<double>> u;     ///< and its generalized speeds
     std::vector<double> kinetic;            ///< J
-    std::vector<double> potential;          ///< J
+    /// J: the potential energy of Simbody's own force elements in model.forces. A Force::Custom's is not counted:
+    /// the student writes it, and a potential written to match could hide a damper from the energy test.
+    std::vector<double> potential;
     simlab::ModelInfo model;
+    int auxiliaryStates = 0;  ///< z variables (a Measure's, a Force's): state the mobilities do not show
+    int customForces = 0;     ///< Force::Custom elements in model.forces
+    int addedSubsystems = 0;  ///< subsystems buildModel added beside the course's matter and forces
     simlab::IntegratorStats integrator;
 };
 
@@ -50,6 +55,7 @@ double agreementDigits(const Observed& a, const Observed& b);
 /// Hooks for the lab program between the course's steps; each may be empty.
 struct ObserveHooks {
     std::function<void(Model&)> afterBuild;  ///< e.g. attach a visualizer
+    std::function<void(SimTK::State&)> initial;  ///< change the initial state (the grader nudges it)
     std::function<void(double time, const std::vector<double>& row)> onRow;
     std::function<void()> afterRun;
 };
@@ -59,5 +65,18 @@ struct ObserveHooks {
 /// failure or a non-finite value throws std::runtime_error saying where (the time and the column).
 Observed observe(const Declaration& declaration, const Parameters& parameters, const simlab::RunSettings& settings,
                  const ObserveHooks& hooks = {});
+
+/// How many times simulate() has run in this process (the grader asks whether answer() simulated).
+int simulationCount();
+
+/// While one lives, simulate() refuses to run: a formula an experiment checks a column against must be a formula,
+/// not a copy of the run it is checked against.
+class NoSimulation {
+public:
+    NoSimulation();
+    ~NoSimulation();
+    NoSimulation(const NoSimulation&) = delete;
+    NoSimulation& operator=(const NoSimulation&) = delete;
+};
 
 }  // namespace biosim

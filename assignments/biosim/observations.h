@@ -14,7 +14,8 @@ SIMLAB_WIRE(Column, name, unit, meaning)
 SIMLAB_WIRE(Conserved, column, when)
 SIMLAB_WIRE(Claims, degreesOfFreedom, energyConserved, energyWhen, conserved, atRest)
 SIMLAB_WIRE(Declaration, program, title, parameters, columns, claims, run)
-SIMLAB_WIRE(Observed, time, rows, q, u, kinetic, potential, model, integrator)
+SIMLAB_WIRE(Observed, time, rows, q, u, kinetic, potential, model, integrator, auxiliaryStates, customForces,
+            addedSubsystems)
 SIMLAB_WIRE(SchematicBody, name, index, parent, mass, com, moments, products, joint, dof, axes, jointLocation, origin,
             massCenter)
 SIMLAB_WIRE(Schematic, title, bodies, degreesOfFreedom, constraints)
@@ -42,7 +43,8 @@ inline ExperimentInfo infoOf(const Experiment& e) {
 /// The answer to the project's question, as the program computes it.
 struct Answer {
     double value = 0;
+    int simulations = 0;  ///< runs of simulate() it took
 };
-SIMLAB_WIRE(Answer, value)
+SIMLAB_WIRE(Answer, value, simulations)
 
 }  // namespace biosim

@@ -29,7 +29,17 @@ SIMLAB_PROBE(projectObservations) {
     simlab::probe::add("run", [](const nlohmann::json& arguments) {
         const Declaration declaration = declare();
         const Parameters parameters = resolve(declaration, argument<Settings>(arguments, "set"));
-        return simlab::wire::toJson(observe(declaration, parameters, argument<simlab::RunSettings>(arguments, "settings")));
+        // "nudge" moves every generalized coordinate by that much at t = 0 (the integrator's initialization
+        // projects the state back onto any constraints and normalizes quaternions).
+        const double nudge = argument<double>(arguments, "nudge");
+        ObserveHooks hooks;
+        if (nudge != 0) {
+            hooks.initial = [nudge](SimTK::State& state) {
+                for (int i = 0; i < state.getNQ(); ++i) state.updQ()[i] += nudge;
+            };
+        }
+        return simlab::wire::toJson(
+            observe(declaration, parameters, argument<simlab::RunSettings>(arguments, "settings"), hooks));
     });
     simlab::probe::add("schematic", [](const nlohmann::json& arguments) {
         const Declaration declaration = declare();
@@ -43,10 +53,13 @@ SIMLAB_PROBE(projectObservations) {
         if (!e.formula) throw std::invalid_argument("experiment '" + e.name + "' has no formula");
         const Parameters parameters = resolve(declare(), e.set);
         std::vector<double> values;
+        const NoSimulation formulaOnly;
         for (const double t : argument<std::vector<double>>(arguments, "times")) values.push_back(e.formula(parameters, t));
         return simlab::wire::toJson(values);
     });
     simlab::probe::add("answer", [](const nlohmann::json&) {
-        return simlab::wire::toJson(Answer{answer(resolve(declare()))});
+        const int before = simulationCount();
+        const double value = answer(resolve(declare()));
+        return simlab::wire::toJson(Answer{value, simulationCount() - before});
     });
 }

@@ -16,8 +16,10 @@ void addList(CLI::App& app) {
             const Rubric rubric = loadRubric(a.rubric);
             int visible = 0;
             for (const RubricTest& t : rubric.tests) visible += t.visible();
-            std::printf("%-12s %-28s %-24s %2zu tests (%d visible), %g points\n", a.id.c_str(), a.title.c_str(),
+            std::printf("%-12s %-28s %-24s %2zu tests (%d visible), %g points", a.id.c_str(), a.title.c_str(),
                         a.source.c_str(), rubric.tests.size(), visible, rubric.totalPoints());
+            if (!rubric.manual.empty()) std::printf(" + %g graded by hand", rubric.manualPoints());
+            std::printf("\n");
         }
     });
 }

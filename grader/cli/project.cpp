@@ -48,6 +48,17 @@ void requireProjectName(const std::string& name) {
         throw engine::UsageError("a project's name is a letter, then up to 39 letters, digits or _ (it names its "
                                  "program), not '" + engine::printable(name) + "'");
     }
+    // The name becomes a CMake target: not one of the targets CMake's generators make themselves.
+    static const char* const reserved[] = {"all",     "clean",         "help",          "install",   "test",
+                                           "package", "package_source", "edit_cache",   "rebuild_cache",
+                                           "preinstall", "zero_check", "run_tests",     "all_build", "depend"};
+    std::string lower;
+    for (const char c : name) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* word : reserved) {
+        if (lower == word) {
+            throw engine::UsageError("'" + name + "' is a name CMake keeps for its own targets: choose another");
+        }
+    }
 }
 
 void runNew(const ProjectOptions& o) {

@@ -28,14 +28,16 @@ Declaration declare() {
     d.program = "PROJECT_NAME";
     d.title = "PROJECT_TITLE";
     // One Parameter per physical quantity: {name, unit, default, min, max, meaning}. Every value in a range
-    // must simulate: the grader runs each parameter at both ends of its range.
+    // must simulate: the grader runs each parameter at both ends of its range (declare the range the model is
+    // meant for, wider than a tenth of the default).
     d.parameters = {
         {"g", "m/s^2", 9.81, 0, 20, "gravity, along -y of Ground"},
     };
     // The quantities sample() returns, in order: {name, unit, meaning}. The course adds the time column.
     d.columns = {};
     // The degrees of freedom the scene requires, whether anything dissipates energy, and the settings with no
-    // gravity and no initial motion (the model must then stay at rest), e.g. {{"g", 0}}.
+    // gravity, no other force and no initial motion (the model must then stay at rest, even when the grader moves
+    // its coordinates a little), e.g. {{"g", 0}}.
     d.claims.degreesOfFreedom = 0;
     d.claims.energyConserved = false;
     d.claims.atRest = {};

@@ -8,7 +8,7 @@ check "setup.sh and run_autograder are at the root of the archive" \
   bash -c "unzip -Z1 autograder.zip | grep -qx setup.sh && unzip -Z1 autograder.zip | grep -qx run_autograder"
 check "the archive holds the hidden tests" bash -c "unzip -Z1 autograder.zip | grep -qx assignments/apple/tests/hidden.cpp"
 check "and no solutions (but the worked example project's)" \
-  bash -c "! unzip -Z1 autograder.zip | grep '^solutions/' | grep -qv '^solutions/biosim/'"
+  bash -c "! unzip -Z1 autograder.zip | grep '^solutions/.' | grep -qv '^solutions/biosim/'"
 
 root=$PWD/autograder
 mkdir -p "$root/source" "$root/submission" "$root/results"

@@ -29,6 +29,13 @@ run_capture schematic "$boot" --schematic
 check "--schematic draws the tree (Graphviz) and the model at t = 0" \
   bash -c "grep -q '<svg' babyboot-tree.svg && grep -q 'Pin' babyboot-tree.svg && grep -q 'front: x right, y up' babyboot-t0.svg"
 
+check "the handout's picture of the boot at t = 0 is the one the model draws" \
+  cmp -s babyboot-t0.svg "$SOURCE_DIR/handouts/figures/babyboot-t0.svg"
+if command -v gnuplot >/dev/null; then
+  run_capture plot gnuplot -e "results='boot.txt'; out='boot.png'" "$SOURCE_DIR/handouts/plots/babyboot.gp"
+  check "the handout's gnuplot script plots the boot's angles and energy" test -s boot.png -a "$(status_of plot)" -eq 0
+fi
+
 run_capture trade "$boot" --trade --final-time 1 --repeats 1
 check "the trade table lists all nine integrators" \
   test "$(grep -cE '^(RungeKutta|ExplicitEuler|SemiExplicit|Verlet|CPodes)' trade.out)" -eq 9
@@ -44,6 +51,9 @@ run_capture again "$SIMLAB" project new myboot
 check "and will not overwrite it" bash -c "test $(status_of again) -eq 2 && grep -q 'already exists' again.err"
 run_capture badname "$SIMLAB" project new 'my boot'
 check "a name that cannot name a program is refused" test "$(status_of badname)" -eq 2
+run_capture reserved "$SIMLAB" project new clean
+check "and so is a name CMake keeps for its own targets" \
+  bash -c "test $(status_of reserved) -eq 2 && grep -q 'CMake keeps' reserved.err && test ! -e clean"
 (cmake -S myboot -B myboot/build >cmake.log 2>&1 && cmake --build myboot/build >>cmake.log 2>&1)
 check "the project builds with CMake against this simlab" test -x myboot/build/myboot || tail -20 cmake.log
 run_capture myboot myboot/build/myboot --quiet --final-time 1

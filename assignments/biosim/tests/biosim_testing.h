@@ -30,10 +30,13 @@ inline Declaration declared() {
     return d;
 }
 
-/// A run of the student's model with `set` changed from the defaults.
-inline Observed runWith(const Settings& set, const simlab::RunSettings& settings) {
-    Observed o = observe::decode<Observed>(
-        observe::ask("run", {{"set", simlab::wire::toJson(set)}, {"settings", simlab::wire::toJson(settings)}}), "run");
+/// A run of the student's model with `set` changed from the defaults, and every generalized coordinate moved by
+/// `nudge` at t = 0.
+inline Observed runWith(const Settings& set, const simlab::RunSettings& settings, double nudge = 0) {
+    Observed o = observe::decode<Observed>(observe::ask("run", {{"set", simlab::wire::toJson(set)},
+                                                                {"settings", simlab::wire::toJson(settings)},
+                                                                {"nudge", nudge}}),
+                                           "run");
     const std::size_t n = o.time.size();
     INFO("the run's lists have different lengths");
     REQUIRE(n > 0);
@@ -79,6 +82,15 @@ inline double largestDifference(const std::vector<std::vector<double>>& a, const
         for (std::size_t i = 0; i < a[k].size(); ++i) largest = std::max(largest, std::abs(a[k][i] - b[k][i]));
     }
     return a.size() == b.size() ? largest : INFINITY;
+}
+
+/// Largest |value| over a list of vectors; 1 if every value is zero (so that "relative to it" stays defined).
+inline double largestMagnitude(const std::vector<std::vector<double>>& values) {
+    double largest = 0;
+    for (const auto& v : values) {
+        for (const double x : v) largest = std::max(largest, std::abs(x));
+    }
+    return largest > 0 ? largest : 1.0;
 }
 
 /// Largest departure of every q and u from its value at t = 0.

@@ -14,6 +14,13 @@ namespace {
 
 std::string show(double value) { return grading::show(value); }
 
+/// A parameter's value to six significant digits, so that the ends of a narrow range stay apart.
+std::string exact(double value) {
+    std::ostringstream text;
+    text << std::setprecision(6) << value;
+    return text.str();
+}
+
 /// One of the five parts of project.toml: whether it is there with substance, and if not, what to do.
 struct Part {
     std::string name;
@@ -132,10 +139,21 @@ Verdict judgeExperiment(const Declaration& d, const ExperimentInfo& e) {
     auto within = [&](double figure, const std::string& what) {
         return Verdict{figure <= e.tolerance, what + " " + show(figure) + ", allowed " + show(e.tolerance)};
     };
+    // A run of a few samples shows nothing: each experiment runs for at least `minimum_samples` of the
+    // declaration's sample interval.
+    const double shortest = grading::param("minimum_samples") * d.run.dt;
+    const double span = e.kind == "periodic" ? e.period : (e.finalTime > 0 ? e.finalTime : d.run.finalTime);
+    if (!(span >= shortest) || !(span <= 1e4)) {
+        return {false, "runs " + show(span) + " s; it must run at least " + show(shortest) + " s (" +
+                           show(grading::param("minimum_samples")) + " samples)"};
+    }
     if (e.kind == "periodic") {
-        if (!(e.period > 0 && e.period <= 1e4)) return {false, "period " + show(e.period) + " s is not a positive time"};
         const Observed run = runWith(e.set, settingsFor(d, e.period));
         const std::vector<double> c = columnOf(run, static_cast<std::size_t>(column));
+        const auto [low, high] = std::minmax_element(c.begin(), c.end());
+        if (!((*high - *low) / scaleOf(c) >= grading::param("least_variation"))) {
+            return {false, e.column + " hardly changes over the period (a constant repeats with any period)"};
+        }
         return within(std::abs(c.back() - c.front()) / scaleOf(c), e.column + "(T) - " + e.column + "(0), relative,");
     }
     const Observed run = runWith(e.set, settingsFor(d, e.finalTime));
@@ -146,6 +164,9 @@ Verdict judgeExperiment(const Declaration& d, const ExperimentInfo& e) {
     if (e.kind == "conserved") return within(relativeDrift(c), "relative drift of " + e.column);
     if (e.kind == "symmetric") {
         const Observed mirrored = runWith(merged(e.set, e.mirror), settingsFor(d, e.finalTime));
+        if (!(largestDifference(run.q, mirrored.q) >= grading::param("least_variation") * largestMagnitude(run.q))) {
+            return {false, "the mirror changes nothing: the mirrored run moves as the first one does"};
+        }
         const std::vector<double> m = columnOf(mirrored, static_cast<std::size_t>(column));
         double worst = 0;
         for (std::size_t k = 0; k < std::min(c.size(), m.size()); ++k) worst = std::max(worst, std::abs(m[k] - e.sign * c[k]));
@@ -211,19 +232,31 @@ TEST_CASE("with no gravity and no motion the model stays at rest", "[biosim][res
     if (d.claims.atRest.empty()) {
         FAIL("the declaration's claims.atRest gives no settings for a scene at rest (no gravity, no initial motion)");
     }
+    // From the declared configuration, and from one nearby with every q moved: a model that stays put only because
+    // it starts in an equilibrium (a force left on, gravity hard-wired) moves when nudged.
     const Observed run = runWith(d.claims.atRest, d.run);
-    const double moved = std::max(largestDrift(run.q), largestDrift(run.u));
-    CHECK(grading::atMost(moved, grading::param("tolerance"), "largest change of any q (rad or m) or u (rad/s or m/s)"));
+    const Observed nudged = runWith(d.claims.atRest, d.run, grading::param("nudge"));
+    const double fromDeclared = std::max(largestDrift(run.q), largestDrift(run.u));
+    const double fromNudged = std::max(largestDrift(nudged.q), largestDrift(nudged.u));
+    if (fromNudged > fromDeclared) {
+        grading::feedback("it stays at rest where it starts but not when every q is moved by " +
+                          show(grading::param("nudge")) + ": is a force (gravity?) still on in claims.atRest?");
+    }
+    CHECK(grading::atMost(std::max(fromDeclared, fromNudged), grading::param("tolerance"),
+                          "largest change of any q (rad or m) or u (rad/s or m/s)"));
 }
 
 TEST_CASE("the mechanical energy is conserved when nothing is claimed to dissipate", "[biosim][energy]") {
     const Declaration d = declared();
-    if (!d.claims.energyConserved) {
-        grading::measured(0, "", "not claimed: the declaration says the model dissipates energy");
-        SUCCEED();
-        return;
+    // At the declared accuracy, but never looser than the rubric's loosest: a loose accuracy asked for must not
+    // make any drift acceptable.
+    simlab::RunSettings s = d.run;
+    s.accuracy = std::min(s.accuracy, grading::param("loosest_accuracy"));
+    const Observed run = runWith(d.claims.energyWhen, s);
+    if (run.customForces > 0) {
+        grading::feedback("the potential energy of a Force::Custom is not counted (its code is yours to check, not "
+                          "the course's): build conservative forces from Simbody's own force elements");
     }
-    const Observed run = runWith(d.claims.energyWhen, d.run);
     // Near a zero of the total, a relative error means nothing: the drift is measured against the energy the
     // motion exchanges, the largest kinetic energy or change of potential energy in the run.
     double scale = 0, drift = 0;
@@ -233,7 +266,16 @@ TEST_CASE("the mechanical energy is conserved when nothing is claimed to dissipa
         drift = std::max(drift, std::abs(run.kinetic[k] + run.potential[k] - e0));
     }
     if (!(scale > 0)) FAIL("nothing moved, so there is no energy to conserve: choose claims.energyWhen with some motion");
-    const double allowed = grading::param("tolerance") * d.run.accuracy;
+    if (!d.claims.energyConserved) {
+        // The opposite claim, that the model dissipates, is checked too: by the final time the energy has fallen.
+        const double lost = (e0 - run.kinetic.back() - run.potential.back()) / scale;
+        grading::measured(lost, "", "energy lost by t = " + show(run.time.back()) + " s, relative to the energy "
+                                    "exchanged, " + show(lost) + ", need " + show(grading::param("dissipated")) +
+                                    " (the declaration claims that the model dissipates)");
+        CHECK(lost >= grading::param("dissipated"));
+        return;
+    }
+    const double allowed = grading::param("tolerance") * s.accuracy;
     CHECK(grading::atMost(drift / scale, allowed, "energy drift relative to the energy exchanged"));
 }
 
@@ -290,7 +332,17 @@ TEST_CASE("the model has exactly the degrees of freedom claimed", "[biosim][mode
         grading::feedback("constraints take back motions the mobilizers gave: give each body a mobilizer with only "
                           "the motions the scene needs");
     }
+    if (run.auxiliaryStates > 0) {
+        grading::feedback("the model has " + std::to_string(run.auxiliaryStates) + " auxiliary state variable(s) (z) "
+                          "beside its mobilities: the scene's motions belong in mobilizers, where they are counted");
+    }
+    if (run.addedSubsystems > 0) {
+        grading::feedback("buildModel added " + std::to_string(run.addedSubsystems) + " subsystem(s): build bodies in "
+                          "model.matter and forces in model.forces");
+    }
     INFO(info.summary() << "; the declaration claims " << d.claims.degreesOfFreedom << " degrees of freedom");
+    CHECK(run.auxiliaryStates == 0);
+    CHECK(run.addedSubsystems == 0);
     CHECK(d.claims.degreesOfFreedom > 0);
     CHECK(info.degreesOfFreedom() == d.claims.degreesOfFreedom);
     CHECK(info.mobilities == d.claims.degreesOfFreedom);
@@ -302,25 +354,39 @@ TEST_CASE("every parameter changes the motion", "[biosim][parameters]") {
     const simlab::RunSettings s = settingsFor(d, std::min(d.run.finalTime, grading::param("seconds")));
     const Observed base = runWith({}, s);
     int changing = 0;
-    std::string inert;
+    std::string inert, least;
+    double leastChange = INFINITY;
     for (const Parameter& p : d.parameters) {
         const Observed other = runWith({{p.name, otherValue(p)}}, s);
-        // The motion (q, u) or, for a parameter the motion does not depend on (a mass, say), the energy
-        // Simbody computes from the model: read from the state, never from the student's own columns.
-        double energyChange = 0;
+        // The motion (q, u) or, for a parameter the motion does not depend on (a pendulum's mass, say), the
+        // kinetic energy Simbody computes from the model: read from the state, never from the student's columns.
+        // (Not the potential energy: a body welded in place could make that follow any parameter.) Each change is
+        // relative to the larger run's own size, so that a parameter scaled down to a trace does not count.
+        double kineticChange = 0, kineticScale = 0;
         for (std::size_t k = 0; k < std::min(base.time.size(), other.time.size()); ++k) {
-            energyChange = std::max(energyChange, std::abs(base.kinetic[k] + base.potential[k] - other.kinetic[k] - other.potential[k]));
+            kineticChange = std::max(kineticChange, std::abs(base.kinetic[k] - other.kinetic[k]));
+            kineticScale = std::max({kineticScale, base.kinetic[k], other.kinetic[k]});
         }
-        const bool changes = largestDifference(base.q, other.q) > 1e-9 || largestDifference(base.u, other.u) > 1e-9 ||
-                             energyChange > 1e-12;
-        if (changes) ++changing;
-        else inert += (inert.empty() ? "" : ", ") + p.name;
+        const double change =
+            std::max({largestDifference(base.q, other.q) / std::max(largestMagnitude(base.q), largestMagnitude(other.q)),
+                      largestDifference(base.u, other.u) / std::max(largestMagnitude(base.u), largestMagnitude(other.u)),
+                      kineticScale > 0 ? kineticChange / kineticScale : 0.0});
+        if (change < leastChange) {
+            leastChange = change;
+            least = p.name + ", " + show(change);
+        }
+        if (change >= grading::param("relative_change")) ++changing;
+        else inert += (inert.empty() ? "" : ", ") + p.name + " (" + show(change) + ")";
     }
     const int n = static_cast<int>(d.parameters.size());
     grading::measured(changing, "parameters", std::to_string(changing) + " of " + std::to_string(n) +
                                                    " parameters change the motion" +
-                                                   (inert.empty() ? "" : "; not: " + inert));
-    if (!inert.empty()) grading::feedback("is a number hard-wired where " + inert + " belongs? Read it with p[\"name\"]");
+                                                   (inert.empty() ? " (least: " + least + ")" : "; not: " + inert));
+    if (!inert.empty()) {
+        grading::feedback("is a number hard-wired where " + inert + " belongs? Read it with p[\"name\"] (a change "
+                          "halfway to the far end of its range must change the motion by " +
+                          show(grading::param("relative_change")) + " of its size or more)");
+    }
     grading::partialCredit(static_cast<double>(changing) / n);
     CHECK(changing == n);
 }
@@ -328,8 +394,15 @@ TEST_CASE("every parameter changes the motion", "[biosim][parameters]") {
 TEST_CASE("no NaN or Inf or integrator failure across the parameter ranges", "[biosim][ranges]") {
     const Declaration d = declared();
     int tried = 0, ran = 0;
-    std::string first;
+    std::string first, narrow;
+    const double narrowest = grading::param("narrowest");
     for (const Parameter& p : d.parameters) {
+        // A range that holds little more than its default claims little: it counts as two runs that failed.
+        if (!(p.max - p.min > narrowest * std::abs(p.value)) || !(p.max > p.min)) {
+            tried += 2;
+            narrow += (narrow.empty() ? "" : ", ") + p.name + " [" + exact(p.min) + ", " + exact(p.max) + "]";
+            continue;
+        }
         for (const double value : {p.min, p.max}) {
             ++tried;
             try {
@@ -344,7 +417,12 @@ TEST_CASE("no NaN or Inf or integrator failure across the parameter ranges", "[b
     }
     grading::measured(ran, "runs", std::to_string(ran) + " of " + std::to_string(tried) +
                                        " runs at the ends of the ranges finished" + (first.empty() ? "" : "; first failure: " + first));
+    if (!narrow.empty()) {
+        grading::feedback("ranges narrower than " + show(narrowest) + " of their default, not tried: " + narrow +
+                          "; declare the range the model is meant for");
+    }
     grading::partialCredit(tried ? static_cast<double>(ran) / tried : 0);
+    CHECK(tried > 0);
     CHECK(ran == tried);
 }
 
@@ -358,7 +436,7 @@ TEST_CASE("the project's own experiments pass", "[biosim][experiments]") {
         try {
             v = judgeExperiment(d, e);
         } catch (const observe::StudentError& error) {
-            v = {false, std::string("threw: ") + error.what()};
+            v = {false, error.what()};
         } catch (const observe::NonFinite& error) {
             v = {false, error.what()};
         }
@@ -376,10 +454,14 @@ TEST_CASE("the question is answered with the number the program computes", "[bio
     const toml::table t = description();
     const auto written = t["question"]["answer"].value<double>();
     if (!written) FAIL("project.toml's [question] has no answer = <number>");
-    const double computed = observe::decode<Answer>(observe::ask("answer", nlohmann::json::object()), "answer").value;
+    const Answer answer = observe::decode<Answer>(observe::ask("answer", nlohmann::json::object()), "answer");
+    const double computed = answer.value;
     const double difference = std::abs(*written - computed) / std::max(std::abs(computed), 1e-300);
     grading::measured(computed, t["question"]["unit"].value_or(std::string()),
-                      "the program computes " + show(computed) + "; project.toml says " + show(*written));
+                      "the program computes " + show(computed) + " from " + std::to_string(answer.simulations) +
+                          " simulation(s); project.toml says " + show(*written));
+    if (answer.simulations < 1) grading::feedback("answer() must compute its number by calling simulate()");
+    CHECK(answer.simulations >= 1);
     CHECK(difference <= grading::param("tolerance"));
 }
 
