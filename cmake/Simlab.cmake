@@ -86,9 +86,10 @@ endfunction()
 #   PROBE <files...>         what the grader can observe of the contract (simlab/probe.h)
 #   TESTS <files...>         visible grader tests (Catch2), run in the judge
 #   HIDDEN_TESTS <files...>  hidden grader tests; absent from the student bundle, so optional
-#   RUBRIC <file>)           points and thresholds, one [[test]] per Catch2 test case
+#   RUBRIC <file>            points and thresholds, one [[test]] per Catch2 test case
+#   STUDY <files...>)        the work-precision study of the reference solution (simlab/study.h); optional
 function(simlab_add_assignment id)
-  cmake_parse_arguments(A "" "TITLE;SOURCE;PROGRAM;RUBRIC;CONTRACT" "MAIN;PROBE;TESTS;HIDDEN_TESTS" ${ARGN})
+  cmake_parse_arguments(A "" "TITLE;SOURCE;PROGRAM;RUBRIC;CONTRACT" "MAIN;PROBE;TESTS;HIDDEN_TESTS;STUDY" ${ARGN})
   foreach(required TITLE SOURCE PROGRAM RUBRIC CONTRACT MAIN PROBE TESTS)
     if(NOT A_${required})
       message(FATAL_ERROR "simlab_add_assignment(${id}): ${required} is required")
@@ -142,6 +143,21 @@ function(simlab_add_assignment id)
     return()
   endif()
 
+  # The work-precision study (`simlab study trade`), run on the reference solution where the tree has one.
+  set(study_program "")
+  set(study_objects "[]")
+  if(A_STUDY)
+    add_library(${id}_study_main OBJECT ${A_STUDY})
+    target_include_directories(${id}_study_main PRIVATE ${PROJECT_SOURCE_DIR}/solutions/${id})
+    target_link_libraries(${id}_study_main PRIVATE simlab_study simlab_support ${Simbody_LIBRARIES})
+    _simlab_json_list(study_objects $<TARGET_OBJECTS:${id}_study_main>)
+    if(solution)
+      add_executable(${A_PROGRAM}-study $<TARGET_OBJECTS:${id}_study_main> ${CMAKE_CURRENT_BINARY_DIR}/${A_PROGRAM}_reference.o)
+      target_link_libraries(${A_PROGRAM}-study PRIVATE simlab_study simlab_program simlab_support ${Simbody_LIBRARIES})
+      set(study_program $<TARGET_FILE:${A_PROGRAM}-study>)
+    endif()
+  endif()
+
   # The grader's side. Each test runs as two processes: the judge, built here once, holds the tests (hidden ones
   # included) and decides every verdict; the probe, linked per submission from the course's objects below and the
   # student's object, answers the judge's requests for observations. The tests are an object library so that
@@ -169,12 +185,12 @@ function(simlab_add_assignment id)
   _simlab_json_list(hidden_tests ${hidden_paths})
   set(json "{\"id\": \"${id}\", \"title\": \"${A_TITLE}\", \"source\": \"${A_SOURCE}\",
     \"program\": \"${A_PROGRAM}\", \"program_path\": \"$<TARGET_FILE:${A_PROGRAM}>\",
-    \"reference_program_path\": \"${reference_program}\",
+    \"reference_program_path\": \"${reference_program}\", \"study_program_path\": \"${study_program}\",
     \"dir\": \"${dir}\", \"rubric\": \"${dir}/${A_RUBRIC}\", \"contract_include\": \"${contract}\",
     \"starter\": \"${starter}\", \"solution\": \"${solution}\", \"hidden_tests_built\": ${hidden_built},
     \"hidden_tests\": ${hidden_tests}, \"judge\": \"$<TARGET_FILE:${id}-judge>\",
     \"probe_objects\": ${probe_objects}, \"floor_objects\": ${floor_objects},
-    \"program_objects\": ${program_objects}}")
+    \"program_objects\": ${program_objects}, \"study_objects\": ${study_objects}}")
   set_property(GLOBAL APPEND PROPERTY SIMLAB_ASSIGNMENTS ${id})
   set_property(GLOBAL PROPERTY SIMLAB_ASSIGNMENT_${id} "${json}")
 endfunction()
@@ -201,6 +217,9 @@ function(simlab_write_manifest)
   _simlab_json_list(program_libraries
     $<TARGET_FILE:simlab_program> $<TARGET_FILE:simlab_support>
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
+  _simlab_json_list(study_libraries
+    $<TARGET_FILE:simlab_study> $<TARGET_FILE:simlab_program> $<TARGET_FILE:simlab_support>
+    $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
   file(GENERATE OUTPUT ${SIMLAB_MANIFEST} CONTENT "{
   \"version\": \"${PROJECT_VERSION}\",
   \"source_dir\": \"${PROJECT_SOURCE_DIR}\",
@@ -213,6 +232,7 @@ function(simlab_write_manifest)
   \"probe_link\": [\"-Wl,--version-script=${PROJECT_BINARY_DIR}/probe-exports.map\"],
   \"floor_libraries\": ${floor_libraries},
   \"program_libraries\": ${program_libraries},
+  \"study_libraries\": ${study_libraries},
   \"assignments\": [
     ${entries}
   ]

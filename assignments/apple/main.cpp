@@ -41,6 +41,8 @@ int runOnce(const Options& o) {
     tabulation.row = [&](const apple::Sample& s) { return resultsRow(o.scene, s); };
     tabulation.banner = banner;
     tabulation.bodyRadius = o.scene.radius;
+    tabulation.program = "apple";
+    tabulation.conserved = "mechanicalEnergy";
     apple::Model model;
     const auto result = simlab::runTabulated(o.scene, model, o.program, tabulation);
 
@@ -60,7 +62,7 @@ int runTrade(const Options& o) {
         const auto result = simlab::run<apple::Sample>(o.scene, model, run);
         return simlab::TradePoint{finalDigits(o.scene, result.samples), result.integrator.stepsTaken,
                                   result.integrator.realizations};
-    }, o.program.repeats);
+    }, o.program.repeats, "apple");
     return 0;
 }
 
@@ -82,8 +84,8 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     if (const int status = simlab::parseCommandLine(app, argc, argv); status >= 0) return status;
 
+    if (const int status = simlab::checkRunSettings("apple", o.program.run); status >= 0) return status;
     return simlab::runGuarded("apple", [&] {
-        simlab::validate(o.program.run);
         return o.program.trade ? runTrade(o) : runOnce(o);
     });
 }

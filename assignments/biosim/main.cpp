@@ -142,7 +142,7 @@ int main(int argc, char** argv) {
         app.add_flag("--answer", o.answer, "compute the number that answers the project's question");
         if (const int status = simlab::parseCommandLine(app, argc, argv); status >= 0) return status;
 
-        simlab::validate(o.program.run);
+        if (const int status = simlab::checkRunSettings(program, o.program.run); status >= 0) return status;
         const Parameters p = parametersFrom(d, o);
         if (o.listParameters) return listParameters(d);
         if (o.schematic) return drawSchematic(d, p, o);

@@ -41,8 +41,17 @@ HitDigits hitDigits(const Scene& scene, const projectile::GroundHit& hit) {
 }
 
 void reportLanding(const Options& o) {
-    const projectile::Landing landing = projectile::simulateLanding(o.scene, o.program.run);
     const double tStar = projectile::exact::flightTime(o.scene), xStar = projectile::exact::range(o.scene);
+    projectile::Landing landing;
+    simlab::SolverChatter chatter(o.program.run.integrator == "CPodes");
+    try {
+        simlab::Progress progress("projectile", tStar, "the run to the ground hit");
+        landing = projectile::simulateLanding(o.scene, o.program.run, [&](const Sample& s) { progress.at(s.time); });
+    } catch (const std::invalid_argument& e) {
+        std::printf("No ground hit: %s\n", e.what());
+        return;
+    }
+    if (const std::string said = chatter.finish(); !said.empty()) simlab::tellUser("projectile: " + said);
     if (!landing.hit.found) {
         std::printf("No ground hit: the simulation ran to t = %g s and nothing recorded the ball coming back to "
                     "y = 0 (exact: t* = %.10g s). Does buildModel add an event handler that records it?\n",
@@ -70,16 +79,25 @@ int runOnce(const Options& o) {
     tabulation.row = [&](const Sample& s) { return resultsRow(o.scene, s); };
     tabulation.banner = banner;
     tabulation.bodyRadius = 1.0;  // drawn large: the flight is 190 m long
+    tabulation.program = "projectile";
+    tabulation.conserved = "mechanicalEnergy";
     projectile::Model model;
     const auto result = simlab::runTabulated(o.scene, model, o.program, tabulation);
 
     const Sample& last = result.samples.back();
-    std::printf("y(%g s) = %.15g m; exact %.15g m: %.1f accurate digits\n", last.time, last.y,
-                projectile::exact::y(o.scene, last.time),
-                simlab::accuracyDigits(last.y, projectile::exact::y(o.scene, last.time)));
-    std::printf("x(%g s) = %.15g m; exact %.15g m: %.1f accurate digits\n", last.time, last.x,
-                projectile::exact::x(o.scene, last.time),
-                simlab::accuracyDigits(last.x, projectile::exact::x(o.scene, last.time)));
+    if (last.time < run.finalTime * (1 - 1e-12)) {
+        std::printf("The table ends at t = %.12g s, before the final time %g s: the simulation ended there (the "
+                    "ground-hit event ends it when the ball lands).\n",
+                    last.time, run.finalTime);
+    }
+    // Positions are measured against the distance the ball has flown, v0 t, so that a coordinate whose exact
+    // value is (near) zero, y at the ground or x of a vertical launch, still gets its digits.
+    const double scale = o.scene.launchSpeed * last.time;
+    const double yExact = projectile::exact::y(o.scene, last.time), xExact = projectile::exact::x(o.scene, last.time);
+    std::printf("y(%g s) = %.15g m; exact %.15g m: %.1f accurate digits (of v0 t = %.6g m)\n", last.time, last.y,
+                yExact, simlab::accuracyDigits(last.y, yExact, scale), scale);
+    std::printf("x(%g s) = %.15g m; exact %.15g m: %.1f accurate digits (of v0 t = %.6g m)\n", last.time, last.x,
+                xExact, simlab::accuracyDigits(last.x, xExact, scale), scale);
     reportLanding(o);
     return 0;
 }
@@ -90,6 +108,7 @@ int runTrade(const Options& o) {
                 o.program.run.integrator.c_str(), o.program.run.dt, o.program.repeats);
     std::printf("%10s %10s %10s %10s %8s %12s %10s\n", "accuracy", "window s", "digits t*", "digits x*", "steps",
                 "evaluations", "median ms");
+    simlab::SolverChatter chatter(o.program.run.integrator == "CPodes");  // the rows say how each run went
     for (const double accuracy : {1e-3, 1e-5, 1e-7, 1e-9, 1e-11}) {
         for (const double window : {1e-1, 1e-3, 1e-6, 1e-9}) {
             Scene scene = o.scene;
@@ -145,8 +164,8 @@ int main(int argc, char** argv) {
                                            "accuracy and the event window");
     if (const int status = simlab::parseCommandLine(app, argc, argv); status >= 0) return status;
 
+    if (const int status = simlab::checkRunSettings("projectile", o.program.run); status >= 0) return status;
     return simlab::runGuarded("projectile", [&] {
-        simlab::validate(o.program.run);
         return o.program.trade ? runTrade(o) : runOnce(o);
     });
 }

@@ -32,5 +32,6 @@ void addList(CLI::App& app);
 void addPackage(CLI::App& app);
 void addAutograde(CLI::App& app);
 void addProject(CLI::App& app);
+void addStudy(CLI::App& app);
 
 }  // namespace simlab::cli

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
     simlab::cli::addPackage(app);
     simlab::cli::addAutograde(app);
     simlab::cli::addProject(app);
+    simlab::cli::addStudy(app);
     // CLI11 would call an unknown command a missing one; say what it is.
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;

@@ -435,18 +435,29 @@ BuildResult Builder::buildProbe(const Assignment& assignment, const std::string&
     return result;
 }
 
-BuildResult Builder::buildProgram(const Assignment& assignment, const std::string& name, const std::string& text,
-                                  const std::string& output) const {
+BuildResult Builder::buildLinked(const Assignment& assignment, const std::string& name, const std::string& text,
+                                 const std::string& output, const std::vector<std::string>& objects,
+                                 const std::vector<std::string>& libraries) const {
     const fs::path target = fs::absolute(output);
     TempDir work("simlab-build-");
     std::string object;
     BuildResult result = compile(assignment, name, text, work.path(), 0, &object);
     if (!result.ok) return result;
     std::vector<std::string> inputs = {object};
-    inputs.insert(inputs.end(), assignment.programObjects.begin(), assignment.programObjects.end());
-    inputs.insert(inputs.end(), manifest_.programLibraries.begin(), manifest_.programLibraries.end());
+    inputs.insert(inputs.end(), objects.begin(), objects.end());
+    inputs.insert(inputs.end(), libraries.begin(), libraries.end());
     link(inputs, {}, target.string(), 0, result);
     return result;
+}
+
+BuildResult Builder::buildProgram(const Assignment& assignment, const std::string& name, const std::string& text,
+                                  const std::string& output) const {
+    return buildLinked(assignment, name, text, output, assignment.programObjects, manifest_.programLibraries);
+}
+
+BuildResult Builder::buildStudy(const Assignment& assignment, const std::string& name, const std::string& text,
+                                const std::string& output) const {
+    return buildLinked(assignment, name, text, output, assignment.studyObjects, manifest_.studyLibraries);
 }
 
 }  // namespace simlab::engine

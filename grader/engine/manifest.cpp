@@ -48,6 +48,7 @@ Manifest loadManifest(const std::string& path) {
         m.probeLink = j.at("probe_link").get<std::vector<std::string>>();
         m.floorLibraries = j.at("floor_libraries").get<std::vector<std::string>>();
         m.programLibraries = j.at("program_libraries").get<std::vector<std::string>>();
+        m.studyLibraries = j.value("study_libraries", std::vector<std::string>());
         for (const nlohmann::json& a : j.at("assignments")) {
             Assignment x;
             x.id = a.at("id");
@@ -56,6 +57,7 @@ Manifest loadManifest(const std::string& path) {
             x.program = a.at("program");
             x.programPath = a.at("program_path");
             x.referenceProgramPath = a.at("reference_program_path");
+            x.studyProgramPath = a.value("study_program_path", std::string());
             x.dir = a.at("dir");
             x.rubric = a.at("rubric");
             x.starter = a.at("starter");
@@ -67,6 +69,7 @@ Manifest loadManifest(const std::string& path) {
             x.probeObjects = a.at("probe_objects").get<std::vector<std::string>>();
             x.floorObjects = a.at("floor_objects").get<std::vector<std::string>>();
             x.programObjects = a.at("program_objects").get<std::vector<std::string>>();
+            x.studyObjects = a.value("study_objects", std::vector<std::string>());
             m.assignments.push_back(std::move(x));
         }
     } catch (const nlohmann::json::exception& e) {

@@ -17,6 +17,30 @@ check "both to at least 7 digits ($(digits 't\*'), $(digits 'x\*'))" \
 run_capture variant "$projectile" --angle 20 --speed 25 --quiet --output variant.txt
 check "a 20-degree launch at 25 m/s lands at t* = 2 (25 sin 20)/9.8 = 1.745 s" grep -q 't\* = 2 v0 sin(theta)/g = 1\.7450' variant.out
 
+# A flight shorter than one sampling interval still lands where it should.
+for launch in "--angle 0.001" "--speed 1e-6"; do
+  run_capture short "$projectile" $launch --quiet --output short.txt
+  digits=$(sed -n 's/.*exact t\*.*: \([0-9.]*\) accurate digits/\1/p' short.out)
+  check "a flight shorter than dt ($launch) finds its ground hit to 7+ digits of t* (${digits:-none})" \
+    awk "BEGIN { exit !(\"$digits\" != \"\" && $digits >= 7) }"
+done
+run_capture short_fixed "$projectile" --angle 0.001 --fixed-step --quiet --output short.txt
+check "at fixed steps longer than the flight it says so and what to do" \
+  grep -q '^No ground hit: the flight lasts t\* = 0.000159 s, too short for fixed steps of --dt 0.01 s.*use --dt' short_fixed.out
+
+# A flight of 5e10 s under g = 1e-9 is followed to its end.
+run_capture weak "$projectile" --gravity 1e-9 --quiet --output weak.txt
+check "under g = 1e-9 the ground hit is at t* = 5.1278e10 s" grep -q 'Ground hit .*: t = 5127773340[0-9.]* s' weak.out
+
+# Values whose exact value is zero are counted against the distance flown, and the line says so.
+run_capture vertical "$projectile" --angle 90 --quiet --output vertical.txt
+digits=$(sed -n 's/^x(.*: \([0-9.]*\) accurate digits (of v0 t = 233.781 m)/\1/p' vertical.out)
+check "x of a vertical launch (exact 0) to 13+ digits of v0 t (${digits:-none})" awk "BEGIN { exit !(\"$digits\" != \"\" && $digits >= 13) }"
+run_capture long "$projectile" --final-time 1e4 --quiet --output long.txt
+digits=$(sed -n 's/^y(.*: \([0-9.]*\) accurate digits (of v0 t = .* m)/\1/p' long.out)
+check "y at the ground hit (exact 0) to 13+ digits of v0 t (${digits:-none})" awk "BEGIN { exit !(\"$digits\" != \"\" && $digits >= 13) }"
+check "and the table's early end is said" grep -q '^The table ends at t = 5.2324217765[0-9]* s, before the final time 10000 s' long.out
+
 run_capture starter "$BIN_DIR/projectile"
 check "the starter program stops with status 3 at its first TODO" \
   bash -c "test $(status_of starter) -eq 3 && grep -q 'not done yet (ProjectileMotion.cpp:' starter.err"

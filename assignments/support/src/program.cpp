@@ -3,11 +3,15 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
+#include <thread>
+#include <mutex>
+#include <condition_variable>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
+#include <unistd.h>
 #include <vector>
 
 #include "Simbody.h"
@@ -67,6 +71,16 @@ int parseCommandLine(CLI::App& app, int argc, char** argv) {
     }
 }
 
+int checkRunSettings(const std::string& program, const RunSettings& run) {
+    try {
+        validate(run);
+        return -1;
+    } catch (const std::invalid_argument& e) {
+        std::cerr << program << ": error: " << e.what() << " (see " << program << " --help)\n";
+        return 2;
+    }
+}
+
 int runGuarded(const std::string& program, const std::function<int()>& body) {
     try {
         return body();
@@ -78,16 +92,183 @@ int runGuarded(const std::string& program, const std::function<int()>& body) {
         return 3;
     } catch (const std::exception& e) {
         std::cout.flush();
-        // Simbody's messages span lines; the first says what went wrong.
-        std::string what = e.what();
-        std::replace(what.begin(), what.end(), '\n', ' ');
-        std::cerr << program << ": error: " << what << '\n';
+        std::cerr << program << ": error: " << firstMeaningfulLine(e.what()) << '\n';
         return 1;
     }
 }
 
+std::string firstMeaningfulLine(const std::string& message) {
+    // Simbody's messages read "SimTK Exception thrown at File.cpp:123:\n  Error detected by Simbody method
+    // X::f: what went wrong\n  (Required condition ... was not met.)\n..."; CPodes adds its own lines after.
+    std::istringstream lines(message);
+    std::string line, first;
+    while (std::getline(lines, line)) {
+        const std::size_t begin = line.find_first_not_of(" \t");
+        if (begin == std::string::npos) continue;
+        line = line.substr(begin, line.find_last_not_of(" \t\r") - begin + 1);
+        if (line.rfind("SimTK Exception thrown at", 0) == 0) continue;
+        const std::string detected = "Error detected by Simbody method ";
+        if (line.rfind(detected, 0) == 0) {
+            // "Error detected by Simbody method X::f: what went wrong" -> "X::f: what went wrong"
+            line = line.substr(detected.size());
+        }
+        if (first.empty()) first = line;
+        // A line that only names the method ("X::f:") is followed by the reason: keep both.
+        if (line.back() == ':' && first == line) continue;
+        if (first != line) first += " " + line;
+        break;
+    }
+    return first.empty() ? message : first;
+}
+
+namespace {
+int screenStderr = 2;  // where tellUser writes: fd 2, or the screen's stderr while a SolverChatter keeps fd 2
+}  // namespace
+
+void tellUser(const std::string& line) {
+    std::cerr.flush();
+    const std::string text = line + "\n";
+    if (::write(screenStderr, text.data(), text.size()) < 0) return;
+}
+
+SolverChatter::SolverChatter(bool active) {
+    if (!active || screenStderr != 2) return;  // not nested
+    kept_ = std::tmpfile();
+    if (!kept_) return;
+    std::fflush(stderr);
+    saved_ = ::dup(2);
+    if (saved_ < 0 || ::dup2(::fileno(kept_), 2) < 0) {
+        std::fclose(kept_);
+        kept_ = nullptr;
+        return;
+    }
+    screenStderr = saved_;
+}
+
+SolverChatter::~SolverChatter() { finish(); }
+
+std::string SolverChatter::finish() {
+    if (!kept_) return "";
+    std::fflush(stderr);
+    ::dup2(saved_, 2);
+    ::close(saved_);
+    screenStderr = 2;
+    std::rewind(kept_);
+    std::string text;
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, kept_)) > 0;) text.append(buffer, n);
+    std::fclose(kept_);
+    kept_ = nullptr;
+    // CPodes writes each message as "\n[CPODES ERROR]  CPode\n  At t = ..., what happened.\n\n".
+    int messages = 0;
+    std::string first, line;
+    std::istringstream lines(text);
+    bool header = false;
+    while (std::getline(lines, line)) {
+        const std::size_t begin = line.find_first_not_of(" \t");
+        if (begin == std::string::npos) continue;
+        line = line.substr(begin);
+        if (line[0] == '[') {
+            ++messages;
+            header = true;
+            continue;
+        }
+        if (header && first.empty()) first = line;
+        if (!header && messages == 0) ++messages, first = line;  // something else printed it
+        header = false;
+    }
+    if (messages == 0) return "";
+    return "the solver printed " + std::to_string(messages) + (messages == 1 ? " message" : " messages") +
+           (first.empty() ? "" : ", the first: " + first);
+}
+
+struct Progress::Watch {
+    std::mutex mutex;
+    std::condition_variable wake;
+    bool sampled = false;  // the first sample came, or the run is over
+    std::thread thread;
+};
+
+Progress::Progress(std::string program, double finalTime, std::string what)
+    : program_(std::move(program)), what_(std::move(what)), finalTime_(finalTime),
+      start_(std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count()) {
+    if (const char* seconds = std::getenv("SIMLAB_LONG_RUN_SECONDS")) {
+        const double value = std::strtod(seconds, nullptr);
+        if (value > 0 && value < 1e6) longRun_ = value;
+    }
+    if (program_.empty()) return;
+    watch_ = std::make_unique<Watch>();
+    Watch* watch = watch_.get();
+    const double patience = longRun_ / 2;
+    const std::string line = program_ + ": no sample after " + std::to_string(static_cast<int>(patience)) +
+                             " s: the integrator's steps are very small (see --accuracy, --integrator), and " +
+                             what_ + " may take very long";
+    watch->thread = std::thread([watch, patience, line] {
+        std::unique_lock<std::mutex> lock(watch->mutex);
+        if (!watch->wake.wait_for(lock, std::chrono::duration<double>(patience), [watch] { return watch->sampled; })) {
+            tellUser(line);
+        }
+    });
+}
+
+Progress::~Progress() {
+    if (!watch_) return;
+    {
+        std::lock_guard<std::mutex> lock(watch_->mutex);
+        watch_->sampled = true;
+    }
+    watch_->wake.notify_all();
+    watch_->thread.join();
+}
+
+namespace {
+std::string duration(double seconds) {
+    char text[64];
+    if (seconds < 10) std::snprintf(text, sizeof text, "%.1f s", seconds);
+    else if (seconds < 120) std::snprintf(text, sizeof text, "%.0f s", seconds);
+    else if (seconds < 7200) std::snprintf(text, sizeof text, "%.0f min", seconds / 60);
+    else std::snprintf(text, sizeof text, "%.1f h", seconds / 3600);
+    return text;
+}
+}  // namespace
+
+void Progress::at(double t) {
+    if (program_.empty() || !(t > 0) || !(finalTime_ > 0)) return;
+    if (watch_ && !decided_) {
+        {
+            std::lock_guard<std::mutex> lock(watch_->mutex);
+            watch_->sampled = true;
+        }
+        watch_->wake.notify_all();
+    }
+    const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+    const double elapsed = now - start_;
+    if (!decided_) {
+        if (elapsed < 0.2) return;  // the pilot: the pace over the first ~0.2 s of wall time
+        decided_ = true;
+        const double estimate = elapsed * finalTime_ / t;
+        long_ = estimate > longRun_;
+        if (long_) {
+            std::ostringstream line;
+            line << program_ << ": " << what_ << " will take about " << duration(estimate) << " (t = " << t << " of "
+                 << finalTime_ << " s simulated in " << duration(elapsed) << ")";
+            tellUser(line.str());
+        }
+    }
+    if (!long_) return;
+    const int tenths = static_cast<int>(10 * t / finalTime_);
+    if (tenths > tenths_ && tenths < 10) {
+        tenths_ = tenths;
+        std::ostringstream line;
+        line << program_ << ": t = " << t << " of " << finalTime_ << " s (" << 10 * tenths << " %), about "
+             << duration(elapsed * (finalTime_ - t) / t) << " left";
+        tellUser(line.str());
+    }
+}
+
 void printTrade(std::ostream& out, const RunSettings& base, const std::string& figure,
-                const std::function<TradePoint(const RunSettings&)>& once, int repeats) {
+                const std::function<TradePoint(const RunSettings&)>& once, int repeats,
+                const std::string& program) {
     char line[256];
     std::snprintf(line, sizeof line, "%-20s %10s %10s %14s %12s\n", "integrator", "digits", "steps",
                   "evaluations", "median ms");
@@ -100,20 +281,25 @@ void printTrade(std::ostream& out, const RunSettings& base, const std::string& f
         try {
             TradePoint point;
             std::vector<double> ms;
+            // CPodes' own messages stay off the screen: the row says what failed.
+            SolverChatter chatter(name == "CPodes");
             for (int r = 0; r < repeats; ++r) {
                 const auto start = std::chrono::steady_clock::now();
                 point = once(run);
                 const std::chrono::duration<double, std::milli> took = std::chrono::steady_clock::now() - start;
                 ms.push_back(took.count());
+                if (r == 0 && !program.empty() && took.count() > 5000 && repeats > 1) {
+                    tellUser(program + ": " + name + " took " + duration(took.count() / 1000) + " a run; its row needs " +
+                             std::to_string(repeats - 1) + " more (--repeats 1 for one)");
+                }
             }
             std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
             std::snprintf(line, sizeof line, "%-20s %10.2f %10d %14d %12.2f\n", name.c_str(), point.digits,
                           point.steps, point.realizations, ms[ms.size() / 2]);
-            out << line;
+            out << line << std::flush;
         } catch (const std::exception& e) {
-            std::string what = e.what();
-            what = what.substr(0, what.find('\n'));
-            out << name << std::string(name.size() < 20 ? 21 - name.size() : 1, ' ') << "failed: " << what << '\n';
+            out << name << std::string(name.size() < 20 ? 21 - name.size() : 1, ' ')
+                << "failed: " << firstMeaningfulLine(e.what()) << '\n' << std::flush;
         }
     }
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <ostream>
 #include <stdexcept>
@@ -31,10 +32,31 @@ void ResultsTable::add(const std::vector<double>& values) {
         throw std::logic_error("results row has " + std::to_string(values.size()) + " values for " +
                                std::to_string(columns_.size()) + " columns");
     }
+    // The first column is the time.
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (std::isfinite(values[i])) continue;
+        char what[200];
+        std::snprintf(what, sizeof what, "the run broke at t = %g s: %s is %s", values[0], columns_[i].c_str(),
+                      std::isnan(values[i]) ? "NaN" : values[i] > 0 ? "+infinity" : "-infinity");
+        note(what);
+        throw std::runtime_error(std::string(what) + " (the results file keeps the rows before it)");
+    }
+    if (watched_ >= 0) {
+        const double v = values[static_cast<std::size_t>(watched_)];
+        if (rows_ == 0) watchedFirst_ = v;
+        if (watchedFirst_ != 0 && std::abs(v) > watchedFactor_ * std::abs(watchedFirst_)) {
+            char what[240];
+            std::snprintf(what, sizeof what, "the run broke at t = %g s: %s grew from %.6g to %.6g, more than %g times",
+                          values[0], columns_[static_cast<std::size_t>(watched_)].c_str(), watchedFirst_, v,
+                          watchedFactor_);
+            note(what);
+            throw std::runtime_error(std::string(what) + " (the results file keeps the rows before it)");
+        }
+    }
     for (std::size_t i = 0; i < values.size(); ++i) std::fprintf(file_, "%s%.17g", i ? "\t" : "", values[i]);
     std::fputc('\n', file_);
     if (std::ferror(file_)) throw std::runtime_error("cannot write results file '" + path_ + "'");
-    if (screen_ && rows_++ == 0) {
+    if (screen_ && rows_ == 0) {
         for (const std::string& c : columns_) {
             const long pad = kScreenWidth + 1 - static_cast<long>(c.size());
             *screen_ << std::string(static_cast<std::size_t>(std::max(1L, pad)), ' ') << c;
@@ -49,6 +71,21 @@ void ResultsTable::add(const std::vector<double>& values) {
         }
         *screen_ << '\n';
     }
+    ++rows_;
+}
+
+void ResultsTable::watchGrowth(const std::string& column, double factor) {
+    const auto found = std::find(columns_.begin(), columns_.end(), column);
+    if (found == columns_.end()) throw std::logic_error("results table has no column '" + column + "'");
+    watched_ = static_cast<int>(found - columns_.begin());
+    watchedFactor_ = factor;
+}
+
+void ResultsTable::note(const std::string& text) {
+    if (noted_ || !file_) return;
+    noted_ = true;
+    std::fprintf(file_, "# %s\n", text.c_str());
+    std::fflush(file_);
 }
 
 }  // namespace simlab

@@ -2,7 +2,9 @@
 // and the animation.
 #pragma once
 
+#include <cstdio>
 #include <functional>
+#include <memory>
 #include <iostream>
 #include <stdexcept>
 #include <string>
@@ -35,6 +37,11 @@ void addProgramOptions(CLI::App& app, ProgramOptions& options);
 /// 0 after --help, 2 after a usage error (already printed as one line).
 int parseCommandLine(CLI::App& app, int argc, char** argv);
 
+/// Checks the settings the command line gave (simlab::validate): a combination that cannot run (a sample interval
+/// past the final time, say) is a usage error like any other, "<program>: error: ... (see <program> --help)", and
+/// returns 2. Returns -1 when they can run.
+int checkRunSettings(const std::string& program, const RunSettings& run);
+
 /// Runs `body` and returns its exit status. A SIMLAB_TODO that is reached prints where and what is missing and
 /// returns 3; any other exception prints one line "<program>: error: ..." and returns 1.
 int runGuarded(const std::string& program, const std::function<int()>& body);
@@ -49,8 +56,61 @@ struct TradePoint {
 /// For every integrator, run `once` with `base` changed to that integrator `repeats` times and print one row:
 /// digits of `figure`, steps, evaluations of the equations of motion and the median wall time. An integrator
 /// that fails is listed with its error.
+/// Each row is flushed as it is done; when `program` is given and a run takes more than a few seconds, a line on
+/// stderr says how long the rest of the table will take.
 void printTrade(std::ostream& out, const RunSettings& base, const std::string& figure,
-                const std::function<TradePoint(const RunSettings&)>& once, int repeats = 5);
+                const std::function<TradePoint(const RunSettings&)>& once, int repeats = 5,
+                const std::string& program = "");
+
+/// The first line of an exception's message that says what went wrong, without Simbody's "SimTK Exception thrown
+/// at file:line" preamble and the solver's further lines: what a one-line error shows.
+std::string firstMeaningfulLine(const std::string& message);
+
+/// Keeps what CPodes' C library prints straight to stderr (every error and warning, often dozens of them, each over
+/// several lines) off the screen while it exists, when `active`; finish() gives it back as one line. Lines the lab
+/// programs print meanwhile (Progress) still reach the screen.
+class SolverChatter {
+public:
+    explicit SolverChatter(bool active);
+    ~SolverChatter();
+    SolverChatter(const SolverChatter&) = delete;
+    SolverChatter& operator=(const SolverChatter&) = delete;
+    /// Stops keeping it; returns "" if the solver printed nothing, else one line saying how many messages it
+    /// printed and what the first said.
+    std::string finish();
+
+private:
+    int saved_ = -1;  // the screen's stderr while it is kept
+    std::FILE* kept_ = nullptr;
+};
+
+/// Writes one line to the screen's stderr, even while a SolverChatter keeps the solver's.
+void tellUser(const std::string& line);
+
+/// Says on stderr how long a long run will take. Call at() with the simulated time as the run goes: once ~0.2 s
+/// of wall time has passed it estimates the whole run from the pace so far, and if that is over a minute prints
+/// one line saying so, then a progress line at every tenth of the run. A shorter run prints nothing. A run that
+/// has not reached its first sample after half that minute says so too (its steps are very small). The minute is
+/// SIMLAB_LONG_RUN_SECONDS where that is set (studies lower it, to hear of long runs sooner).
+class Progress {
+public:
+    Progress(std::string program, double finalTime, std::string what = "this run");
+    ~Progress();
+    Progress(const Progress&) = delete;
+    Progress& operator=(const Progress&) = delete;
+    void at(double t);
+
+private:
+    std::string program_, what_;
+    double finalTime_;
+    double start_;        // s, wall clock
+    double longRun_ = 60; // s: a run expected to take longer is announced
+    bool decided_ = false;
+    bool long_ = false;
+    int tenths_ = 0;      // progress lines printed
+    struct Watch;         // the watch for a first sample that does not come
+    std::unique_ptr<Watch> watch_;
+};
 
 /// Adds a Simbody visualizer to `system` (call before its topology is realized) that draws every body as a
 /// sphere of `radius` m and shows a frame every `frameInterval` s of simulated time, in real time. Needs a
@@ -66,6 +126,9 @@ struct Tabulation {
     std::function<std::vector<double>(const Sample&)> row;    ///< one value per column
     std::string banner;                                       ///< one line saying what runs
     double bodyRadius = 0.05;                                 ///< m, the spheres --animate draws
+    std::string program;                                      ///< for the progress lines of a long run
+    std::string conserved;       ///< a column the run should conserve (the energy), or empty
+    double conservedGrowth = 1e6;  ///< the run fails if |conserved| grows past this many times its first value
 };
 
 /// One run of a lab program: open the results file (an unwritable path fails before anything runs), print the
@@ -75,7 +138,9 @@ template <class Sample, class Scene, class Model>
 RunResult<Sample> runTabulated(const Scene& scene, Model& model, const ProgramOptions& options,
                                const Tabulation<Sample>& tabulation) {
     ResultsTable table(tabulation.columns, options.output, options.quiet ? nullptr : &std::cout);
+    if (!tabulation.conserved.empty()) table.watchGrowth(tabulation.conserved, tabulation.conservedGrowth);
     std::cout << tabulation.banner << std::endl;
+    Progress progress(tabulation.program, options.run.finalTime);
     RunHooks<Model> hooks;
     std::function<void()> finishAnimation;
     if (options.animate) {
@@ -84,8 +149,24 @@ RunResult<Sample> runTabulated(const Scene& scene, Model& model, const ProgramOp
         };
         hooks.afterRun = [&](const Model&, const SimTK::Integrator&) { finishAnimation(); };
     }
-    RunResult<Sample> result = run<Sample>(
-        scene, model, options.run, [&](const Sample& s) { table.add(tabulation.row(s)); }, hooks);
+    RunResult<Sample> result;
+    SolverChatter chatter(options.run.integrator == "CPodes");
+    try {
+        result = run<Sample>(
+            scene, model, options.run,
+            [&](const Sample& s) {
+                const std::vector<double> row = tabulation.row(s);
+                table.add(row);
+                if (!tabulation.program.empty()) progress.at(row.front());
+            },
+            hooks);
+    } catch (const std::exception& e) {
+        // A run that stops part way leaves a file that says so.
+        if (table.rows() > 0) table.note("the run stopped here: " + firstMeaningfulLine(e.what()));
+        chatter.finish();  // the error says what failed
+        throw;
+    }
+    if (const std::string said = chatter.finish(); !said.empty()) tellUser(tabulation.program + ": " + said);
     if (result.samples.empty()) throw std::runtime_error("the simulation recorded no samples");
     std::cout << "\nResults written to " << table.path() << '\n';
     return result;

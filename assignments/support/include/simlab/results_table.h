@@ -18,8 +18,19 @@ public:
     ResultsTable& operator=(const ResultsTable&) = delete;
 
     /// One row, one value per column: to the file at full double precision (17 significant digits), to the
-    /// screen rounded to fit the column.
+    /// screen rounded to fit the column. A row with an infinite or NaN value, or in which the watched column (see
+    /// watchGrowth) has grown past its bound, is not written: the file ends with a comment line ("# ...") saying
+    /// where the run broke, and add throws std::runtime_error with the same one-line message.
     void add(const std::vector<double>& values);
+
+    /// Treat `column` (a quantity the run should conserve, such as the energy) growing to more than `factor`
+    /// times its first row's magnitude as a failure of the run.
+    void watchGrowth(const std::string& column, double factor);
+
+    /// Ends the file with the comment line "# `text`" (once; later notes are dropped).
+    void note(const std::string& text);
+
+    std::size_t rows() const { return rows_; }
 
     const std::string& path() const { return path_; }
 
@@ -29,6 +40,10 @@ private:
     std::FILE* file_ = nullptr;
     std::ostream* screen_;
     std::size_t rows_ = 0;
+    int watched_ = -1;         // the column watchGrowth watches, or -1
+    double watchedFactor_ = 0;
+    double watchedFirst_ = 0;  // its value in the first row
+    bool noted_ = false;
 };
 
 }  // namespace simlab

@@ -58,6 +58,10 @@ public:
     /// Compile the student's file and link it with the course's main into the lab program at `output`.
     BuildResult buildProgram(const Assignment& assignment, const std::string& name, const std::string& text,
                              const std::string& output) const;
+    /// The assignment's work-precision study program (simlab/study.h) built from a student file, as buildProgram
+    /// builds the lab program.
+    BuildResult buildStudy(const Assignment& assignment, const std::string& name, const std::string& text,
+                           const std::string& output) const;
     /// Key of a source file's object in the cache: its content, the compile command, the contract's headers and
     /// the precompiled header.
     std::string objectKey(const Assignment& assignment, const std::string& sourceText) const;
@@ -68,6 +72,10 @@ public:
     const CourseSymbols& courseSymbols(const Assignment& assignment) const;
 
 private:
+    /// The student's file compiled and linked first, before `objects` and `libraries`, into `output`.
+    BuildResult buildLinked(const Assignment& assignment, const std::string& name, const std::string& text,
+                            const std::string& output, const std::vector<std::string>& objects,
+                            const std::vector<std::string>& libraries) const;
     BuildResult compile(const Assignment& assignment, const std::string& name, const std::string& text,
                         const std::string& workDir, int slot, std::string* object) const;
     void link(const std::vector<std::string>& inputs, const std::vector<std::string>& flags, const std::string& output,

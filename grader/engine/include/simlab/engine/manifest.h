@@ -14,6 +14,7 @@ struct Assignment {
     std::string program;           ///< name of the lab program
     std::string programPath;       ///< the lab program built from the in-tree student file
     std::string referenceProgramPath;  ///< built from the solution; empty without solutions/
+    std::string studyProgramPath;      ///< the work-precision study of the solution; empty without one
     std::string dir;               ///< assignments/<id>
     std::string rubric;
     std::string contractInclude;   ///< the one include folder a student file sees: the contract and support headers
@@ -25,6 +26,7 @@ struct Assignment {
     std::vector<std::string> probeObjects;  ///< the course's side of the probe, linked before the student's object
     std::vector<std::string> floorObjects;  ///< tests and probe in one program (the benchmark's floor)
     std::vector<std::string> programObjects;
+    std::vector<std::string> studyObjects;  ///< the work-precision study's side, for a study of any student file
 };
 
 struct Manifest {
@@ -40,6 +42,7 @@ struct Manifest {
     std::vector<std::string> probeLink;       ///< flags a probe's link adds: export nothing (see cmake/Simlab.cmake)
     std::vector<std::string> floorLibraries;
     std::vector<std::string> programLibraries;
+    std::vector<std::string> studyLibraries;
     std::vector<Assignment> assignments;
 
     /// The assignment with this id; throws UsageError listing the known ones.

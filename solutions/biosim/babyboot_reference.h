@@ -26,10 +26,13 @@ struct Parameters {  // SI units
 /// {qA, qB, uA, uB}: radians and radians per second.
 using State = std::vector<double>;
 
-inline void derivative(const Parameters& p, const State& x, State& dxdt) {
-    const double qA = x[0], qB = x[1], uA = x[2], uB = x[3];
-    const double s = std::sin(qB), c = std::cos(qB);
-    const double J = p.IAx + p.mA * p.LA * p.LA + p.mB * p.LB * p.LB + p.IBx - (p.IBx - p.IBy) * s * s;
+/// x' for x = {qA, qB, uA, uB}, in the precision of X's values (double, or long double for the study's reference).
+template <class X>
+inline void derivative(const Parameters& p, const X& x, X& dxdt) {
+    using Real = typename X::value_type;
+    const Real qA = x[0], qB = x[1], uA = x[2], uB = x[3];
+    const Real s = std::sin(qB), c = std::cos(qB);
+    const Real J = p.IAx + p.mA * p.LA * p.LA + p.mB * p.LB * p.LB + p.IBx - (p.IBx - p.IBy) * s * s;
     dxdt[0] = uA;
     dxdt[1] = uB;
     dxdt[2] = (-p.g * (p.mA * p.LA + p.mB * p.LB) * std::sin(qA) + 2 * (p.IBx - p.IBy) * s * c * uA * uB) / J;

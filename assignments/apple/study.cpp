@@ -1,0 +1,63 @@
+// The apple's scene in the work-precision study: y and vy against the exact fall y = h - g t^2 / 2, which
+// double precision evaluates to its last digit.
+#include "apple/NewtonsApple.h"
+#include "apple/exact.h"
+#include "simlab/digits.h"
+#include "simlab/study.h"
+
+namespace {
+
+class Fall : public simlab::study::Instance {
+public:
+    Fall(double finalTime, bool free) : finalTime_(finalTime) {
+        if (!free) {
+            apple::buildModel(scene_, model_);
+            initial_ = apple::initialState(scene_, model_);
+            return;
+        }
+        // Over-modelled: the apple on a Free mobilizer, six motions where the fall needs one.
+        using namespace SimTK;
+        const Body::Rigid body(MassProperties(scene_.mass, Vec3(0), UnitInertia::sphere(scene_.radius)));
+        model_.apple = MobilizedBody::Free(model_.matter.Ground(), Transform(), body, Transform());
+        Force::UniformGravity(model_.forces, model_.matter, Vec3(0, -scene_.gravity, 0));
+        initial_ = model_.system.realizeTopology();
+        model_.apple.setQToFitTranslation(initial_, Vec3(0, scene_.dropHeight, 0));
+    }
+    const SimTK::MultibodySystem& system() const override { return model_.system; }
+    const SimTK::State& initial() const override { return initial_; }
+    double digits(const SimTK::State& state) override {
+        const apple::Sample s = apple::sample(model_, state);
+        // y passes zero as the apple falls past Ground's origin: positions are measured against the largest
+        // height the fall spans, speeds against the largest speed.
+        const double g = scene_.gravity, T = finalTime_;
+        const double yScale = std::max(std::abs(scene_.dropHeight), 0.5 * g * T * T);
+        return std::min(simlab::accuracyDigits(s.yLocation, apple::exact::yLocation(scene_, s.time), yScale),
+                        simlab::accuracyDigits(s.yVelocity, apple::exact::yVelocity(scene_, s.time), g * T));
+    }
+    double conserved(const SimTK::State& state) override { return apple::sample(model_, state).mechanicalEnergy; }
+
+private:
+    apple::Scene scene_;
+    apple::Model model_;
+    SimTK::State initial_;
+    double finalTime_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const apple::Scene scene;
+    simlab::study::Subject fall;
+    fall.name = "apple";
+    fall.finalTime = apple::defaultRunSettings().finalTime;
+    fall.figure = "y and vy of the falling apple (scales: the height the fall spans, g T)";
+    fall.conservedName = "mechanical energy (relative to the energy the fall exchanges)";
+    fall.conservedScale = 0.5 * scene.mass * SimTK::square(scene.gravity * fall.finalTime);
+    fall.reference = "the exact fall, y = h - g t^2/2, vy = -g t";
+    fall.referenceDigits = [] { return simlab::kMaxDigits; };
+    fall.make = [T = fall.finalTime] { return std::make_unique<Fall>(T, false); };
+    fall.makeOverModelled = [T = fall.finalTime] { return std::make_unique<Fall>(T, true); };
+    fall.minimal = "Slider (1 dof)";
+    fall.overModelled = "Free (6 dof)";
+    return simlab::study::studyMain(argc, argv, "apple", {fall});
+}

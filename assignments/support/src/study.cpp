@@ -1,0 +1,362 @@
+#include "simlab/study.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "simlab/integrators.h"
+
+namespace simlab::study {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Settings {
+    bool quick = false;
+    /// The cost cap, in evaluations of the equations of motion: a count, so that which points pass it is the same
+    /// on every machine, however busy.
+    double maxEvaluations = 5e5;
+    double cap = 60;   ///< s of wall time: a net for one point's measured run (and again for its timed repeats)
+    int repeats = 3;   ///< timed runs per point; the fastest is kept
+    std::string subject;
+};
+
+/// One point of the study: an integrator at an accuracy, or at a fixed step.
+struct Point {
+    std::string integrator;
+    std::string mode;  ///< "accuracy" or "fixed step"
+    double accuracy = 0;
+    double step = 0;   ///< s, for "fixed step"
+};
+
+/// What a point measured.
+struct Outcome {
+    std::string status = "ok";  ///< ok, too costly, failed, blew up, no error control
+    std::string message;
+    double reached = 0;        ///< s of simulated time
+    double finalDigits = 0;
+    double worstDigits = 0;
+    double drift = 0;          ///< largest |conserved - its start| / the subject's scale
+    int stepsTaken = 0, stepsAttempted = 0, evaluations = 0;
+    double seconds = NAN;      ///< fastest timed repeat
+    int repeats = 0;
+};
+
+/// A message in one line of at most 200 characters. Simbody's run over several lines and begin with where they
+/// were thrown ("SimTK Exception thrown at File.cpp:428:"), which says nothing to a user: that part goes.
+std::string firstLine(const std::string& text) {
+    std::string line;
+    for (const char c : text) {
+        const bool space = c == '\n' || c == '\t' || c == '\r' || c == ' ';
+        if (!space) line += c;
+        else if (!line.empty() && line.back() != ' ') line += ' ';
+    }
+    const std::string where = "SimTK Exception thrown at ";
+    if (line.rfind(where, 0) == 0) {
+        const std::size_t colon = line.find(": ", where.size());
+        if (colon != std::string::npos) line = line.substr(colon + 2);
+    }
+    if (line.size() > 200) line = line.substr(0, 200) + "...";
+    return line;
+}
+
+/// Silences stderr while it lives: CPodes prints its complaints there before it throws (the throw says it in
+/// one line).
+class QuietStderr {
+public:
+    QuietStderr() {
+        std::fflush(stderr);
+        saved_ = dup(2);
+        const int null = open("/dev/null", O_WRONLY);
+        if (null >= 0) {
+            dup2(null, 2);
+            close(null);
+        }
+    }
+    ~QuietStderr() {
+        std::fflush(stderr);
+        if (saved_ >= 0) {
+            dup2(saved_, 2);
+            close(saved_);
+        }
+    }
+    QuietStderr(const QuietStderr&) = delete;
+    QuietStderr& operator=(const QuietStderr&) = delete;
+
+private:
+    int saved_ = -1;
+};
+
+std::unique_ptr<SimTK::Integrator> integratorFor(const Point& p, const SimTK::System& system, double finalTime) {
+    std::unique_ptr<SimTK::Integrator> integrator =
+        integratorNamed(p.integrator, system, p.mode == "fixed step" ? p.step : finalTime / 1000);
+    if (p.mode == "fixed step") {
+        integrator->setFixedStepSize(p.step);
+    } else {
+        integrator->setAccuracy(p.accuracy);
+    }
+    integrator->setFinalTime(finalTime);
+    return integrator;
+}
+
+bool finite(const SimTK::State& state) {
+    const SimTK::Vector& y = state.getY();
+    for (int i = 0; i < y.size(); ++i) {
+        if (!std::isfinite(y[i])) return false;
+    }
+    return std::isfinite(state.getTime());
+}
+
+/// The measured run: the error at the integrator's own steps (at most about a thousand of them, spread evenly in
+/// time, since the reference costs as much as a step), under the cap.
+void measure(const Subject& subject, const Point& point, const Settings& settings, Outcome& out) {
+    std::unique_ptr<Instance> instance = subject.make();
+    std::unique_ptr<SimTK::Integrator> integrator = integratorFor(point, instance->system(), subject.finalTime);
+    integrator->setReturnEveryInternalStep(true);
+    SimTK::TimeStepper stepper(instance->system(), *integrator);
+    stepper.setReportAllSignificantStates(true);
+    stepper.initialize(instance->initial());
+    const double start = instance->conserved(stepper.getState());
+    out.worstDigits = instance->digits(stepper.getState());
+    const double every = subject.finalTime / 1000;
+    double nextCheck = every;
+    const Clock::time_point began = Clock::now();
+    while (true) {
+        const double before = stepper.getState().getTime();
+        stepper.stepTo(subject.finalTime);
+        const SimTK::State& state = stepper.getState();
+        out.reached = state.getTime();
+        if (!finite(state)) {
+            out.status = "blew up";
+            out.message = "the state is not finite at t = " + std::to_string(out.reached) + " s";
+            return;
+        }
+        const bool over = integrator->isSimulationOver() || state.getTime() >= subject.finalTime;
+        if (state.getTime() >= nextCheck || over) {
+            nextCheck = state.getTime() + every;
+            out.worstDigits = std::min(out.worstDigits, instance->digits(state));
+            const double drift = std::abs(instance->conserved(state) - start) / subject.conservedScale;
+            out.drift = std::max(out.drift, std::isfinite(drift) ? drift : INFINITY);
+        }
+        if (over) break;
+        char reached[96];
+        std::snprintf(reached, sizeof reached, " at t = %.4g s of %g s", out.reached, subject.finalTime);
+        if (integrator->getNumRealizations() > settings.maxEvaluations) {
+            out.status = "too costly";
+            out.message = "past the cap of " + std::to_string(static_cast<long>(settings.maxEvaluations)) +
+                          " evaluations" + reached;
+            break;
+        }
+        if (std::chrono::duration<double>(Clock::now() - began).count() > settings.cap) {
+            out.status = "too costly";
+            out.message = "past the net of " + std::to_string(static_cast<long>(settings.cap)) + " s" + reached;
+            break;
+        }
+        if (!(state.getTime() > before) && integrator->getNumStepsTaken() > 10000000) {
+            out.status = "failed";
+            out.message = "the step size collapsed at t = " + std::to_string(out.reached) + " s";
+            return;
+        }
+    }
+    out.finalDigits = instance->finalDigits(stepper.getState());
+    out.stepsTaken = integrator->getNumStepsTaken();
+    out.stepsAttempted = integrator->getNumStepsAttempted();
+    out.evaluations = integrator->getNumRealizations();
+}
+
+/// The timed repeats: reporting only at the end; the fastest is kept. After two seconds of them, one is enough.
+void timeRepeats(const Subject& subject, const Point& point, const Settings& settings, Outcome& out) {
+    double spent = 0;
+    for (int r = 0; r < settings.repeats && spent <= std::min(2.0, settings.cap); ++r) {
+        std::unique_ptr<Instance> instance = subject.make();
+        std::unique_ptr<SimTK::Integrator> integrator = integratorFor(point, instance->system(), subject.finalTime);
+        SimTK::TimeStepper stepper(instance->system(), *integrator);
+        const Clock::time_point began = Clock::now();
+        stepper.initialize(instance->initial());
+        while (!integrator->isSimulationOver() && stepper.getState().getTime() < subject.finalTime) {
+            stepper.stepTo(subject.finalTime);
+        }
+        const double seconds = std::chrono::duration<double>(Clock::now() - began).count();
+        spent += seconds;
+        out.seconds = std::isnan(out.seconds) ? seconds : std::min(out.seconds, seconds);
+        out.repeats = r + 1;
+    }
+}
+
+/// A point measured and, if it ran to the end, timed; whatever it throws is its outcome, in one line.
+void measureAndTime(const Subject& subject, const Point& point, const Settings& settings, Outcome& out) {
+    try {
+        QuietStderr quiet;
+        measure(subject, point, settings, out);
+        if (out.status == "ok") timeRepeats(subject, point, settings, out);
+    } catch (const std::exception& e) {
+        out.status = "failed";
+        out.message = firstLine(e.what());
+    }
+}
+
+nlohmann::json number(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+
+nlohmann::json toJson(const Subject& s, const Point& p, const Outcome& o) {
+    return {{"type", "point"},         {"subject", s.name},
+            {"integrator", p.integrator}, {"mode", p.mode},
+            {"accuracy", number(p.accuracy)}, {"step", number(p.step)},
+            {"status", o.status},       {"message", o.message},
+            {"reached", number(o.reached)}, {"final_digits", number(o.finalDigits)},
+            {"worst_digits", number(o.worstDigits)}, {"drift", number(o.drift)},
+            {"steps_taken", o.stepsTaken}, {"steps_attempted", o.stepsAttempted},
+            {"evaluations", o.evaluations}, {"seconds", number(o.seconds)},
+            {"repeats", o.repeats}};
+}
+
+std::vector<Point> pointsOf(const Subject& subject, const Settings& settings) {
+    std::vector<Point> points;
+    for (const std::string& name : integratorNames()) {
+        for (int exponent = 1; exponent <= 14; ++exponent) {
+            points.push_back({name, "accuracy", std::pow(10.0, -exponent), 0});
+        }
+    }
+    // Steps from a tenth of the run down, by half decades (whole decades with --quick).
+    const std::vector<double> fractions = settings.quick ? std::vector<double>{1e-1, 1e-2, 1e-3, 1e-4}
+                                                         : std::vector<double>{1e-1, 3e-2, 1e-2, 3e-3, 1e-3,
+                                                                               3e-4, 1e-4, 3e-5};
+    for (const std::string& name : integratorNames()) {
+        if (name == "CPodes") continue;  // a multistep method: its steps are its own
+        for (const double f : fractions) points.push_back({name, "fixed step", 0, f * subject.finalTime});
+    }
+    return points;
+}
+
+/// The same scene minimal and over-modelled, side by side, with the labs' integrator at three accuracies.
+void runMinimal(const std::string& lab, const Subject& subject, const Settings& settings) {
+    if (!subject.makeOverModelled) return;
+    for (const double accuracy : {1e-4, 1e-7, 1e-10}) {
+        for (const bool over : {false, true}) {
+            Subject s = subject;
+            if (over) s.make = subject.makeOverModelled;
+            const Point point{"RungeKuttaMerson", "accuracy", accuracy, 0};
+            Outcome out;
+            int mobilities = 0, coordinates = 0;
+            try {
+                const std::unique_ptr<Instance> instance = s.make();
+                mobilities = instance->initial().getNU();
+                coordinates = instance->initial().getNQ();
+            } catch (const std::exception&) {
+                // measureAndTime says what went wrong
+            }
+            measureAndTime(s, point, settings, out);
+            nlohmann::json j = toJson(s, point, out);
+            j["type"] = "minimal";
+            j["lab"] = lab;
+            j["model"] = over ? subject.overModelled : subject.minimal;
+            j["over_modelled"] = over;
+            j["mobilities"] = mobilities;
+            j["coordinates"] = coordinates;
+            std::cout << j.dump() << std::endl;
+        }
+    }
+}
+
+void runSubject(const std::string& lab, const Subject& subject, const Settings& settings) {
+    subject.make();  // a model that cannot be built (a SIMLAB_TODO, say) stops the study here, saying why
+    const double referenceDigits = subject.referenceDigits();
+    std::cout << nlohmann::json{{"type", "subject"},       {"lab", lab},
+                                {"subject", subject.name}, {"figure", subject.figure},
+                                {"conserved", subject.conservedName}, {"final_time", subject.finalTime},
+                                {"reference", subject.reference},     {"reference_digits", number(referenceDigits)},
+                                {"cap", settings.cap},     {"max_evaluations", settings.maxEvaluations},
+                                {"repeats", settings.repeats}}
+                     .dump()
+              << std::endl;
+    const std::vector<Point> points = pointsOf(subject, settings);
+    // A point that passed the cap makes every tighter point of the same integrator and mode dearer still: they
+    // are recorded as too costly, not run.
+    std::string costlyKey, costlyMessage;
+    int done = 0;
+    for (const Point& point : points) {
+        Outcome out;
+        const std::string key = point.integrator + "/" + point.mode;
+        if (point.mode == "accuracy" && !hasErrorControl(point.integrator)) {
+            out.status = "no error control";
+            out.message = point.integrator + " takes fixed steps whatever the accuracy: see its step sweep";
+        } else if (key == costlyKey) {
+            out.status = "too costly";
+            out.message = "not run: " + costlyMessage;
+        } else {
+            measureAndTime(subject, point, settings, out);
+            if (out.status == "too costly") {
+                costlyKey = key;
+                costlyMessage = point.mode == "accuracy" ? "a looser accuracy already passed the cap"
+                                                         : "a longer step already passed the cap";
+            }
+        }
+        std::cout << toJson(subject, point, out).dump() << std::endl;
+        // Progress, for a person watching: on a terminal only, so that a log or a pipe holds only the results.
+        if (isatty(2) && (++done % 20 == 0 || done == static_cast<int>(points.size()))) {
+            std::cerr << "  " << subject.name << ": " << done << " of " << points.size() << " points\n";
+        }
+    }
+}
+
+}  // namespace
+
+int studyMain(int argc, char** argv, const std::string& lab, const std::vector<Subject>& subjects) {
+    Settings settings;
+    bool list = false, minimal = false;
+    CLI::App app{"The work-precision study of the " + lab + " lab's scenes, one JSON object per line (run it with "
+                 "`simlab study trade " + lab + "`).", lab + "-study"};
+    app.add_flag("--quick", settings.quick, "fewer step sizes, one timed repeat and a cap of 2e5 evaluations");
+    app.add_option("--max-evaluations", settings.maxEvaluations, "the cost cap: evaluations one point may take")
+        ->check(CLI::Range(100.0, 1e9))
+        ->capture_default_str();
+    app.add_option("--cap", settings.cap, "seconds of wall time a point may take (a net beside the cost cap)")
+        ->check(CLI::Range(0.01, 3600.0))
+        ->capture_default_str();
+    app.add_option("--repeats", settings.repeats, "timed runs per point; the fastest is kept")
+        ->check(CLI::Range(1, 100))
+        ->capture_default_str();
+    app.add_option("--subject", settings.subject, "only this scene");
+    app.add_flag("--list", list, "list the scenes and stop");
+    app.add_flag("--minimal", minimal, "each scene with its minimal mobilizers and over-modelled, side by side");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? 0 : 2;
+    }
+    if (settings.quick) {
+        if (app.count("--max-evaluations") == 0) settings.maxEvaluations = 2e5;
+        if (app.count("--repeats") == 0) settings.repeats = 1;
+    }
+    if (list) {
+        for (const Subject& s : subjects) std::cout << s.name << ": " << s.figure << '\n';
+        return 0;
+    }
+    bool found = settings.subject.empty();
+    for (const Subject& s : subjects) {
+        if (!settings.subject.empty() && s.name != settings.subject) continue;
+        found = true;
+        try {
+            if (minimal) runMinimal(lab, s, settings);
+            else runSubject(lab, s, settings);
+        } catch (const std::exception& e) {
+            std::cerr << lab << "-study: error: " << s.name << ": " << firstLine(e.what()) << '\n';
+            return 1;
+        }
+    }
+    if (!found) {
+        std::cerr << lab << "-study: error: no scene named '" << settings.subject << "' (see --list)\n";
+        return 2;
+    }
+    return 0;
+}
+
+}  // namespace simlab::study

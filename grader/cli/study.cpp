@@ -1,0 +1,653 @@
+// `simlab study trade LAB`: the work-precision study of a lab's reference solution. The lab's study program
+// (simlab/study.h) measures every point and prints it as a JSON line; this command writes them to trade.csv, draws
+// digits against evaluations and against time with gnuplot, and prints the cheapest setting for each number of
+// digits and the Pareto front.
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "commands.h"
+#include "simlab/engine/build.h"
+#include "simlab/engine/errors.h"
+#include "simlab/engine/files.h"
+#include "simlab/engine/manifest.h"
+#include "simlab/engine/process.h"
+#include "simlab/engine/text.h"
+#include <regex>
+#include <toml++/toml.h>
+
+extern char** environ;
+
+namespace simlab::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct StudyOptions {
+    bool minimal = false;  ///< `study minimal` rather than `study trade`
+    std::string lab;
+    std::string output = "study";
+    bool quick = false;
+    double maxEvaluations = 0;  // 0: the study program's default
+    double cap = 0;   // 0: the study program's default
+    int repeats = 0;  // 0: the study program's default
+    int jobs = 2;     // labs studied at once
+    bool plots = true;
+    std::string file;  ///< a student file to study instead of the reference solution
+};
+
+/// A subject's header line and its points, as the study program printed them (for `study minimal`, its rows).
+struct SubjectRun {
+    json subject;
+    std::vector<json> points;
+    std::vector<json> minimal;
+};
+
+const char* const kIntegrators[] = {"RungeKuttaMerson", "RungeKutta3", "RungeKutta2",   "RungeKuttaFeldberg",
+                                    "ExplicitEuler",    "SemiExplicitEuler", "SemiExplicitEuler2", "Verlet",
+                                    "CPodes"};
+
+/// Runs `argv` with its standard output read line by line into `onLine`; its standard error is ours (progress).
+int runReading(const std::vector<std::string>& argv, const std::function<void(const std::string&)>& onLine) {
+    int out[2];
+    if (pipe(out) != 0) throw std::runtime_error("cannot make a pipe");
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, out[1], 1);
+    posix_spawn_file_actions_addclose(&actions, out[0]);
+    posix_spawn_file_actions_addclose(&actions, out[1]);
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    pid_t pid = 0;
+    const int spawned = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    close(out[1]);
+    if (spawned != 0) {
+        close(out[0]);
+        throw std::runtime_error("cannot run " + argv[0] + ": " + std::strerror(spawned));
+    }
+    std::unique_ptr<FILE, int (*)(FILE*)> in(fdopen(out[0], "r"), fclose);
+    std::string line;
+    int c = 0;
+    while ((c = std::fgetc(in.get())) != EOF) {
+        if (c == '\n') {
+            onLine(line);
+            line.clear();
+        } else if (line.size() < (1u << 20)) {
+            line += static_cast<char>(c);
+        }
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (WIFEXITED(status)) return WEXITSTATUS(status);
+    return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+std::string number(const json& value, const char* format = "%.6g") {
+    if (!value.is_number()) return "";
+    char text[32];
+    std::snprintf(text, sizeof text, format, value.get<double>());
+    return text;
+}
+
+std::string text(const json& value) { return value.is_string() ? value.get<std::string>() : std::string(); }
+
+/// The one line a point's setting takes: "accuracy 1e-06" or "fixed step 0.004 s".
+std::string setting(const json& p) {
+    if (text(p["mode"]) == "accuracy") return "accuracy " + number(p["accuracy"], "%.0e");
+    return "fixed step " + number(p["step"], "%.3g") + " s";
+}
+
+void writeCsv(const fs::path& path, const std::vector<SubjectRun>& runs) {
+    std::ostringstream out;
+    out << "lab,subject,integrator,mode,accuracy,step_s,status,reached_s,final_digits,worst_digits,drift,"
+           "reference_digits,steps_taken,steps_attempted,evaluations,seconds,repeats,message\n";
+    for (const SubjectRun& run : runs) {
+        for (const json& p : run.points) {
+            out << engine::csvCell(text(run.subject["lab"])) << ',' << engine::csvCell(text(p["subject"])) << ','
+                << engine::csvCell(text(p["integrator"])) << ',' << engine::csvCell(text(p["mode"])) << ','
+                << number(p["accuracy"]) << ',' << number(p["step"]) << ',' << engine::csvCell(text(p["status"]))
+                << ',' << number(p["reached"]) << ',' << number(p["final_digits"], "%.2f") << ','
+                << number(p["worst_digits"], "%.2f") << ',' << number(p["drift"], "%.3g") << ','
+                << number(run.subject["reference_digits"], "%.2f") << ',' << number(p["steps_taken"], "%.0f") << ','
+                << number(p["steps_attempted"], "%.0f") << ',' << number(p["evaluations"], "%.0f") << ','
+                << number(p["seconds"], "%.6g") << ',' << number(p["repeats"], "%.0f") << ','
+                << engine::csvCell(text(p["message"])) << '\n';
+        }
+    }
+    engine::writeFileAtomically(path.string(), out.str());
+}
+
+/// Draws the subject's points from trade.csv: worst digits against evaluations and against time, one curve per
+/// integrator (dashed: its fixed-step sweep), as PNG and SVG. Returns the files made, or says why none were.
+std::vector<std::string> plot(const fs::path& dir, const std::string& subject) {
+    std::string names;
+    for (const char* n : kIntegrators) names += std::string(names.empty() ? "" : " ") + n;
+    std::ostringstream gp;
+    gp << "# Work-precision plots of " << subject << ", drawn from trade.csv by simlab study trade.\n"
+       << "set datafile separator ','\nset logscale x\nset grid\nset key outside right\n"
+       << "set ylabel 'worst digits over the run'\nset yrange [0:16]\n"
+       << "set linetype 9 lc rgb '#8b4513' pt 9\n"  // nine integrators: a ninth colour, not the first again
+       << "names = '" << names << "'\n"
+       << "ok(mode, name) = strcol(2) eq '" << subject << "' && strcol(3) eq name && strcol(4) eq mode && "
+       << "strcol(7) eq 'ok'\n";
+    std::vector<std::string> made;
+    const std::pair<const char*, const char*> axes[] = {{"evaluations", "15"}, {"time", "16"}};
+    for (const auto& [axis, column] : axes) {
+        gp << "set xlabel '" << (std::string(axis) == "time" ? "seconds (fastest repeat)" : "evaluations of the equations of motion")
+           << "'\nset title '" << subject << ": digits against " << axis << "'\n";
+        for (const char* format : {"pngcairo size 960,600", "svg size 960,600"}) {
+            const std::string file = subject + "-" + axis + (std::string(format).rfind("svg", 0) == 0 ? ".svg" : ".png");
+            gp << "set terminal " << format << "\nset output '" << file << "'\n"
+               << "plot for [i=1:words(names)] 'trade.csv' every ::1 using (ok('accuracy', word(names, i)) ? $"
+               << column << " : NaN):10 with linespoints lt i lw 2 title word(names, i), \\\n"
+               << "     for [i=1:words(names)] 'trade.csv' every ::1 using (ok('fixed step', word(names, i)) ? $"
+               << column << " : NaN):10 with linespoints lt i dt 2 notitle\n"
+               << "set output\n";
+            made.push_back(file);
+        }
+    }
+    const fs::path script = dir / (subject + ".gp");
+    engine::writeFileAtomically(script.string(), gp.str());
+    const std::string command = "cd '" + dir.string() + "' && gnuplot '" + script.filename().string() + "' 2>/dev/null";
+    if (std::system(command.c_str()) != 0) return {};
+    return made;
+}
+
+/// The table: the cheapest setting (fewest evaluations) whose worst digits reach each target, and the Pareto
+/// front of evaluations against digits.
+void printTable(std::ostream& out, const SubjectRun& run) {
+    const json& s = run.subject;
+    const double referenceDigits = s["reference_digits"].is_number() ? s["reference_digits"].get<double>() : 0;
+    out << '\n'
+        << text(s["subject"]) << ": " << text(s["figure"]) << "\n  reference: " << text(s["reference"]) << ", good to "
+        << number(s["reference_digits"], "%.1f") << " digits at t = " << number(s["final_time"]) << " s\n";
+    std::vector<const json*> ok;
+    int costly = 0, failed = 0;
+    for (const json& p : run.points) {
+        const std::string status = text(p["status"]);
+        if (status == "ok") ok.push_back(&p);
+        else if (status == "too costly") ++costly;
+        else if (status != "no error control") ++failed;
+    }
+    // By evaluations, a count the same on every machine; ties keep the study's order (the loosest setting first),
+    // never the clock's.
+    std::stable_sort(ok.begin(), ok.end(), [](const json* a, const json* b) {
+        return (*a)["evaluations"].get<double>() < (*b)["evaluations"].get<double>();
+    });
+    char line[256];
+    std::snprintf(line, sizeof line, "  %-7s %-40s %12s %8s %12s\n", "digits", "cheapest setting", "evaluations",
+                  "reached", "seconds");
+    out << line;
+    for (const int target : {4, 6, 8, 10, 12}) {
+        if (target > referenceDigits) {
+            std::snprintf(line, sizeof line, "  %-7d beyond the reference's own accuracy: not judged\n", target);
+            out << line;
+            continue;
+        }
+        const auto found = std::find_if(ok.begin(), ok.end(),
+                                        [target](const json* p) { return (*p)["worst_digits"].get<double>() >= target; });
+        if (found == ok.end()) {
+            std::snprintf(line, sizeof line, "  %-7d no setting reached it within the cap\n", target);
+            out << line;
+            continue;
+        }
+        const json& p = **found;
+        const std::string how = text(p["integrator"]) + ", " + setting(p);
+        std::snprintf(line, sizeof line, "  %-7d %-40s %12s %8s %12s\n", target, how.c_str(),
+                      number(p["evaluations"], "%.0f").c_str(), number(p["worst_digits"], "%.1f").c_str(),
+                      number(p["seconds"], "%.3g").c_str());
+        out << line;
+    }
+    out << "  Pareto front (evaluations: worst digits, setting):";
+    double best = -1;
+    int shown = 0;
+    for (const json* p : ok) {
+        const double digits = (*p)["worst_digits"].get<double>();
+        if (digits <= best + 0.05) continue;
+        best = digits;
+        out << (shown++ % 3 == 0 ? "\n    " : "; ") << number((*p)["evaluations"], "%.0f") << ": "
+            << number((*p)["worst_digits"], "%.1f") << ", " << text((*p)["integrator"]) << " " << setting(*p);
+    }
+    out << "\n  " << run.points.size() << " points: " << ok.size() << " ok, " << costly << " too costly (past "
+        << number(s["max_evaluations"], "%.0f") << " evaluations), " << failed << " failed or blew up\n";
+}
+
+/// `study minimal`: the scene with its minimal mobilizers and over-modelled, side by side, at each accuracy.
+void printMinimal(std::ostream& out, const std::vector<json>& rows) {
+    char line[256];
+    std::string subject;
+    double minimalSeconds = NAN, minimalEvaluations = NAN;
+    for (const json& r : rows) {
+        if (text(r["subject"]) != subject) {
+            subject = text(r["subject"]);
+            out << '\n' << subject << " with " << text(r["integrator"]) << ", the same scene minimal and over-modelled:\n";
+            std::snprintf(line, sizeof line, "  %-9s %-20s %4s %4s %8s %12s %11s %7s %s\n", "accuracy", "model", "dof",
+                          "q", "steps", "evaluations", "seconds", "digits", "cost against minimal");
+            out << line;
+        }
+        const bool over = r["over_modelled"].get<bool>();
+        std::string against;
+        if (text(r["status"]) != "ok") {
+            against = text(r["status"]) + ": " + text(r["message"]);
+        } else if (!over) {
+            minimalSeconds = r["seconds"].get<double>();
+            minimalEvaluations = r["evaluations"].get<double>();
+        } else if (minimalSeconds > 0) {
+            char ratio[96];
+            std::snprintf(ratio, sizeof ratio, "x%.2f time, x%.2f evaluations", r["seconds"].get<double>() / minimalSeconds,
+                          r["evaluations"].get<double>() / minimalEvaluations);
+            against = ratio;
+        }
+        std::snprintf(line, sizeof line, "  %-9s %-20s %4s %4s %8s %12s %11s %7s %s\n",
+                      over ? "" : number(r["accuracy"], "%.0e").c_str(), text(r["model"]).c_str(),
+                      number(r["mobilities"], "%.0f").c_str(), number(r["coordinates"], "%.0f").c_str(),
+                      number(r["steps_taken"], "%.0f").c_str(), number(r["evaluations"], "%.0f").c_str(),
+                      number(r["seconds"], "%.3g").c_str(), number(r["worst_digits"], "%.1f").c_str(), against.c_str());
+        out << line;
+    }
+}
+
+void writeMinimalCsv(const fs::path& path, const std::vector<json>& rows) {
+    std::ostringstream out;
+    out << "lab,subject,model,over_modelled,dof,coordinates,integrator,accuracy,status,steps_taken,evaluations,"
+           "seconds,worst_digits,final_digits,message\n";
+    for (const json& r : rows) {
+        out << engine::csvCell(text(r["lab"])) << ',' << engine::csvCell(text(r["subject"])) << ','
+            << engine::csvCell(text(r["model"])) << ',' << (r["over_modelled"].get<bool>() ? "yes" : "no") << ','
+            << number(r["mobilities"], "%.0f") << ',' << number(r["coordinates"], "%.0f") << ','
+            << engine::csvCell(text(r["integrator"])) << ',' << number(r["accuracy"]) << ','
+            << engine::csvCell(text(r["status"])) << ',' << number(r["steps_taken"], "%.0f") << ','
+            << number(r["evaluations"], "%.0f") << ',' << number(r["seconds"], "%.6g") << ','
+            << number(r["worst_digits"], "%.2f") << ',' << number(r["final_digits"], "%.2f") << ','
+            << engine::csvCell(text(r["message"])) << '\n';
+    }
+    engine::writeFileAtomically(path.string(), out.str());
+}
+
+void runTrade(const StudyOptions& o) {
+    const engine::Manifest manifest = engine::loadManifest();
+    std::vector<const engine::Assignment*> labs;
+    if (o.lab == "all") {
+        for (const engine::Assignment& a : manifest.assignments) {
+            if (!a.studyProgramPath.empty()) labs.push_back(&a);
+        }
+    } else {
+        const engine::Assignment& a = manifest.find(o.lab);
+        if (a.studyProgramPath.empty() && (o.file.empty() || a.studyObjects.empty())) {
+            throw engine::UsageError("no study of " + o.lab + ": its reference solution is not in this tree");
+        }
+        labs.push_back(&a);
+    }
+    if (labs.empty()) throw engine::UsageError("no lab here has a study (their reference solutions are not in this tree)");
+
+    // A student's file: its own study program, built as `simlab build` builds its lab program. Its code runs here,
+    // outside the grader's sandbox: a study is for one's own file.
+    std::unique_ptr<engine::TempDir> built;
+    std::string studyProgram;
+    if (!o.file.empty()) {
+        if (o.lab == "all" || labs.front()->id == "biosim") {
+            throw engine::UsageError("--file studies one lab's file: apple, projectile or book (biosim's study is the "
+                                     "baby boot's)");
+        }
+        const engine::Assignment& a = *labs.front();
+        engine::requireCppSource(o.file);
+        const Rubric rubric = loadRubric(a.rubric);
+        const engine::SubmissionFiles files = readSubmission(o.file, rubric, rubric.limits);
+        built = std::make_unique<engine::TempDir>("simlab-study-");
+        studyProgram = built->path() + "/" + a.program + "-study";
+        const engine::BuildResult result = engine::Builder(manifest).buildStudy(a, files.name, files.text, studyProgram);
+        if (!result.ok) {
+            std::cerr << engine::printable(engine::firstLines(result.log, 30), true);
+            throw engine::UsageError(engine::printable(o.file) +
+                                     (result.stage == "link" ? " did not link" : " did not compile"));
+        }
+    }
+    const fs::path dir = fs::absolute(o.output);
+    fs::create_directories(dir);
+    std::vector<SubjectRun> runs;
+    std::vector<json> minimalRows;
+    // Each lab's study program runs on its own core (--jobs at once); each measures its points one at a time.
+    struct LabRun {
+        std::vector<SubjectRun> runs;
+        std::vector<json> minimal;
+        int status = 0;
+    };
+    std::vector<LabRun> results(labs.size());
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+        for (std::size_t i = next++; i < labs.size(); i = next++) {
+            const engine::Assignment* a = labs[i];
+            std::vector<std::string> argv = {studyProgram.empty() ? a->studyProgramPath : studyProgram};
+            if (o.minimal) argv.push_back("--minimal");
+            if (o.quick) argv.push_back("--quick");
+            if (o.cap > 0) argv.insert(argv.end(), {"--cap", std::to_string(o.cap)});
+            if (o.maxEvaluations > 0) argv.insert(argv.end(), {"--max-evaluations", std::to_string(o.maxEvaluations)});
+            if (o.repeats > 0) argv.insert(argv.end(), {"--repeats", std::to_string(o.repeats)});
+            LabRun& r = results[i];
+            r.status = runReading(argv, [&r](const std::string& line) {
+                json j = json::parse(line, nullptr, false);
+                if (j.is_discarded() || !j.is_object()) return;
+                if (text(j["type"]) == "subject") r.runs.push_back({j, {}, {}});
+                else if (text(j["type"]) == "point" && !r.runs.empty()) r.runs.back().points.push_back(j);
+                else if (text(j["type"]) == "minimal") r.minimal.push_back(j);
+            });
+        }
+    };
+    std::vector<std::thread> workers;
+    for (int k = 0; k < std::max(1, std::min<int>(o.jobs, static_cast<int>(labs.size()))); ++k) workers.emplace_back(work);
+    for (std::thread& w : workers) w.join();
+    for (std::size_t i = 0; i < labs.size(); ++i) {
+        if (results[i].status != 0) {
+            throw std::runtime_error("the study of " + labs[i]->id + " stopped with status " +
+                                     std::to_string(results[i].status));
+        }
+        runs.insert(runs.end(), results[i].runs.begin(), results[i].runs.end());
+        minimalRows.insert(minimalRows.end(), results[i].minimal.begin(), results[i].minimal.end());
+    }
+    if (o.minimal) {
+        writeMinimalCsv(dir / "minimal.csv", minimalRows);
+        printMinimal(std::cout, minimalRows);
+        if (minimalRows.empty()) std::cout << "No over-modelled variant of this lab's scene is built.\n";
+        std::cout << "\nWritten to " << engine::printable(dir.string()) << ": minimal.csv\n";
+        return;
+    }
+    writeCsv(dir / "trade.csv", runs);
+    for (const SubjectRun& run : runs) {
+        printTable(std::cout, run);
+        if (o.plots) {
+            const std::vector<std::string> files = plot(dir, text(run.subject["subject"]));
+            if (files.empty()) std::cout << "  (no plots: gnuplot failed or is not installed)\n";
+        }
+    }
+    std::cout << "\nWritten to " << engine::printable(dir.string()) << ": trade.csv"
+              << (o.plots ? ", and for each scene its .gp script with -evaluations and -time plots (PNG, SVG)" : "")
+              << '\n';
+}
+
+// ---- study extremes -------------------------------------------------------------------------------------------
+
+struct ExtremesOptions {
+    std::string lab;
+    std::string output = "study";
+    bool quick = false;
+    double cap = 20;
+};
+
+/// One extreme case from the lab's extremes.toml, and what became of it.
+struct Extreme {
+    std::string lab, name, expect;
+    std::vector<std::string> args;
+    std::vector<std::string> troubleWords;  ///< the lab's: a finished run that prints one of these names trouble
+    bool slow = false;
+    std::string outcome;  ///< accurate, rejected, trouble, or SILENT: ... (a defect)
+    double digits = NAN;
+    double seconds = 0;
+    std::string line;     ///< the program's own words for it
+};
+
+std::vector<Extreme> readExtremes(const engine::Assignment& a) {
+    const fs::path file = fs::path(a.dir) / "extremes.toml";
+    if (!fs::exists(file)) throw engine::UsageError("no extreme cases for " + a.id + " (" + file.string() + ")");
+    toml::table t;
+    try {
+        t = toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+        throw engine::UsageError(file.string() + ": " + std::string(e.description()));
+    }
+    std::vector<Extreme> cases;
+    std::vector<std::string> troubleWords;
+    if (const toml::array* words = t["trouble"].as_array()) {
+        for (const toml::node& w : *words) troubleWords.push_back(w.value_or(std::string()));
+    }
+    if (const toml::array* list = t["case"].as_array()) {
+        for (const toml::node& node : *list) {
+            const toml::table* c = node.as_table();
+            if (!c) continue;
+            Extreme e;
+            e.lab = a.id;
+            e.name = (*c)["name"].value_or(std::string());
+            e.expect = (*c)["expect"].value_or(std::string());
+            e.slow = (*c)["slow"].value_or(false);
+            e.troubleWords = troubleWords;
+            if (const toml::array* args = (*c)["args"].as_array()) {
+                for (const toml::node& arg : *args) e.args.push_back(arg.value_or(std::string()));
+            }
+            cases.push_back(e);
+        }
+    }
+    return cases;
+}
+
+/// The line of the program's output that holds `word`, or "".
+std::string lineWith(const std::string& output, const std::string& word) {
+    std::istringstream in(output);
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.find(word) != std::string::npos) return line;
+    }
+    return "";
+}
+
+/// Runs one case under the cap and names its outcome. A silent one (a run that says nothing of a failure, prints
+/// a non-finite number, leaves one in its results file, crashes, or runs past the cap without warning) is a
+/// defect of the lab program.
+void runExtreme(const std::string& program, double cap, Extreme& e) {
+    engine::TempDir dir("simlab-extreme-");
+    engine::ProcessRequest request;
+    request.argv = {program};
+    request.argv.insert(request.argv.end(), e.args.begin(), e.args.end());
+    const std::string results = dir.path() + "/results.txt";
+    request.argv.insert(request.argv.end(), {"--quiet", "--output", results});
+    // The program is asked to announce any run longer than a quarter of the cap, so that a case that reaches the
+    // cap without a word is one the program itself did not see coming.
+    request.env = engine::childEnvironment(
+        {"LC_ALL=C", "SIMLAB_LONG_RUN_SECONDS=" + std::to_string(std::max(1.0, cap / 4))});
+    request.workDir = dir.path();
+    request.limits.wallSeconds = cap;
+    request.limits.cpuSeconds = cap;
+    request.limits.memoryMiB = 4096;
+    request.limits.fileMiB = 1024;
+    request.limits.processes = 64;
+    request.keepOutput = 256 * 1024;
+    const engine::ProcessResult r = engine::runProcess(request);
+    e.seconds = r.wallSeconds;
+    const std::regex nonFinite(R"((^|[^A-Za-z_])(nan|-?inf)([^A-Za-z_]|$))", std::regex::icase);
+    if (!r.started) {
+        e.outcome = "SILENT: did not start";
+        e.line = r.error;
+    } else if (r.wallTimeout || r.cpuTimeout) {
+        std::string warned = lineWith(r.output, "will take about");
+        if (warned.empty()) warned = lineWith(r.output, "no sample after");
+        e.outcome = warned.empty() ? "SILENT: ran past the cap without a word" : "trouble";
+        e.line = warned.empty() ? "" : "expected run time past the cap: " + warned;
+    } else if (r.signal != 0) {
+        e.outcome = "SILENT: crashed (" + engine::signalName(r.signal) + ")";
+    } else if (r.exitCode == 2) {
+        e.outcome = "rejected";
+        e.line = lineWith(r.output, "error:");
+    } else if (r.exitCode == 1) {
+        e.outcome = "trouble";
+        e.line = lineWith(r.output, "error:");
+    } else if (r.exitCode != 0) {
+        e.outcome = "SILENT: exit status " + std::to_string(r.exitCode);
+    } else {
+        // Finished: the figure is the fewest digits the program claims; a number it cannot stand behind is a defect.
+        const std::regex claim(R"(([0-9]+\.[0-9]) accurate digits)");
+        for (auto it = std::sregex_iterator(r.output.begin(), r.output.end(), claim); it != std::sregex_iterator(); ++it) {
+            const double d = std::stod((*it)[1].str());
+            e.digits = std::isnan(e.digits) ? d : std::min(e.digits, d);
+        }
+        std::ifstream file(results);
+        std::string row, badRow;
+        while (std::getline(file, row)) {
+            if (!row.empty() && row[0] != '#' && std::regex_search(row, nonFinite)) {
+                badRow = row;
+                break;
+            }
+        }
+        std::istringstream out(r.output);
+        std::string line, badLine;
+        while (std::getline(out, line)) {
+            if (std::regex_search(line, nonFinite)) {
+                badLine = line;
+                break;
+            }
+        }
+        std::string named;
+        for (const std::string& word : e.troubleWords) {
+            if (named.empty() && !word.empty()) named = lineWith(r.output, word);
+        }
+        if (!named.empty()) {
+            e.outcome = "trouble";
+            e.line = named;
+        } else if (!badLine.empty()) {
+            e.outcome = "SILENT: printed a non-finite number";
+            e.line = badLine;
+        } else if (!badRow.empty()) {
+            e.outcome = "SILENT: a non-finite row in the results file";
+            e.line = badRow.substr(0, 120);
+        } else if (std::isnan(e.digits)) {
+            e.outcome = "SILENT: finished without a figure";
+        } else {
+            e.outcome = "accurate";
+            e.line = lineWith(r.output, "accurate digits");
+        }
+    }
+    if (e.line.size() > 160) e.line = e.line.substr(0, 160) + "...";
+}
+
+void runExtremes(const ExtremesOptions& o) {
+    const engine::Manifest manifest = engine::loadManifest();
+    std::vector<const engine::Assignment*> labs;
+    for (const engine::Assignment& a : manifest.assignments) {
+        const bool chosen = o.lab == "all" ? fs::exists(fs::path(a.dir) / "extremes.toml") : a.id == o.lab;
+        if (chosen) labs.push_back(&a);
+    }
+    if (labs.empty()) manifest.find(o.lab);  // an unknown lab: its one-line error
+    const fs::path dir = fs::absolute(o.output);
+    fs::create_directories(dir);
+    std::vector<Extreme> all;
+    int broken = 0;
+    char line[512];
+    for (const engine::Assignment* a : labs) {
+        if (a->referenceProgramPath.empty()) {
+            throw engine::UsageError("no extremes for " + a->id + ": its reference solution is not in this tree");
+        }
+        std::vector<Extreme> cases = readExtremes(*a);
+        int skipped = 0;
+        std::cout << '\n' << a->id << ": " << cases.size() << " extreme cases, each under a " << o.cap << " s cap\n";
+        std::snprintf(line, sizeof line, "  %-10s %6s %8s  %s\n", "outcome", "digits", "seconds", "case: the program's words");
+        std::cout << line;
+        for (Extreme& e : cases) {
+            if (o.quick && e.slow) {
+                ++skipped;
+                continue;
+            }
+            runExtreme(a->referenceProgramPath, o.cap, e);
+            const bool silent = e.outcome.rfind("SILENT", 0) == 0;
+            const bool promise = e.expect.empty() || e.outcome == e.expect;
+            if (silent || !promise) ++broken;
+            std::snprintf(line, sizeof line, "  %-10s %6s %8.2f  %s%s%s%s\n", silent ? "SILENT" : e.outcome.c_str(),
+                          std::isnan(e.digits) ? "" : number(json(e.digits), "%.1f").c_str(), e.seconds,
+                          engine::printable(e.name).c_str(), e.line.empty() ? "" : ": ",
+                          engine::printable(silent ? e.outcome + (e.line.empty() ? "" : " - " + e.line) : e.line).c_str(),
+                          promise ? "" : ("  [expected " + e.expect + "]").c_str());
+            std::cout << line << std::flush;
+            all.push_back(e);
+        }
+        if (skipped) std::cout << "  (" << skipped << " slow cases not run: --quick)\n";
+    }
+    std::ostringstream csv;
+    csv << "lab,case,arguments,expected,outcome,digits,seconds,message\n";
+    for (const Extreme& e : all) {
+        std::string args;
+        for (const std::string& a : e.args) args += (args.empty() ? "" : " ") + a;
+        csv << engine::csvCell(e.lab) << ',' << engine::csvCell(e.name) << ',' << engine::csvCell(args) << ','
+            << engine::csvCell(e.expect) << ',' << engine::csvCell(e.outcome) << ','
+            << (std::isnan(e.digits) ? "" : number(json(e.digits), "%.1f")) << ',' << number(json(e.seconds), "%.3f")
+            << ',' << engine::csvCell(e.line) << '\n';
+    }
+    engine::writeFileAtomically((dir / "extremes.csv").string(), csv.str());
+    std::cout << "\nWritten to " << engine::printable(dir.string()) << ": extremes.csv\n";
+    if (broken > 0) {
+        throw std::runtime_error(std::to_string(broken) + " extreme case(s) ended silently or not as the lab promises");
+    }
+}
+
+}  // namespace
+
+void addStudy(CLI::App& app) {
+    CLI::App* study = app.add_subcommand("study", "Measure the labs' numerics: what accuracy costs.");
+    study->require_subcommand(1);
+    auto options = std::make_shared<StudyOptions>();
+    CLI::App* trade = study->add_subcommand(
+        "trade", "Work-precision study of a lab's reference solution: every integrator at accuracies 1e-1 ... "
+                 "1e-14 and fixed steps, each point under a cost cap; writes trade.csv and plots, prints the "
+                 "cheapest setting for 4 to 12 digits.");
+    trade->add_option("lab", options->lab, "apple, projectile, book, biosim (the baby boot) or all")->required();
+    trade->add_option("--output,-o", options->output, "folder for trade.csv and the plots")->capture_default_str();
+    trade->add_flag("--quick", options->quick, "fewer step sizes, one timed repeat, a cap of 2e5 evaluations");
+    trade->add_option("--max-evaluations", options->maxEvaluations,
+                      "the cost cap: evaluations one point may take (default 5e5; 2e5 with --quick)")
+        ->check(CLI::Range(100.0, 1e9));
+    trade->add_option("--cap", options->cap, "seconds of wall time one point may take, a net (default 60)")
+        ->check(CLI::Range(0.01, 3600.0));
+    trade->add_option("--repeats", options->repeats, "timed runs per point, the fastest kept (default 3)")
+        ->check(CLI::Range(1, 100));
+    trade->add_flag("!--no-plots", options->plots, "write trade.csv and the table only");
+    trade->add_option("--jobs,-j", options->jobs, "labs studied at once, one core each (with all)")
+        ->check(CLI::Range(1, 64))
+        ->capture_default_str();
+    trade->add_option("--file", options->file,
+                      "study this student file instead of the reference solution (its code runs on this machine, "
+                      "outside the sandbox: for one's own file)");
+    trade->callback([options] { runTrade(*options); });
+
+    CLI::App* minimal = study->add_subcommand(
+        "minimal", "What over-modelling costs: each scene with its minimal mobilizers and with a Free one, side by "
+                   "side (dof, steps, evaluations, time, digits) at accuracies 1e-4, 1e-7 and 1e-10.");
+    minimal->add_option("lab", options->lab, "apple, projectile, book or all")->required();
+    minimal->add_option("--output,-o", options->output, "folder for minimal.csv")->capture_default_str();
+    minimal->add_option("--repeats", options->repeats, "timed runs per row, the fastest kept (default 3)")
+        ->check(CLI::Range(1, 100));
+    minimal->add_option("--file", options->file, "study this student file's minimal model instead of the solution's");
+    minimal->callback([options] {
+        options->minimal = true;
+        runTrade(*options);
+    });
+
+    auto extremes = std::make_shared<ExtremesOptions>();
+    CLI::App* extreme = study->add_subcommand(
+        "extremes", "Runs the lab program on its extreme cases (assignments/LAB/extremes.toml: tiny, huge, zero and "
+                    "degenerate scenes, settings at their limits), each under a time cap, and names each outcome: "
+                    "accurate (with digits), rejected or trouble (with the program's one line). Exits 1 if any "
+                    "ends silently or not as the lab promises.");
+    extreme->add_option("lab", extremes->lab, "apple, projectile, book or all")->required();
+    extreme->add_option("--output,-o", extremes->output, "folder for extremes.csv")->capture_default_str();
+    extreme->add_flag("--quick", extremes->quick, "skip the cases marked slow");
+    extreme->add_option("--cap", extremes->cap, "seconds one case may take")
+        ->check(CLI::Range(1.0, 3600.0))
+        ->capture_default_str();
+    extreme->callback([extremes] { runExtremes(*extremes); });
+}
+
+}  // namespace simlab::cli

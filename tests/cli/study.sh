@@ -1,0 +1,70 @@
+# simlab study trade: every integrator at every accuracy and fixed step, none missing, each under its cap; the
+# figures hold the physics (constant acceleration is integrated exactly by second-order methods, Euler is first
+# order); plots and the table are made; an unknown lab is a one-line error.
+source "$(dirname "$0")/../smoke/lib.sh"
+
+run_capture apple "$SIMLAB" study trade apple --quick -o st
+check "simlab study trade apple --quick succeeds" test "$(status_of apple)" -eq 0
+check "trade.csv has a row for each of 9 integrators x 14 accuracies and 8 methods x 4 fixed steps" \
+  test "$(tail -n +2 st/trade.csv | wc -l)" -eq 158
+check "every row has a named status" \
+  bash -c "! tail -n +2 st/trade.csv | cut -d, -f7 | grep -vxE 'ok|too costly|failed|blew up|no error control'"
+field() {  # field INTEGRATOR MODE SETTING COLUMN: one figure of trade.csv's apple rows
+  awk -F, -v i="$1" -v m="$2" -v s="$3" -v c="$4" \
+    '$2 == "apple" && $3 == i && $4 == m && ($5 + 0 == s + 0 || $6 + 0 == s + 0) { print $c }' st/trade.csv
+}
+check "Verlet integrates the apple's constant acceleration exactly (15 digits or more at accuracy 1e-4)" \
+  awk "BEGIN { exit !($(field Verlet accuracy 1e-4 10) >= 15) }"
+check "explicit Euler at a fixed step of 0.4 s is first order: under 2 digits" \
+  awk "BEGIN { exit !($(field ExplicitEuler 'fixed step' 0.4 10) < 2) }"
+check "ten times the steps buys explicit Euler one digit (0.4 s to 0.04 s)" \
+  awk "BEGIN { d = $(field ExplicitEuler 'fixed step' 0.04 10) - $(field ExplicitEuler 'fixed step' 0.4 10); exit !(d > 0.8 && d < 1.2) }"
+check "the table gives the cheapest setting for 4 to 12 digits" \
+  bash -c "grep -q 'cheapest setting' apple.out && test \$(grep -cE '^  (4|6|8|10|12) ' apple.out) -eq 5"
+if command -v gnuplot >/dev/null; then
+  check "digits against evaluations and against time, as PNG and SVG" \
+    test -s st/apple-evaluations.png -a -s st/apple-evaluations.svg -a -s st/apple-time.png -a -s st/apple-time.svg
+fi
+
+run_capture file "$SIMLAB" study trade apple --quick --no-plots --file "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" -o fs
+check "--file studies a student's file: the solution's copy gives the reference's table" \
+  bash -c "test $(status_of file) -eq 0 && diff <(cut -d, -f1-15 st/trade.csv) <(cut -d, -f1-15 fs/trade.csv) >/dev/null"
+run_capture starter "$SIMLAB" study trade apple --quick --no-plots --file "$SOURCE_DIR/starter/apple/NewtonsApple.cpp" -o fs2
+check "and an unfinished file stops the study, naming its first TODO" \
+  bash -c "test $(status_of starter) -ne 0 && grep -q 'not done yet (NewtonsApple.cpp:' starter.err"
+
+run_capture boot "$SIMLAB" study trade biosim --quick --max-evaluations 3e4 --no-plots -o boot
+check "the baby boot's study runs against its long-double reference, itself good to 13 digits or more, past the table's 12" \
+  bash -c "test $(status_of boot) -eq 0 && grep -qE 'good to 1[3-9]\.[0-9] digits' boot.out"
+check "CPodes at accuracy 1e-10 keeps 4 digits or more of the chaotic boot over 5 s" \
+  awk -F, '$3 == "CPodes" && $4 == "accuracy" && $5 + 0 == 1e-10 { found = 1; ok = $10 >= 4 } END { exit !(found && ok) }' \
+  boot/trade.csv
+
+run_capture minimal "$SIMLAB" study minimal book --repeats 1 -o min
+check "simlab study minimal book compares each spin on its Ball (3 dof) and on a Free mobilizer (6 dof)" \
+  bash -c "test $(status_of minimal) -eq 0 && test \$(grep -c ',Ball (3 dof),no,3,4,' min/minimal.csv) -eq 9 && \
+           test \$(grep -c ',Free (6 dof),yes,6,7,' min/minimal.csv) -eq 9"
+check "both models of the same spin reach the same digits, within half a digit, at each accuracy" \
+  awk -F, 'NR > 1 { key = $2 FS $8; if ($4 == "no") d[key] = $13; else o[key] = $13 }
+           END { n = 0; for (k in d) { n++; if (!(k in o) || d[k] - o[k] > 0.5 || o[k] - d[k] > 0.5) exit 1 }; exit n != 9 }' \
+  min/minimal.csv
+
+# The extremes, without the slow cases (each of those runs into its cap): every outcome named, every promise kept.
+for lab in apple projectile book; do
+  run_capture "extremes-$lab" "$SIMLAB" study extremes "$lab" --quick -o "ex-$lab"
+  check "simlab study extremes $lab --quick: every case ends named, as the lab promises" \
+    bash -c "test $(status_of "extremes-$lab") -eq 0 && ! grep -q SILENT ex-$lab/extremes.csv"
+  check "and $lab has 30 extreme cases or more" \
+    test "$(grep -c '^\[\[case\]\]' "$SOURCE_DIR/assignments/$lab/extremes.toml")" -ge 30
+done
+check "a cube's spin is right to 14 digits (its exact w is constant, not zero)" \
+  grep -qE '^book,a cube,.*,accurate,1[4-5]\.[0-9],' ex-book/extremes.csv
+check "a flight shorter than one fixed step says it cannot see the ground hit" \
+  grep -q 'fixed steps,.*trouble,.*No ground hit' ex-projectile/extremes.csv
+check "explicit Euler's blow-up of the book's energy is named where it broke" \
+  grep -q 'for 20 s.*trouble,.*the run broke at t = ' ex-book/extremes.csv
+
+run_capture unknown "$SIMLAB" study trade nosuch
+check "an unknown lab is a one-line error and exit 2" \
+  bash -c "test $(status_of unknown) -eq 2 && test \$(wc -l <unknown.err) -eq 1"
+finish
