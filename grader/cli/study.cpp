@@ -293,7 +293,8 @@ void runTrade(const StudyOptions& o) {
     } else {
         const engine::Assignment& a = manifest.find(o.lab);
         if (a.studyProgramPath.empty() && (o.file.empty() || a.studyObjects.empty())) {
-            throw engine::UsageError("no study of " + o.lab + ": its reference solution is not in this tree");
+            throw engine::UsageError("no study of " + o.lab + "'s reference solution, which is not in this tree: study "
+                                     "your own file with --file");
         }
         labs.push_back(&a);
     }
