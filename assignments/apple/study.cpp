@@ -26,13 +26,7 @@ public:
     const SimTK::MultibodySystem& system() const override { return model_.system; }
     const SimTK::State& initial() const override { return initial_; }
     double digits(const SimTK::State& state) override {
-        const apple::Sample s = apple::sample(model_, state);
-        // y passes zero as the apple falls past Ground's origin: positions are measured against the largest
-        // height the fall spans, speeds against the largest speed.
-        const double g = scene_.gravity, T = finalTime_;
-        const double yScale = std::max(std::abs(scene_.dropHeight), 0.5 * g * T * T);
-        return std::min(simlab::accuracyDigits(s.yLocation, apple::exact::yLocation(scene_, s.time), yScale),
-                        simlab::accuracyDigits(s.yVelocity, apple::exact::yVelocity(scene_, s.time), g * T));
+        return apple::exact::sampleDigits(scene_, apple::sample(model_, state), finalTime_);
     }
     double conserved(const SimTK::State& state) override { return apple::sample(model_, state).mechanicalEnergy; }
 

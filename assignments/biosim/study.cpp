@@ -8,7 +8,7 @@
 
 namespace {
 
-using Reference = simlab::study::OdeReference<4>;
+using Reference = simlab::OdeReference<4>;
 const double kDegree = SimTK::Pi / 180;
 
 babyboot::reference::Parameters referenceParameters(const biosim::Parameters& p) {
@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
     boot.conservedScale = p["g"] * (p["mA"] * p["LA"] + p["mB"] * p["LB"]);
     boot.reference = "the hand-derived equations of motion in long double, Boost.Odeint RKF78 at tolerance 1e-18";
     boot.referenceDigits = [p, T = boot.finalTime] {
-        return simlab::study::agreement<4>(bootReference(p, 1e-18L), bootReference(p, 1e-17L), T, {1, 1, 1, 1});
+        return simlab::agreement<4>(bootReference(p, 1e-18L), bootReference(p, 1e-17L), T, {1, 1, 1, 1});
     };
     boot.make = [] { return std::make_unique<Boot>(); };
     return simlab::study::studyMain(argc, argv, "biosim", {boot});

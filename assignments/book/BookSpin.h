@@ -69,4 +69,10 @@ Sample sample(const Model& model, const SimTK::State& state);
 void simulate(const Model& model, SimTK::Integrator& integrator, const SimTK::State& initial,
               const simlab::RunSettings& run, simlab::Recorder<Sample>& recorder);
 
+/// The trade: the integrator and its accuracy (or its fixed step) that keeps 8 accurate digits of w_B at every step of the 4 s spin about the intermediate axis (the one that tumbles)
+/// for the fewest evaluations of the equations of motion. Find it with `simlab study trade book` (on your own file:
+/// add `--file`). The grader reads integrator, accuracy, and fixedStep with dt as the step, measures the choice on
+/// your model as the study measures a setting, and compares its cost with the cheapest the study finds.
+simlab::RunSettings cheapestSettings();
+
 }  // namespace book

@@ -34,6 +34,7 @@
 
 #include "book/BookSpin.h"
 #include "simlab/digits.h"
+#include "simlab/ode_reference.h"
 
 namespace book::exact {
 
@@ -198,6 +199,25 @@ inline double linearGrowthRate(const Scene& scene, double rate) {
     const std::array<int, 3> axes = axesByMoment(scene);
     const double Ia = I[axes[0]], Ib = I[axes[1]], Ic = I[axes[2]];
     return rate * std::sqrt((Ib - Ia) * (Ic - Ib) / (Ia * Ic));
+}
+
+/// Euler's equations for w_B in long double, followed step by step as later times are asked for (the work-precision
+/// study's reference, and the trade question's).
+inline simlab::OdeReference<3> eulerReference(const Scene& scene, long double tolerance = 1e-18L) {
+    const SimTK::Vec3 I = principalMoments(scene);
+    auto f = [I](const std::array<long double, 3>& w, std::array<long double, 3>& dwdt) { eulerEquations(I, w, dwdt); };
+    return simlab::OdeReference<3>(f, {scene.w_B0[0], scene.w_B0[1], scene.w_B0[2]}, tolerance);
+}
+
+/// Digits of a simulated w_B against the reference's `w`, the worst component. Each passes through zero as the book
+/// tumbles: all count against the spin's size, |w_B(0)|.
+inline double spinDigits(const Scene& scene, const SimTK::Vec3& w_B, const std::array<long double, 3>& w) {
+    const double scale = scene.w_B0.norm();
+    double worst = simlab::kMaxDigits;
+    for (int i = 0; i < 3; ++i) {
+        worst = std::min(worst, simlab::accuracyDigits(w_B[i], static_cast<double>(w[static_cast<std::size_t>(i)]), scale));
+    }
+    return worst;
 }
 
 }  // namespace book::exact

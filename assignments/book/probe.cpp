@@ -1,4 +1,5 @@
-// What the grader can observe of a student's BookSpin.cpp: its simulation of a scene, its model, and the book's
+// What the grader can observe of a student's BookSpin.cpp: its simulation of a scene, its model, its answer to the
+// trade question (measured), and the book's
 // mass properties in that model.
 #include "book/observations.h"
 #include "simlab/probe.h"
@@ -6,6 +7,7 @@
 SIMLAB_PROBE(bookObservations) {
     using namespace book;
     simlab::probe::addLab<Sample, Scene, Model>();
+    simlab::probe::addTrade<Sample, Scene, Model>(cheapestSettings);
     simlab::probe::add("massProperties", [](const nlohmann::json& arguments) {
         const Scene scene = simlab::probe::argument<Scene>(arguments, "scene");
         Model model;

@@ -8,18 +8,11 @@
 
 namespace {
 
-using Reference = simlab::study::OdeReference<3>;
-
-/// Euler's torque-free equations for w_B, followed step by step as the study asks for later times.
-Reference eulerReference(const book::Scene& scene, long double tolerance) {
-    const SimTK::Vec3 I = book::exact::principalMoments(scene);
-    auto f = [I](const Reference::Y& w, Reference::Y& dwdt) { book::exact::eulerEquations(I, w, dwdt); };
-    return Reference(f, {scene.w_B0[0], scene.w_B0[1], scene.w_B0[2]}, tolerance);
-}
+using Reference = simlab::OdeReference<3>;
 
 class Spin : public simlab::study::Instance {
 public:
-    Spin(const book::Scene& scene, bool free) : scene_(scene), reference_(eulerReference(scene, 1e-18L)) {
+    Spin(const book::Scene& scene, bool free) : scene_(scene), reference_(book::exact::eulerReference(scene)) {
         if (!free) {
             book::buildModel(scene_, model_);
             initial_ = book::initialState(scene_, model_);
@@ -36,14 +29,7 @@ public:
     const SimTK::State& initial() const override { return initial_; }
     double digits(const SimTK::State& state) override {
         const book::Sample s = book::sample(model_, state);
-        const Reference::Y& w = reference_.at(s.time);
-        // Each component passes through zero as the book tumbles: all against the spin's size, |w_B(0)|.
-        const double scale = scene_.w_B0.norm();
-        double worst = simlab::kMaxDigits;
-        for (int i = 0; i < 3; ++i) {
-            worst = std::min(worst, simlab::accuracyDigits(s.w_B[i], static_cast<double>(w[static_cast<std::size_t>(i)]), scale));
-        }
-        return worst;
+        return book::exact::spinDigits(scene_, s.w_B, reference_.at(s.time));
     }
     double conserved(const SimTK::State& state) override { return book::sample(model_, state).kineticEnergy; }
 
@@ -66,7 +52,7 @@ simlab::study::Subject spinAbout(const std::string& axis) {
     s.reference = "Euler's equations in long double, Boost.Odeint RKF78 at tolerance 1e-18";
     s.referenceDigits = [scene, T = s.finalTime] {
         const double w = scene.w_B0.norm();
-        return simlab::study::agreement<3>(eulerReference(scene, 1e-18L), eulerReference(scene, 1e-17L), T, {w, w, w});
+        return simlab::agreement<3>(book::exact::eulerReference(scene, 1e-18L), book::exact::eulerReference(scene, 1e-17L), T, {w, w, w});
     };
     s.make = [scene] { return std::make_unique<Spin>(scene, false); };
     s.makeOverModelled = [scene] { return std::make_unique<Spin>(scene, true); };

@@ -8,9 +8,11 @@
 // keeps its launch value m v0^2 / 2.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "projectile/ProjectileMotion.h"
+#include "simlab/digits.h"
 
 namespace projectile::exact {
 
@@ -33,5 +35,24 @@ inline double flightTime(const Scene& s) { return 2 * yVelocity0(s) / s.gravity;
 inline double range(const Scene& s) { return xVelocity0(s) * flightTime(s); }         ///< x*
 inline double maxHeight(const Scene& s) { return yVelocity0(s) * yVelocity0(s) / (2 * s.gravity); }
 inline double mechanicalEnergy(const Scene& s) { return 0.5 * s.mass * s.launchSpeed * s.launchSpeed; }
+
+/// s: where the work-precision study's runs and the trade question's end, past the ground hit at 5.23 s (which ends
+/// them first).
+inline constexpr double kTradeFinalTime = 6;
+
+/// Digits of a sample of the flight against the parabola, the worst of x, y, vx and vy. x starts at zero and y is
+/// zero at both ends: positions count against the range and the top of the arc, speeds against the launch speed.
+inline double flightDigits(const Scene& s, const Sample& sample) {
+    const double v0 = s.launchSpeed;
+    return std::min({simlab::accuracyDigits(sample.x, x(s, sample.time), range(s)),
+                     simlab::accuracyDigits(sample.y, y(s, sample.time), maxHeight(s)),
+                     simlab::accuracyDigits(sample.xVelocity, xVelocity(s, sample.time), v0),
+                     simlab::accuracyDigits(sample.yVelocity, yVelocity(s, sample.time), v0)});
+}
+
+/// Digits of a ground hit found at time `t` (s) and range `x` (m), the worse of the two against t* and x*.
+inline double hitDigits(const Scene& s, double t, double x) {
+    return std::min(simlab::accuracyDigits(t, flightTime(s)), simlab::accuracyDigits(x, range(s)));
+}
 
 }  // namespace projectile::exact

@@ -1,4 +1,5 @@
-// What the grader can observe of a student's ProjectileMotion.cpp: its simulation of a scene, its model, and the
+// What the grader can observe of a student's ProjectileMotion.cpp: its simulation of a scene, its model, its answer to the
+// trade question (measured), and the
 // ground hit its event handler records when the simulation runs until the handler ends it.
 #include "projectile/observations.h"
 #include "simlab/probe.h"
@@ -6,6 +7,7 @@
 SIMLAB_PROBE(projectileObservations) {
     using namespace projectile;
     simlab::probe::addLab<Sample, Scene, Model>();
+    simlab::probe::addTrade<Sample, Scene, Model>(cheapestSettings);
     simlab::probe::add("landing", [](const nlohmann::json& arguments) {
         Landing landing = simulateLanding(simlab::probe::argument<Scene>(arguments, "scene"),
                                           simlab::probe::argument<simlab::RunSettings>(arguments, "settings"));

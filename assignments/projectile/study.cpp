@@ -32,21 +32,12 @@ public:
     const SimTK::MultibodySystem& system() const override { return model_.system; }
     const SimTK::State& initial() const override { return initial_; }
     double digits(const SimTK::State& state) override {
-        using namespace projectile::exact;
-        const projectile::Sample s = projectile::sample(model_, state);
-        // x starts at zero and y is zero at both ends: positions against the range and the top of the arc,
-        // speeds against the launch speed.
-        const double v0 = scene_.launchSpeed;
-        return std::min({simlab::accuracyDigits(s.x, x(scene_, s.time), range(scene_)),
-                         simlab::accuracyDigits(s.y, y(scene_, s.time), maxHeight(scene_)),
-                         simlab::accuracyDigits(s.xVelocity, xVelocity(scene_, s.time), v0),
-                         simlab::accuracyDigits(s.yVelocity, yVelocity(scene_, s.time), v0)});
+        return projectile::exact::flightDigits(scene_, projectile::sample(model_, state));
     }
     double finalDigits(const SimTK::State&) override {
         const projectile::GroundHit& hit = model_.groundHit;
         if (!hit.found) return 0;
-        return std::min(simlab::accuracyDigits(hit.time, projectile::exact::flightTime(scene_)),
-                        simlab::accuracyDigits(hit.x, projectile::exact::range(scene_)));
+        return projectile::exact::hitDigits(scene_, hit.time, hit.x);
     }
     double conserved(const SimTK::State& state) override { return projectile::sample(model_, state).mechanicalEnergy; }
 
@@ -62,7 +53,7 @@ int main(int argc, char** argv) {
     const projectile::Scene scene;
     simlab::study::Subject flight;
     flight.name = "projectile";
-    flight.finalTime = 6;  // past the ground hit at 5.23 s, which ends the run
+    flight.finalTime = projectile::exact::kTradeFinalTime;
     flight.figure = "the flight against the parabola at every step; at the end, the ground hit's time and range";
     flight.conservedName = "mechanical energy (relative to the launch's kinetic energy)";
     flight.conservedScale = projectile::exact::mechanicalEnergy(scene);

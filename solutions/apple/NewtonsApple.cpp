@@ -65,4 +65,13 @@ void simulate(const Model& model, Integrator& integrator, const State& initial, 
     }
 }
 
+simlab::RunSettings cheapestSettings() {
+    // `simlab study trade apple`: a second-order method integrates a constant acceleration exactly, so the loosest
+    // accuracy keeps every digit, and Verlet gets there in the fewest evaluations (12).
+    simlab::RunSettings choice;
+    choice.integrator = "Verlet";
+    choice.accuracy = 0.1;
+    return choice;
+}
+
 }  // namespace apple

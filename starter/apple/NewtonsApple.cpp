@@ -71,4 +71,8 @@ void simulate(const Model& model, Integrator& integrator, const State& initial, 
     }
 }
 
+simlab::RunSettings cheapestSettings() {
+    SIMLAB_TODO("the cheapest setting that can keep 10 digits of y and vy over the fall (simlab study trade apple)");
+}
+
 }  // namespace apple

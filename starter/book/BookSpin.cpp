@@ -62,4 +62,8 @@ void simulate(const Model& model, Integrator& integrator, const State& initial, 
     SIMLAB_TODO("step to the final time, sampling every dt");
 }
 
+simlab::RunSettings cheapestSettings() {
+    SIMLAB_TODO("the cheapest setting that can keep 8 digits of w_B on the tumbling spin (simlab study trade book)");
+}
+
 }  // namespace book

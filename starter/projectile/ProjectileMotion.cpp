@@ -99,4 +99,8 @@ void simulate(const Model& model, Integrator& integrator, const State& initial, 
     SIMLAB_TODO("step to the final time, sampling every dt, and stop at the ground hit");
 }
 
+simlab::RunSettings cheapestSettings() {
+    SIMLAB_TODO("the cheapest setting that can keep 10 digits of the flight to the ground hit (simlab study trade projectile)");
+}
+
 }  // namespace projectile

@@ -4,9 +4,9 @@ source "$(dirname "$0")/../smoke/lib.sh"
 run_capture solution "$SIMLAB" check apple "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" --format json
 check "check exits 0" test "$(status_of solution)" -eq 0
 check "the reference's results.json is valid with score = total of the visible tests (80)" \
-  "$VALIDATE" solution.out --score 80 --max 80 --tests 7
+  "$VALIDATE" solution.out --score 80 --max 80 --tests 8
 run_capture all "$SIMLAB" check apple "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" --format json --all
-check "with --all it scores 100 of 100 on 11 tests" "$VALIDATE" all.out --score 100 --max 100 --tests 11
+check "with --all it scores 100 of 100 on 12 tests" "$VALIDATE" all.out --score 100 --max 100 --tests 12
 
 run_capture starter "$SIMLAB" check apple --format json
 check "the starter's results.json is valid and scores 0 (under 40 %)" "$VALIDATE" starter.out --score 0 --max 80

@@ -30,8 +30,8 @@ grade_submission() {  # grade_submission NAME: run run_autograder on what is in 
 mkdir -p "$root/submission/upload"
 cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" "$root/submission/upload/"
 grade_submission reference
-check "run_autograder grades the reference: 100/100 on 11 tests" \
-  "$VALIDATE" "$root/results/results.json" --score 100 --max 100 --tests 11
+check "run_autograder grades the reference: 100/100 on 12 tests" \
+  "$VALIDATE" "$root/results/results.json" --score 100 --max 100 --tests 12
 check "hidden tests are marked hidden" test "$(grep -c '"visibility": "hidden"' "$root/results/results.json")" -eq 4
 
 rm -rf "$root/submission"/* && cp "$SOURCE_DIR/starter/apple/NewtonsApple.cpp" "$root/submission/apple.cpp"

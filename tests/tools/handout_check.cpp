@@ -153,7 +153,9 @@ int main(int argc, char** argv) {
             request.argv = {"/bin/bash", "-c", e.command};
             request.env = childEnvironment({"SIMLAB_MANIFEST=" + root + "/manifest.json", "LC_ALL=C"});
             request.workDir = root;
-            request.limits.wallSeconds = request.limits.cpuSeconds = 120;
+            // CPU time decides, so that a busy machine runs the same examples; wall time is a wide net.
+            request.limits.cpuSeconds = 300;
+            request.limits.wallSeconds = 1500;
             request.limits.processes = 64;
             request.limits.memoryMiB = 8192;
             request.keepOutput = 1 << 20;

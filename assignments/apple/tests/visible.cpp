@@ -62,4 +62,15 @@ TEST_CASE("the model has only the one degree of freedom a fall needs", "[apple][
                           "a Slider along Ground's y gives the apple exactly its one motion");
 }
 
+TEST_CASE("the trade: 10 digits for the fewest evaluations", "[apple][trade]") {
+    // cheapestSettings(), measured on the student's own model as `simlab study trade apple` measures a setting:
+    // the integrator stops only where it chooses to, and every step's y and vy count.
+    const Scene scene;
+    const double T = defaultRunSettings().finalTime;
+    const simlab::ChoiceRun<Sample> result = measureChoice<Sample>(scene, T);
+    double worst = simlab::kMaxDigits;
+    for (const Sample& s : result.samples) worst = std::min(worst, exact::sampleDigits(scene, s, T));
+    gradeTrade(result, worst);
+}
+
 }  // namespace apple::testing

@@ -82,4 +82,14 @@ TEST_CASE("the model has only the two degrees of freedom a flight in a plane nee
                           "two Sliders in series (along x, then along y) give the ball exactly x and y");
 }
 
+TEST_CASE("the trade: 10 digits for the fewest evaluations", "[projectile][trade]") {
+    // cheapestSettings(), measured on the student's own model as `simlab study trade projectile` measures a
+    // setting: the integrator stops only where it chooses to (and at the ground hit), and every step counts.
+    const Scene scene;
+    const simlab::ChoiceRun<Sample> result = measureChoice<Sample>(scene, exact::kTradeFinalTime);
+    double worst = simlab::kMaxDigits;
+    for (const Sample& s : result.samples) worst = std::min(worst, exact::flightDigits(scene, s));
+    gradeTrade(result, worst);
+}
+
 }  // namespace projectile::testing

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "simlab/integrators.h"
+#include "simlab/measured_run.h"
 
 namespace simlab::study {
 
@@ -25,7 +26,9 @@ struct Settings {
     /// The cost cap, in evaluations of the equations of motion: a count, so that which points pass it is the same
     /// on every machine, however busy.
     double maxEvaluations = 5e5;
-    double cap = 60;   ///< s of wall time: a net for one point's measured run (and again for its timed repeats)
+    /// s of CPU time: a net for one point's measured run (and again for its timed repeats). CPU time, not wall
+    /// time, so that a busy machine does not change which points pass.
+    double cap = 60;
     int repeats = 3;   ///< timed runs per point; the fastest is kept
     std::string subject;
 };
@@ -96,81 +99,47 @@ private:
     int saved_ = -1;
 };
 
-std::unique_ptr<SimTK::Integrator> integratorFor(const Point& p, const SimTK::System& system, double finalTime) {
-    std::unique_ptr<SimTK::Integrator> integrator =
-        integratorNamed(p.integrator, system, p.mode == "fixed step" ? p.step : finalTime / 1000);
-    if (p.mode == "fixed step") {
-        integrator->setFixedStepSize(p.step);
+/// The run settings a point stands for.
+simlab::RunSettings choiceOf(const Point& p) {
+    simlab::RunSettings choice;
+    choice.integrator = p.integrator;
+    choice.fixedStep = p.mode == "fixed step";
+    if (choice.fixedStep) {
+        choice.dt = p.step;
     } else {
-        integrator->setAccuracy(p.accuracy);
+        choice.accuracy = p.accuracy;
     }
-    integrator->setFinalTime(finalTime);
-    return integrator;
+    return choice;
 }
 
-bool finite(const SimTK::State& state) {
-    const SimTK::Vector& y = state.getY();
-    for (int i = 0; i < y.size(); ++i) {
-        if (!std::isfinite(y[i])) return false;
-    }
-    return std::isfinite(state.getTime());
-}
-
-/// The measured run: the error at the integrator's own steps (at most about a thousand of them, spread evenly in
-/// time, since the reference costs as much as a step), under the cap.
+/// The measured run (simlab/measured_run.h): the error at the integrator's own steps (at most about a thousand
+/// of them, spread evenly in time, since the reference costs as much as a step), under the cap.
 void measure(const Subject& subject, const Point& point, const Settings& settings, Outcome& out) {
     std::unique_ptr<Instance> instance = subject.make();
-    std::unique_ptr<SimTK::Integrator> integrator = integratorFor(point, instance->system(), subject.finalTime);
-    integrator->setReturnEveryInternalStep(true);
-    SimTK::TimeStepper stepper(instance->system(), *integrator);
-    stepper.setReportAllSignificantStates(true);
-    stepper.initialize(instance->initial());
-    const double start = instance->conserved(stepper.getState());
-    out.worstDigits = instance->digits(stepper.getState());
-    const double every = subject.finalTime / 1000;
-    double nextCheck = every;
-    const Clock::time_point began = Clock::now();
-    while (true) {
-        const double before = stepper.getState().getTime();
-        stepper.stepTo(subject.finalTime);
-        const SimTK::State& state = stepper.getState();
-        out.reached = state.getTime();
-        if (!finite(state)) {
-            out.status = "blew up";
-            out.message = "the state is not finite at t = " + std::to_string(out.reached) + " s";
-            return;
-        }
-        const bool over = integrator->isSimulationOver() || state.getTime() >= subject.finalTime;
-        if (state.getTime() >= nextCheck || over) {
-            nextCheck = state.getTime() + every;
-            out.worstDigits = std::min(out.worstDigits, instance->digits(state));
+    std::unique_ptr<SimTK::Integrator> integrator =
+        simlab::integratorFor(choiceOf(point), instance->system(), subject.finalTime);
+    bool first = true;
+    double start = 0;
+    simlab::MeasureLimits limits;
+    limits.maxEvaluations = settings.maxEvaluations;
+    limits.cpuSeconds = settings.cap;
+    const simlab::MeasuredRun run = simlab::measureRun(
+        instance->system(), *integrator, instance->initial(), subject.finalTime, limits,
+        [&](const SimTK::State& state, bool last) {
+            out.worstDigits = first ? instance->digits(state) : std::min(out.worstDigits, instance->digits(state));
+            if (first) start = instance->conserved(state);
+            first = false;
             const double drift = std::abs(instance->conserved(state) - start) / subject.conservedScale;
             out.drift = std::max(out.drift, std::isfinite(drift) ? drift : INFINITY);
-        }
-        if (over) break;
-        char reached[96];
-        std::snprintf(reached, sizeof reached, " at t = %.4g s of %g s", out.reached, subject.finalTime);
-        if (integrator->getNumRealizations() > settings.maxEvaluations) {
-            out.status = "too costly";
-            out.message = "past the cap of " + std::to_string(static_cast<long>(settings.maxEvaluations)) +
-                          " evaluations" + reached;
-            break;
-        }
-        if (std::chrono::duration<double>(Clock::now() - began).count() > settings.cap) {
-            out.status = "too costly";
-            out.message = "past the net of " + std::to_string(static_cast<long>(settings.cap)) + " s" + reached;
-            break;
-        }
-        if (!(state.getTime() > before) && integrator->getNumStepsTaken() > 10000000) {
-            out.status = "failed";
-            out.message = "the step size collapsed at t = " + std::to_string(out.reached) + " s";
-            return;
-        }
-    }
-    out.finalDigits = instance->finalDigits(stepper.getState());
-    out.stepsTaken = integrator->getNumStepsTaken();
-    out.stepsAttempted = integrator->getNumStepsAttempted();
-    out.evaluations = integrator->getNumRealizations();
+            if (last) out.finalDigits = instance->finalDigits(state);
+        });
+    out.reached = run.reached;
+    out.status = run.status;
+    out.message = run.message;
+    if (run.status == "blew up" || run.status == "failed") return;
+    out.stepsTaken = run.integrator.stepsTaken;
+    out.stepsAttempted = run.integrator.stepsAttempted;
+    out.evaluations = run.integrator.realizations;
 }
 
 /// The timed repeats: reporting only at the end; the fastest is kept. After two seconds of them, one is enough.
@@ -178,7 +147,8 @@ void timeRepeats(const Subject& subject, const Point& point, const Settings& set
     double spent = 0;
     for (int r = 0; r < settings.repeats && spent <= std::min(2.0, settings.cap); ++r) {
         std::unique_ptr<Instance> instance = subject.make();
-        std::unique_ptr<SimTK::Integrator> integrator = integratorFor(point, instance->system(), subject.finalTime);
+        std::unique_ptr<SimTK::Integrator> integrator =
+            simlab::integratorFor(choiceOf(point), instance->system(), subject.finalTime);
         SimTK::TimeStepper stepper(instance->system(), *integrator);
         const Clock::time_point began = Clock::now();
         stepper.initialize(instance->initial());
@@ -318,7 +288,7 @@ int studyMain(int argc, char** argv, const std::string& lab, const std::vector<S
     app.add_option("--max-evaluations", settings.maxEvaluations, "the cost cap: evaluations one point may take")
         ->check(CLI::Range(100.0, 1e9))
         ->capture_default_str();
-    app.add_option("--cap", settings.cap, "seconds of wall time a point may take (a net beside the cost cap)")
+    app.add_option("--cap", settings.cap, "seconds of CPU time a point may take (a net beside the cost cap)")
         ->check(CLI::Range(0.01, 3600.0))
         ->capture_default_str();
     app.add_option("--repeats", settings.repeats, "timed runs per point; the fastest is kept")

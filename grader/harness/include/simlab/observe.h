@@ -19,6 +19,7 @@
 #include <string>
 
 #include "simlab/driver.h"
+#include "simlab/measured_run.h"
 #include "simlab/model_info.h"
 #include "simlab/run_settings.h"
 #include "simlab/wire.h"
@@ -78,6 +79,16 @@ RunResult<Sample> run(const Scene& scene, const RunSettings& settings) {
 template <class Scene>
 ModelInfo model(const Scene& scene) {
     return decode<ModelInfo>(ask("model", {{"scene", wire::toJson(scene)}}), "model");
+}
+
+/// The student's answer to the trade question (their cheapest setting), measured on their model of `scene` to
+/// `finalTime`, stopped past `maxEvaluations`: the choice, the samples at the checked states and the run's cost.
+template <class Sample, class Scene>
+ChoiceRun<Sample> choice(const Scene& scene, double finalTime, double maxEvaluations) {
+    return decode<ChoiceRun<Sample>>(ask("choice", {{"scene", wire::toJson(scene)},
+                                                    {"final_time", finalTime},
+                                                    {"max_evaluations", maxEvaluations}}),
+                                     "choice");
 }
 
 /// A test case begins: the next question goes to a new student's process of its own. Called by the harness.

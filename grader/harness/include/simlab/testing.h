@@ -5,6 +5,8 @@
 #pragma once
 
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -121,6 +123,60 @@ inline void checkDegreesOfFreedom(const ModelInfo& info, int dof, const std::str
     CHECK(info.massiveBodies() == 1);
     CHECK(info.degreesOfFreedom() == dof);
     CHECK(info.mobilities == dof);
+}
+
+/// The student's answer to the trade question, measured (see observe::choice) to `finalTime` and stopped past
+/// the rubric's none_past times its `cheapest` evaluations. Fails the test unless the samples start at t = 0 and
+/// run forward in time.
+template <class Sample, class Scene>
+ChoiceRun<Sample> measureChoice(const Scene& scene, double finalTime) {
+    const double cap = grading::param("none_past") * grading::param("cheapest");
+    ChoiceRun<Sample> result = observe::choice<Sample>(scene, finalTime, cap);
+    INFO("the choice: " << result.choice.integrator
+                        << (result.choice.fixedStep ? ", fixed step " : ", accuracy ")
+                        << (result.choice.fixedStep ? result.choice.dt : result.choice.accuracy));
+    REQUIRE(!result.samples.empty());
+    CHECK(result.samples.front().time == 0.0);
+    for (std::size_t i = 1; i < result.samples.size(); ++i) {
+        REQUIRE(result.samples[i].time >= result.samples[i - 1].time);
+    }
+    REQUIRE(result.samples.back().time <= finalTime * (1 + 1e-12));
+    return result;
+}
+
+/// Points for the trade question. `digits`, the worst over the run, must reach the rubric's `digits`; then the
+/// cost in evaluations earns full credit up to full_within times the study's `cheapest`, less in proportion to its
+/// logarithm up to none_past times, and nothing beyond (a run stopped there never finishes). Returns true for
+/// full credit.
+template <class Sample>
+bool gradeTrade(const ChoiceRun<Sample>& result, double digits) {
+    const double target = grading::param("digits"), cheapest = grading::param("cheapest");
+    const double fullWithin = grading::param("full_within"), nonePast = grading::param("none_past");
+    const RunSettings& c = result.choice;
+    const std::string setting = c.integrator + (c.fixedStep ? ", fixed step " + grading::show(c.dt) + " s"
+                                                            : ", accuracy " + grading::show(c.accuracy));
+    const double evaluations = result.run.integrator.realizations;
+    const double ratio = evaluations / cheapest;
+    if (result.run.status != "ok") {
+        grading::measured(evaluations, "evaluations", setting + ": " + result.run.status + ", " + result.run.message);
+        FAIL_CHECK("the run did not finish: " << result.run.message);
+        return false;
+    }
+    if (!(digits >= target)) {
+        grading::measured(digits, "digits", setting + " keeps " + grading::show(digits) + " digits over the run, need " +
+                                                grading::show(target));
+        FAIL_CHECK("too few digits");
+        return false;
+    }
+    std::ostringstream line;
+    line << setting << ": " << grading::show(digits) << " digits for " << static_cast<long long>(evaluations)
+         << " evaluations, " << grading::show(ratio) << " x the cheapest found (" << static_cast<long long>(cheapest)
+         << "); full credit up to " << grading::show(fullWithin) << " x";
+    grading::measured(ratio, "x the cheapest", line.str());
+    if (ratio <= fullWithin) return true;
+    if (ratio < nonePast) grading::partialCredit(1 - std::log(ratio / fullWithin) / std::log(nonePast / fullWithin));
+    FAIL_CHECK("dearer than " << fullWithin << " x the cheapest setting found");
+    return false;
 }
 
 }  // namespace simlab::testing

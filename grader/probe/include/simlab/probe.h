@@ -14,6 +14,7 @@
 #include <typeinfo>
 
 #include "simlab/driver.h"
+#include "simlab/measured_run.h"
 #include "simlab/wire.h"
 
 namespace simlab::probe {
@@ -59,6 +60,21 @@ void addLab() {
         Model model;
         buildModel(scene, model);
         return wire::toJson(describeModel(model.matter, initialState(scene, model)));
+    });
+}
+
+/// The trade question: "choice" measures the student's `cheapest()` (their answer, a RunSettings) on their own
+/// model of a scene, as the work-precision study measures a setting (simlab/measured_run.h), under the judge's
+/// cap on evaluations.
+template <class Sample, class Scene, class Model>
+void addTrade(RunSettings (*cheapest)()) {
+    add("choice", [cheapest](const nlohmann::json& arguments) {
+        const Scene scene = argument<Scene>(arguments, "scene");
+        MeasureLimits limits;
+        limits.maxEvaluations = argument<double>(arguments, "max_evaluations");
+        const RunSettings choice = cheapest();
+        Model model;
+        return wire::toJson(measureChoice<Sample>(scene, model, choice, argument<double>(arguments, "final_time"), limits));
     });
 }
 

@@ -18,6 +18,7 @@
 
 #include "Simbody.h"
 #include "simlab/bounded_json.h"
+#include "simlab/measured_run.h"
 #include "simlab/driver.h"
 #include "simlab/model_info.h"
 #include "simlab/run_settings.h"
@@ -155,6 +156,7 @@ SIMLAB_WIRE(RunSettings, integrator, accuracy, dt, finalTime, fixedStep)
 SIMLAB_WIRE(IntegratorStats, method, stepsTaken, stepsAttempted, realizations, accuracyInUse, errorControl)
 SIMLAB_WIRE(MobilizerInfo, body, kind, nq, nu, mass)
 SIMLAB_WIRE(ModelInfo, bodies, mobilities, constraintEquations, independentConstraints, mobilizers)
+SIMLAB_WIRE(MeasuredRun, status, message, reached, integrator)
 
 template <class Sample>
 nlohmann::json toJsonObject(const RunResult<Sample>& o) {
@@ -167,6 +169,18 @@ void fromJson(const nlohmann::json& j, RunResult<Sample>& o, const std::string& 
     wire::readField(j, "samples", o.samples, where);
     wire::readField(j, "model", o.model, where);
     wire::readField(j, "integrator", o.integrator, where);
+}
+
+template <class Sample>
+nlohmann::json toJsonObject(const ChoiceRun<Sample>& o) {
+    return {{"choice", wire::toJson(o.choice)}, {"samples", wire::toJson(o.samples)}, {"run", wire::toJson(o.run)}};
+}
+
+template <class Sample>
+void fromJson(const nlohmann::json& j, ChoiceRun<Sample>& o, const std::string& where) {
+    wire::readField(j, "choice", o.choice, where);
+    wire::readField(j, "samples", o.samples, where);
+    wire::readField(j, "run", o.run, where);
 }
 
 }  // namespace simlab

@@ -1,0 +1,73 @@
+// A run as the work-precision study measures one, and as the graded trade question measures a student's choice:
+// the integrator reports only where it stops of its own accord, so no sampling interval cuts a step short, and
+// what it costs (steps, evaluations) is the integrator's alone.
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "Simbody.h"
+#include "simlab/driver.h"
+#include "simlab/run_settings.h"
+
+namespace simlab {
+
+/// How a measured run ended.
+struct MeasuredRun {
+    std::string status = "ok";  ///< "ok", "too costly", "blew up" or "failed"
+    std::string message;        ///< one line, for any status but "ok"
+    double reached = 0;         ///< s of simulated time
+    IntegratorStats integrator;
+};
+
+/// Where a measured run stops short.
+struct MeasureLimits {
+    double maxEvaluations = INFINITY;  ///< evaluations of the equations of motion
+    double cpuSeconds = INFINITY;      ///< CPU time of this process spent in the run
+    int checks = 1000;                 ///< about this many states are checked, spread evenly in time
+};
+
+/// The integrator `choice` names: at choice.accuracy, or at fixed steps of choice.dt when choice.fixedStep
+/// (SemiExplicitEuler always), set to stop at `finalTime`. Throws std::invalid_argument, naming the setting, for a
+/// choice that is not one (an unknown integrator, an accuracy outside (0, 1), a step that is not positive).
+std::unique_ptr<SimTK::Integrator> integratorFor(const RunSettings& choice, const SimTK::System& system,
+                                                 double finalTime);
+
+/// Steps `integrator` (made by integratorFor) from `initial` to `finalTime`, returning at each of its own steps,
+/// and calls `check(state, last)` on the state at t = 0, at steps at least finalTime / limits.checks apart, and
+/// on the state where the run ends or passes a limit (with last = true). Stops, saying where in one line, past a
+/// limit, at a state that is not finite, or when the step size collapses (neither of which is checked).
+/// Exceptions from the model (an event handler, say) propagate.
+MeasuredRun measureRun(const SimTK::System& system, SimTK::Integrator& integrator, const SimTK::State& initial,
+                       double finalTime, const MeasureLimits& limits,
+                       const std::function<void(const SimTK::State& state, bool last)>& check);
+
+/// A student's choice of integrator, measured on their own model: the samples at the checked states, the cost,
+/// and how the run ended.
+template <class Sample>
+struct ChoiceRun {
+    RunSettings choice;
+    std::vector<Sample> samples;
+    MeasuredRun run;
+};
+
+/// Builds the student's model for `scene` and measures `choice` on it to `finalTime` (see measureRun), sampling
+/// the checked states with the contract's sample().
+template <class Sample, class Scene, class Model>
+ChoiceRun<Sample> measureChoice(const Scene& scene, Model& model, const RunSettings& choice, double finalTime,
+                                const MeasureLimits& limits) {
+    ChoiceRun<Sample> result;
+    result.choice = choice;
+    buildModel(scene, model);
+    const SimTK::State initial = initialState(scene, model);
+    const std::unique_ptr<SimTK::Integrator> integrator = integratorFor(choice, model.system, finalTime);
+    result.run = measureRun(model.system, *integrator, initial, finalTime, limits,
+                            [&](const SimTK::State& state, bool) { result.samples.push_back(sample(model, state)); });
+    return result;
+}
+
+}  // namespace simlab
