@@ -3,6 +3,8 @@
 // observed the same way). Used by the lab program and by the probe; the student's file never includes it.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <map>
 #include <string>
@@ -51,6 +53,26 @@ struct Observed {
 /// each q relative to the largest |q| of run `b` and each u to the largest |u|, so that one that stays at zero is
 /// measured against the motion, never against its own round-off.
 double agreementDigits(const Observed& a, const Observed& b);
+
+/// The mechanical energy over a run, measured where a relative error means something: its largest departure from
+/// the value at t = 0, against the energy the motion exchanges (the largest kinetic energy or change of potential
+/// energy in the run).
+struct EnergyBalance {
+    double initial = 0;    ///< J, kinetic plus potential at t = 0
+    double drift = 0;      ///< J, the largest |E(t) - E(0)|
+    double exchanged = 0;  ///< J, the scale
+};
+
+inline EnergyBalance energyBalance(const Observed& run) {
+    EnergyBalance b;
+    if (run.time.empty()) return b;
+    b.initial = run.kinetic.front() + run.potential.front();
+    for (std::size_t k = 0; k < run.time.size(); ++k) {
+        b.exchanged = std::max({b.exchanged, run.kinetic[k], std::abs(run.potential[k] - run.potential.front())});
+        b.drift = std::max(b.drift, std::abs(run.kinetic[k] + run.potential[k] - b.initial));
+    }
+    return b;
+}
 
 /// Hooks for the lab program between the course's steps; each may be empty.
 struct ObserveHooks {

@@ -3,6 +3,7 @@
 // the model's schematic (--schematic), lists the parameters (--parameters) and computes the answer to the
 // project's question (--answer).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -11,6 +12,7 @@
 
 #include "biosim/course.h"
 #include "biosim/schematic.h"
+#include "simlab/digits.h"
 #include "simlab/program.h"
 #include "simlab/results_table.h"
 
@@ -74,6 +76,41 @@ int drawSchematic(const Declaration& d, const Parameters& p, const Options& o) {
     return 0;
 }
 
+/// The run's figure, where the declaration claims that the energy is conserved for these parameters: how well it
+/// was, against the energy the motion exchanges (or, if nothing moved, against the energy itself).
+void reportEnergy(const Declaration& d, const Parameters& p, const biosim::Observed& observed) {
+    if (!d.claims.energyConserved || observed.time.empty()) return;
+    for (const auto& [name, value] : d.claims.energyWhen) {
+        if (p[name] != value) return;
+    }
+    const biosim::EnergyBalance b = biosim::energyBalance(observed);
+    const bool moved = b.exchanged > 0;
+    const double scale = moved ? b.exchanged : std::abs(b.initial);
+    if (!std::isfinite(b.drift) || !std::isfinite(scale)) {
+        throw std::runtime_error("the energy is not finite: the run broke (see --accuracy, --integrator)");
+    }
+    if (!(scale > 0)) {
+        // Nothing moved and the energy is zero: the figure is the rest itself, which the exact solution keeps.
+        double change = 0;
+        for (std::size_t k = 0; k < observed.time.size(); ++k) {
+            for (std::size_t i = 0; i < observed.q[k].size(); ++i) change = std::max(change, std::abs(observed.q[k][i] - observed.q[0][i]));
+            for (std::size_t i = 0; i < observed.u[k].size(); ++i) change = std::max(change, std::abs(observed.u[k][i] - observed.u[0][i]));
+        }
+        if (change == 0) {
+            std::printf("At rest, as the exact solution is: every q and u kept its value at t = 0 exactly (%.1f accurate "
+                        "digits)\n", simlab::kMaxDigits);
+        } else {
+            std::printf("Energy: the energy is zero and does not move, but q or u changed by %.3g: no figure to give\n",
+                        change);
+        }
+        return;
+    }
+    const double digits = b.drift > 0 ? std::min(simlab::kMaxDigits, -std::log10(b.drift / scale)) : simlab::kMaxDigits;
+    std::printf("Energy conserved to %.1f accurate digits: its largest change, %.3g J, against %s, %.3g J\n",
+                std::max(0.0, digits), b.drift, moved ? "the energy the motion exchanges" : "the energy (nothing moved)",
+                scale);
+}
+
 int runOnce(const Declaration& d, const Parameters& p, const Options& o) {
     const simlab::RunSettings& run = o.program.run;
     simlab::ResultsTable table(headerOf(d), o.program.output, o.program.quiet ? nullptr : &std::cout);
@@ -88,7 +125,9 @@ int runOnce(const Declaration& d, const Parameters& p, const Options& o) {
         };
         hooks.afterRun = [&] { finishAnimation(); };
     }
+    simlab::Progress progress(d.program, run.finalTime);
     hooks.onRow = [&](double t, const std::vector<double>& row) {
+        progress.at(t);
         std::vector<double> values{t};
         values.insert(values.end(), row.begin(), row.end());
         table.add(values);
@@ -97,6 +136,7 @@ int runOnce(const Declaration& d, const Parameters& p, const Options& o) {
     std::printf("\nResults written to %s (%s, %d steps; the model has %d degrees of freedom)\n", table.path().c_str(),
                 observed.integrator.method.c_str(), observed.integrator.stepsTaken,
                 observed.model.degreesOfFreedom());
+    reportEnergy(d, p, observed);
     return 0;
 }
 
@@ -143,7 +183,14 @@ int main(int argc, char** argv) {
         if (const int status = simlab::parseCommandLine(app, argc, argv); status >= 0) return status;
 
         if (const int status = simlab::checkRunSettings(program, o.program.run); status >= 0) return status;
-        const Parameters p = parametersFrom(d, o);
+        Parameters p;
+        try {
+            p = parametersFrom(d, o);
+        } catch (const std::invalid_argument& e) {
+            // A --set the declaration does not allow is a usage error, like any other option's.
+            std::cerr << program << ": error: " << e.what() << " (see " << program << " --parameters)\n";
+            return 2;
+        }
         if (o.listParameters) return listParameters(d);
         if (o.schematic) return drawSchematic(d, p, o);
         if (o.answer) {

@@ -50,7 +50,7 @@ check "both models of the same spin reach the same digits, within half a digit, 
   min/minimal.csv
 
 # The extremes, without the slow cases (each of those runs into its cap): every outcome named, every promise kept.
-for lab in apple projectile book; do
+for lab in apple projectile book biosim; do
   run_capture "extremes-$lab" "$SIMLAB" study extremes "$lab" --quick -o "ex-$lab"
   check "simlab study extremes $lab --quick: every case ends named, as the lab promises" \
     bash -c "test $(status_of "extremes-$lab") -eq 0 && ! grep -q SILENT ex-$lab/extremes.csv"
@@ -61,6 +61,10 @@ check "a cube's spin is right to 14 digits (its exact w is constant, not zero)" 
   grep -qE '^book,a cube,.*,accurate,1[4-5]\.[0-9],' ex-book/extremes.csv
 check "a flight shorter than one fixed step says it cannot see the ground hit" \
   grep -q 'fixed steps,.*trouble,.*No ground hit' ex-projectile/extremes.csv
+check "the boot with no gravity and no motion stays exactly at rest, and says so" \
+  grep -q 'no gravity,.*accurate,15.7,.*At rest, as the exact solution is' ex-biosim/extremes.csv
+check "a value --set does not allow is a usage error (exit 2), like any option's" \
+  grep -q 'gravity past its range,.*rejected,.*outside its range' ex-biosim/extremes.csv
 check "explicit Euler's blow-up of the book's energy is named where it broke" \
   grep -q 'for 20 s.*trouble,.*the run broke at t = ' ex-book/extremes.csv
 

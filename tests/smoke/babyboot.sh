@@ -18,10 +18,10 @@ check "--set g=0 with no initial rates: the boot stays at rest" \
   awk -F'\t' 'NR > 1 && ($2 != 90 || $3 != 1) { moved = 1 } END { exit moved }' still.txt
 run_capture typo "$boot" --set qa=10
 check "a misspelt parameter is a one-line error" \
-  bash -c "test $(status_of typo) -ne 0 && test \$(wc -l <typo.err) -eq 1 && grep -q \"no parameter named 'qa'\" typo.err"
+  bash -c "test $(status_of typo) -eq 2 && test \$(wc -l <typo.err) -eq 1 && grep -q \"no parameter named 'qa'\" typo.err"
 run_capture range "$boot" --set IBz=1
 check "an out-of-range value is a one-line error naming the range" \
-  bash -c "test $(status_of range) -ne 0 && grep -q 'IBz = 1 is outside its range \[0.0002, 0.0003\]' range.err"
+  bash -c "test $(status_of range) -eq 2 && grep -q 'IBz = 1 is outside its range \[0.0002, 0.0003\]' range.err"
 run_capture notnumber "$boot" --set g=heavy
 check "a value that is not a number is refused" grep -q "'heavy' is not a number" notnumber.err
 

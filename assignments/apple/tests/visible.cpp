@@ -67,7 +67,7 @@ TEST_CASE("the trade: 10 digits for the fewest evaluations", "[apple][trade]") {
     // the integrator stops only where it chooses to, and every step's y and vy count.
     const Scene scene;
     const double T = defaultRunSettings().finalTime;
-    const simlab::ChoiceRun<Sample> result = measureChoice<Sample>(scene, T);
+    const simlab::ChoiceRun<Sample> result = observeChoice<Sample>(scene, T);
     double worst = simlab::kMaxDigits;
     for (const Sample& s : result.samples) worst = std::min(worst, exact::sampleDigits(scene, s, T));
     gradeTrade(result, worst);

@@ -148,7 +148,7 @@ TEST_CASE("the trade: 8 digits of the tumbling spin for the fewest evaluations",
     // `simlab study trade book` measures a setting: every step's w_B against Euler's equations in long double.
     Scene scene;
     scene.w_B0 = exact::spin(scene, "intermediate");
-    const simlab::ChoiceRun<Sample> result = measureChoice<Sample>(scene, defaultRunSettings().finalTime);
+    const simlab::ChoiceRun<Sample> result = observeChoice<Sample>(scene, defaultRunSettings().finalTime);
     simlab::OdeReference<3> reference = exact::eulerReference(scene);
     double worst = simlab::kMaxDigits;
     for (const Sample& s : result.samples) worst = std::min(worst, exact::spinDigits(scene, s.w_B, reference.at(s.time)));

@@ -86,7 +86,7 @@ TEST_CASE("the trade: 10 digits for the fewest evaluations", "[projectile][trade
     // cheapestSettings(), measured on the student's own model as `simlab study trade projectile` measures a
     // setting: the integrator stops only where it chooses to (and at the ground hit), and every step counts.
     const Scene scene;
-    const simlab::ChoiceRun<Sample> result = measureChoice<Sample>(scene, exact::kTradeFinalTime);
+    const simlab::ChoiceRun<Sample> result = observeChoice<Sample>(scene, exact::kTradeFinalTime);
     double worst = simlab::kMaxDigits;
     for (const Sample& s : result.samples) worst = std::min(worst, exact::flightDigits(scene, s));
     gradeTrade(result, worst);

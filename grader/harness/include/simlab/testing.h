@@ -129,7 +129,7 @@ inline void checkDegreesOfFreedom(const ModelInfo& info, int dof, const std::str
 /// the rubric's none_past times its `cheapest` evaluations. Fails the test unless the samples start at t = 0 and
 /// run forward in time.
 template <class Sample, class Scene>
-ChoiceRun<Sample> measureChoice(const Scene& scene, double finalTime) {
+ChoiceRun<Sample> observeChoice(const Scene& scene, double finalTime) {
     const double cap = grading::param("none_past") * grading::param("cheapest");
     ChoiceRun<Sample> result = observe::choice<Sample>(scene, finalTime, cap);
     INFO("the choice: " << result.choice.integrator
