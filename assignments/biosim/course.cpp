@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "simlab/integrators.h"
+#include "simlab/messages.h"
 
 namespace biosim {
 
@@ -19,18 +20,6 @@ std::string show(double value) {
     s.precision(6);
     s << value;
     return s.str();
-}
-
-/// Simbody's messages run over several lines: one line, and short.
-std::string oneLine(const std::string& text) {
-    std::string line;
-    for (const char c : text) {
-        const bool space = c == '\n' || c == '\t' || c == ' ';
-        if (!space) line += c;
-        else if (!line.empty() && line.back() != ' ') line += ' ';
-    }
-    if (line.size() > 240) line = line.substr(0, 240) + "...";
-    return line;
 }
 
 int simulations = 0;
@@ -129,7 +118,7 @@ Observed observe(const Declaration& declaration, const Parameters& parameters, c
     try {
         stepper.initialize(initial);
     } catch (const std::exception& e) {
-        throw std::runtime_error("the integrator could not start from the initial state: " + oneLine(e.what()));
+        throw std::runtime_error("the integrator could not start from the initial state: " + simlab::oneLineMessage(e.what()));
     }
     record(stepper.getState());
     for (int k = 1; k <= settings.sampleCount(); ++k) {
@@ -138,7 +127,7 @@ Observed observe(const Declaration& declaration, const Parameters& parameters, c
             stepper.stepTo(target);
         } catch (const std::exception& e) {
             throw std::runtime_error("the integrator failed between t = " + show(stepper.getState().getTime()) +
-                                     " s and " + show(target) + " s: " + oneLine(e.what()));
+                                     " s and " + show(target) + " s: " + simlab::oneLineMessage(e.what()));
         }
         record(stepper.getState());
     }

@@ -259,7 +259,7 @@ void printMinimal(std::ostream& out, const std::vector<json>& rows) {
         }
         std::snprintf(line, sizeof line, "  %-9s %-20s %4s %4s %8s %12s %11s %7s %s\n",
                       over ? "" : number(r["accuracy"], "%.0e").c_str(), text(r["model"]).c_str(),
-                      number(r["mobilities"], "%.0f").c_str(), number(r["coordinates"], "%.0f").c_str(),
+                      number(r["dof"], "%.0f").c_str(), number(r["coordinates"], "%.0f").c_str(),
                       number(r["steps_taken"], "%.0f").c_str(), number(r["evaluations"], "%.0f").c_str(),
                       number(r["seconds"], "%.3g").c_str(), number(r["worst_digits"], "%.1f").c_str(), against.c_str());
         out << line;
@@ -273,7 +273,7 @@ void writeMinimalCsv(const fs::path& path, const std::vector<json>& rows) {
     for (const json& r : rows) {
         out << engine::csvCell(text(r["lab"])) << ',' << engine::csvCell(text(r["subject"])) << ','
             << engine::csvCell(text(r["model"])) << ',' << (r["over_modelled"].get<bool>() ? "yes" : "no") << ','
-            << number(r["mobilities"], "%.0f") << ',' << number(r["coordinates"], "%.0f") << ','
+            << number(r["dof"], "%.0f") << ',' << number(r["coordinates"], "%.0f") << ','
             << engine::csvCell(text(r["integrator"])) << ',' << number(r["accuracy"]) << ','
             << engine::csvCell(text(r["status"])) << ',' << number(r["steps_taken"], "%.0f") << ','
             << number(r["evaluations"], "%.0f") << ',' << number(r["seconds"], "%.6g") << ','

@@ -49,6 +49,15 @@ check "both models of the same spin reach the same digits, within half a digit, 
            END { n = 0; for (k in d) { n++; if (!(k in o) || d[k] - o[k] > 0.5 || o[k] - d[k] > 0.5) exit 1 }; exit n != 9 }' \
   min/minimal.csv
 
+run_capture minimal-boot "$SIMLAB" study minimal biosim --repeats 1 -o minboot
+check "the over-modelled boot (a Free rod held by 5 constraints) has the boot's 2 dof in 8 coordinates" \
+  bash -c "test $(status_of minimal-boot) -eq 0 && test \$(grep -c ',two Pins (2 dof),no,2,2,' minboot/minimal.csv) -eq 3 && \
+           test \$(grep -c ',Free + 5 constraints,yes,2,8,RungeKuttaMerson,[0-9.e-]*,ok,' minboot/minimal.csv) -eq 3"
+check "and follows the same motion: within a digit of the minimal model at each accuracy" \
+  awk -F, 'NR > 1 { if ($4 == "no") d[$8] = $13; else o[$8] = $13 }
+           END { n = 0; for (k in d) { n++; if (!(k in o) || d[k] - o[k] > 1 || o[k] - d[k] > 1) exit 1 }; exit n != 3 }' \
+  minboot/minimal.csv
+
 # The extremes, without the slow cases (each of those runs into its cap): every outcome named, every promise kept.
 for lab in apple projectile book biosim; do
   run_capture "extremes-$lab" "$SIMLAB" study extremes "$lab" --quick -o "ex-$lab"

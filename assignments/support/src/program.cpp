@@ -92,33 +92,9 @@ int runGuarded(const std::string& program, const std::function<int()>& body) {
         return 3;
     } catch (const std::exception& e) {
         std::cout.flush();
-        std::cerr << program << ": error: " << firstMeaningfulLine(e.what()) << '\n';
+        std::cerr << program << ": error: " << oneLineMessage(e.what()) << '\n';
         return 1;
     }
-}
-
-std::string firstMeaningfulLine(const std::string& message) {
-    // Simbody's messages read "SimTK Exception thrown at File.cpp:123:\n  Error detected by Simbody method
-    // X::f: what went wrong\n  (Required condition ... was not met.)\n..."; CPodes adds its own lines after.
-    std::istringstream lines(message);
-    std::string line, first;
-    while (std::getline(lines, line)) {
-        const std::size_t begin = line.find_first_not_of(" \t");
-        if (begin == std::string::npos) continue;
-        line = line.substr(begin, line.find_last_not_of(" \t\r") - begin + 1);
-        if (line.rfind("SimTK Exception thrown at", 0) == 0) continue;
-        const std::string detected = "Error detected by Simbody method ";
-        if (line.rfind(detected, 0) == 0) {
-            // "Error detected by Simbody method X::f: what went wrong" -> "X::f: what went wrong"
-            line = line.substr(detected.size());
-        }
-        if (first.empty()) first = line;
-        // A line that only names the method ("X::f:") is followed by the reason: keep both.
-        if (line.back() == ':' && first == line) continue;
-        if (first != line) first += " " + line;
-        break;
-    }
-    return first.empty() ? message : first;
 }
 
 namespace {
@@ -299,7 +275,7 @@ void printTrade(std::ostream& out, const RunSettings& base, const std::string& f
             out << line << std::flush;
         } catch (const std::exception& e) {
             out << name << std::string(name.size() < 20 ? 21 - name.size() : 1, ' ')
-                << "failed: " << firstMeaningfulLine(e.what()) << '\n' << std::flush;
+                << "failed: " << oneLineMessage(e.what()) << '\n' << std::flush;
         }
     }
 }

@@ -14,6 +14,8 @@
 
 #include "simlab/integrators.h"
 #include "simlab/measured_run.h"
+#include "simlab/messages.h"
+#include "simlab/model_info.h"
 
 namespace simlab::study {
 
@@ -53,24 +55,6 @@ struct Outcome {
     double seconds = NAN;      ///< fastest timed repeat
     int repeats = 0;
 };
-
-/// A message in one line of at most 200 characters. Simbody's run over several lines and begin with where they
-/// were thrown ("SimTK Exception thrown at File.cpp:428:"), which says nothing to a user: that part goes.
-std::string firstLine(const std::string& text) {
-    std::string line;
-    for (const char c : text) {
-        const bool space = c == '\n' || c == '\t' || c == '\r' || c == ' ';
-        if (!space) line += c;
-        else if (!line.empty() && line.back() != ' ') line += ' ';
-    }
-    const std::string where = "SimTK Exception thrown at ";
-    if (line.rfind(where, 0) == 0) {
-        const std::size_t colon = line.find(": ", where.size());
-        if (colon != std::string::npos) line = line.substr(colon + 2);
-    }
-    if (line.size() > 200) line = line.substr(0, 200) + "...";
-    return line;
-}
 
 /// Silences stderr while it lives: CPodes prints its complaints there before it throws (the throw says it in
 /// one line).
@@ -170,7 +154,7 @@ void measureAndTime(const Subject& subject, const Point& point, const Settings& 
         if (out.status == "ok") timeRepeats(subject, point, settings, out);
     } catch (const std::exception& e) {
         out.status = "failed";
-        out.message = firstLine(e.what());
+        out.message = simlab::oneLineMessage(e.what(), 200);
     }
 }
 
@@ -215,10 +199,12 @@ void runMinimal(const std::string& lab, const Subject& subject, const Settings& 
             if (over) s.make = subject.makeOverModelled;
             const Point point{"RungeKuttaMerson", "accuracy", accuracy, 0};
             Outcome out;
-            int mobilities = 0, coordinates = 0;
+            int dof = 0, coordinates = 0;
             try {
                 const std::unique_ptr<Instance> instance = s.make();
-                mobilities = instance->initial().getNU();
+                // Degrees of freedom: the mobilities less the constraints that hold some of them back.
+                dof = simlab::describeModel(instance->system().getMatterSubsystem(), instance->initial())
+                          .degreesOfFreedom();
                 coordinates = instance->initial().getNQ();
             } catch (const std::exception&) {
                 // measureAndTime says what went wrong
@@ -229,7 +215,7 @@ void runMinimal(const std::string& lab, const Subject& subject, const Settings& 
             j["lab"] = lab;
             j["model"] = over ? subject.overModelled : subject.minimal;
             j["over_modelled"] = over;
-            j["mobilities"] = mobilities;
+            j["dof"] = dof;
             j["coordinates"] = coordinates;
             std::cout << j.dump() << std::endl;
         }
@@ -318,7 +304,7 @@ int studyMain(int argc, char** argv, const std::string& lab, const std::vector<S
             if (minimal) runMinimal(lab, s, settings);
             else runSubject(lab, s, settings);
         } catch (const std::exception& e) {
-            std::cerr << lab << "-study: error: " << s.name << ": " << firstLine(e.what()) << '\n';
+            std::cerr << lab << "-study: error: " << s.name << ": " << simlab::oneLineMessage(e.what(), 200) << '\n';
             return 1;
         }
     }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "simlab/driver.h"
+#include "simlab/messages.h"
 #include "simlab/results_table.h"
 #include "simlab/run_settings.h"
 
@@ -61,10 +62,6 @@ struct TradePoint {
 void printTrade(std::ostream& out, const RunSettings& base, const std::string& figure,
                 const std::function<TradePoint(const RunSettings&)>& once, int repeats = 5,
                 const std::string& program = "");
-
-/// The first line of an exception's message that says what went wrong, without Simbody's "SimTK Exception thrown
-/// at file:line" preamble and the solver's further lines: what a one-line error shows.
-std::string firstMeaningfulLine(const std::string& message);
 
 /// Keeps what CPodes' C library prints straight to stderr (every error and warning, often dozens of them, each over
 /// several lines) off the screen while it exists, when `active`; finish() gives it back as one line. Lines the lab
@@ -162,7 +159,7 @@ RunResult<Sample> runTabulated(const Scene& scene, Model& model, const ProgramOp
             hooks);
     } catch (const std::exception& e) {
         // A run that stops part way leaves a file that says so.
-        if (table.rows() > 0) table.note("the run stopped here: " + firstMeaningfulLine(e.what()));
+        if (table.rows() > 0) table.note("the run stopped here: " + oneLineMessage(e.what()));
         chatter.finish();  // the error says what failed
         throw;
     }
