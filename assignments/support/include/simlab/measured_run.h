@@ -70,4 +70,25 @@ ChoiceRun<Sample> measureChoice(const Scene& scene, Model& model, const RunSetti
     return result;
 }
 
+/// What in a reported ChoiceRun does not add up, in one line (empty if it all does): each sample after the first
+/// is taken at one of the integrator's own steps (or at the last state), every step taken was attempted, and every
+/// attempt evaluated the equations of motion at least once. A grader reads a ChoiceRun from the student's process,
+/// so its counts are data to check.
+template <class Sample>
+std::string inconsistencyOf(const ChoiceRun<Sample>& result) {
+    const IntegratorStats& stats = result.run.integrator;
+    long long laterTimes = 0;
+    for (std::size_t i = 1; i < result.samples.size(); ++i) laterTimes += result.samples[i].time > result.samples[i - 1].time;
+    const std::string counts = std::to_string(stats.stepsTaken) + " steps taken, " +
+                               std::to_string(stats.stepsAttempted) + " attempted, " +
+                               std::to_string(stats.realizations) + " evaluations";
+    if (laterTimes > static_cast<long long>(stats.stepsTaken) + 1) {
+        return "the run reports " + counts + " but samples " + std::to_string(laterTimes) + " later times";
+    }
+    if (stats.stepsTaken < 0 || stats.stepsAttempted < stats.stepsTaken || stats.realizations < stats.stepsAttempted) {
+        return "the run reports " + counts + ", which cannot all be true";
+    }
+    return "";
+}
+
 }  // namespace simlab

@@ -141,6 +141,10 @@ ChoiceRun<Sample> observeChoice(const Scene& scene, double finalTime) {
         REQUIRE(result.samples[i].time >= result.samples[i - 1].time);
     }
     REQUIRE(result.samples.back().time <= finalTime * (1 + 1e-12));
+    // The counts come from the student's process: they must agree with each other and with the samples.
+    const std::string inconsistency = inconsistencyOf(result);
+    INFO(inconsistency);
+    REQUIRE(inconsistency.empty());
     return result;
 }
 

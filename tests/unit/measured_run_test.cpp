@@ -1,0 +1,112 @@
+// A measured run (the work-precision study's and the trade question's): what it checks, where it stops, and the
+// judge's check of the counts a student's process reports.
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "Simbody.h"
+#include "simlab/measured_run.h"
+
+using namespace SimTK;
+
+namespace {
+
+// A ball on a Slider along Ground's y, falling from 10 m: y = 10 - 4.9 t^2.
+struct Fall {
+    MultibodySystem system;
+    SimbodyMatterSubsystem matter{system};
+    GeneralForceSubsystem forces{system};
+    MobilizedBody::Slider ball;
+    State initial;
+    Fall()
+        : ball(matter.Ground(), Transform(Rotation(Pi / 2, ZAxis), Vec3(0)),
+               Body::Rigid(MassProperties(1, Vec3(0), UnitInertia::sphere(0.05))),
+               Transform(Rotation(Pi / 2, ZAxis), Vec3(0))) {
+        Force::UniformGravity(forces, matter, Vec3(0, -9.8, 0));
+        initial = system.realizeTopology();
+        ball.setOneQ(initial, 0, 10);
+    }
+};
+
+simlab::RunSettings choice(const std::string& integrator, double accuracy, bool fixed = false, double dt = 0.01) {
+    simlab::RunSettings c;
+    c.integrator = integrator;
+    c.accuracy = accuracy;
+    c.fixedStep = fixed;
+    c.dt = dt;
+    return c;
+}
+
+struct Sample {
+    double time = 0;
+};
+
+}  // namespace
+
+TEST_CASE("a measured run checks t = 0, its own steps and the last state, and ends at the final time") {
+    Fall fall;
+    auto integrator = simlab::integratorFor(choice("RungeKuttaMerson", 1e-8), fall.system, 2.0);
+    int checks = 0, lasts = 0;
+    double worst = 0;
+    const simlab::MeasuredRun run = simlab::measureRun(
+        fall.system, *integrator, fall.initial, 2.0, simlab::MeasureLimits{}, [&](const State& s, bool last) {
+            ++checks;
+            lasts += last;
+            const double y = fall.ball.getOneQ(s, 0), t = s.getTime();
+            worst = std::max(worst, std::abs(y - (10 - 4.9 * t * t)));
+        });
+    CHECK(run.status == "ok");
+    CHECK(run.reached == Approx(2.0));
+    CHECK(lasts == 1);
+    CHECK(checks >= 2);
+    CHECK(checks <= run.integrator.stepsTaken + 1);
+    CHECK(worst < 1e-9);  // a second-order motion: RungeKuttaMerson follows it to round-off
+    CHECK(run.integrator.realizations >= run.integrator.stepsAttempted);
+}
+
+TEST_CASE("a measured run stops past its cap of evaluations, says where, and checks the state it stopped at") {
+    Fall fall;
+    auto integrator = simlab::integratorFor(choice("RungeKutta3", 0, true, 1e-4), fall.system, 1.0);
+    simlab::MeasureLimits limits;
+    limits.maxEvaluations = 100;
+    double lastTime = -1;
+    const simlab::MeasuredRun run = simlab::measureRun(fall.system, *integrator, fall.initial, 1.0, limits,
+                                                       [&](const State& s, bool last) {
+                                                           if (last) lastTime = s.getTime();
+                                                       });
+    CHECK(run.status == "too costly");
+    CHECK_THAT(run.message, Catch::StartsWith("past the cap of 100 evaluations at t = "));
+    CHECK(run.reached < 0.01);
+    CHECK(lastTime == run.reached);
+    CHECK(run.integrator.realizations > 100);
+    CHECK(run.integrator.realizations < 110);
+}
+
+TEST_CASE("a choice that is not a setting is refused, naming what is wrong") {
+    Fall fall;
+    CHECK_THROWS_WITH(simlab::integratorFor(choice("Verlett", 0.1), fall.system, 1.0),
+                      Catch::Contains("unknown integrator 'Verlett'"));
+    CHECK_THROWS_WITH(simlab::integratorFor(choice("RungeKuttaMerson", 0), fall.system, 1.0),
+                      Catch::Contains("accuracy must be between 0 and 1"));
+    CHECK_THROWS_WITH(simlab::integratorFor(choice("RungeKutta2", 0.1, true, -1), fall.system, 1.0),
+                      Catch::Contains("a fixed step must be a positive number of seconds"));
+    CHECK_THROWS_WITH(simlab::integratorFor(choice("SemiExplicitEuler", 0.1, false, 2.0), fall.system, 1.0),
+                      Catch::Contains("no longer than the run"));
+}
+
+TEST_CASE("counts a student's process reports for its choice must add up") {
+    simlab::ChoiceRun<Sample> run;
+    for (int k = 0; k <= 50; ++k) run.samples.push_back({k * 0.1});
+    run.run.integrator.stepsTaken = 60;
+    run.run.integrator.stepsAttempted = 64;
+    run.run.integrator.realizations = 300;
+    CHECK(simlab::inconsistencyOf(run).empty());
+    // Fifty later sample times, each at a step of the integrator's, from a run that claims three steps.
+    run.run.integrator.stepsTaken = 3;
+    run.run.integrator.stepsAttempted = 3;
+    run.run.integrator.realizations = 12;
+    CHECK_THAT(simlab::inconsistencyOf(run), Catch::Contains("samples 50 later times"));
+    // Fewer evaluations than attempted steps.
+    run.samples.resize(2);
+    run.run.integrator.realizations = 2;
+    CHECK_THAT(simlab::inconsistencyOf(run), Catch::Contains("cannot all be true"));
+}
