@@ -4,8 +4,9 @@
 //
 //     buildModel -> initialState -> makeIntegrator -> simulate (which calls sample at each sampling time)
 //
-// You write all five in NewtonsApple.cpp. Do not edit this header: the grader compiles your file against it,
-// and varies the Scene and the RunSettings to check that your code simulates rather than recites.
+// You write all five in NewtonsApple.cpp, and cheapestSettings (at the end), your answer to the trade question.
+// Do not edit this header: the grader compiles your file against it, and varies the Scene and the RunSettings to
+// check that your code simulates rather than recites.
 //
 // Frames and names. G is Ground, the Newtonian frame: its x axis points right, its y axis up. A is the apple.
 // Simbody names a quantity by its frames: p_GA is the position of A's origin from G's origin, expressed in G;

@@ -1,7 +1,8 @@
 // The spinning book: the contract between a student's BookSpin.cpp and the course.
 //
 // The same five functions as the earlier labs (buildModel -> initialState -> makeIntegrator -> simulate, which
-// calls sample), for a book spinning freely about its center: no gravity torque, no air. Do not edit this header.
+// calls sample), for a book spinning freely about its center: no gravity torque, no air; and cheapestSettings (at
+// the end), your answer to the trade question. Do not edit this header.
 //
 // Frames and names. G is Ground; B is the book, with its origin at the book's center and its axes along the
 // book's edges: x along its height, y along its width, z through its thickness. These are the book's central

@@ -3,7 +3,8 @@
 // The same five functions as Newton's apple (buildModel -> initialState -> makeIntegrator -> simulate, which
 // calls sample), for a baseball flying in the vertical x-y plane of Ground. One thing is new: buildModel also adds
 // an event handler that watches the ball's height, and when it comes back down through y = 0 records the time
-// and range of the ground hit in model.groundHit and ends the simulation. Do not edit this header.
+// and range of the ground hit in model.groundHit and ends the simulation. cheapestSettings (at the end) is your
+// answer to the trade question. Do not edit this header.
 //
 // Frames and names. G is Ground (x right, y up); B is the ball. p_GB is the position of B's origin from G's
 // origin, expressed in G; v_GB its velocity in G. SI units, angles in degrees where a name says so.

@@ -72,6 +72,8 @@ void simulate(const Model& model, Integrator& integrator, const State& initial, 
 }
 
 simlab::RunSettings cheapestSettings() {
+    // 5. The trade: run `simlab study trade apple` and read its table of cheapest settings (handout, section 7).
+    //    Return a RunSettings with integrator and accuracy set (or fixedStep = true and the step in dt).
     SIMLAB_TODO("the cheapest setting that can keep 10 digits of y and vy over the fall (simlab study trade apple)");
 }
 

@@ -100,6 +100,8 @@ void simulate(const Model& model, Integrator& integrator, const State& initial, 
 }
 
 simlab::RunSettings cheapestSettings() {
+    // 9. The trade: run `simlab study trade projectile` and read its table of cheapest settings (handout, section
+    //    6). Return a RunSettings with integrator and accuracy set (or fixedStep = true and the step in dt).
     SIMLAB_TODO("the cheapest setting that can keep 10 digits of the flight to the ground hit (simlab study trade projectile)");
 }
 
