@@ -5,5 +5,5 @@
 
 SIMLAB_PROBE(appleObservations) {
     simlab::probe::addLab<apple::Sample, apple::Scene, apple::Model>();
-    simlab::probe::addTrade<apple::Sample, apple::Scene, apple::Model>(apple::cheapestSettings);
+    simlab::probe::addTrade<apple::Sample, apple::Scene, apple::Model>(apple::cheapestSettings, apple::readState);
 }

@@ -2,6 +2,7 @@
 // double precision evaluates to its last digit.
 #include "apple/NewtonsApple.h"
 #include "apple/exact.h"
+#include "apple/observations.h"
 #include "simlab/digits.h"
 #include "simlab/study.h"
 
@@ -26,9 +27,9 @@ public:
     const SimTK::MultibodySystem& system() const override { return model_.system; }
     const SimTK::State& initial() const override { return initial_; }
     double digits(const SimTK::State& state) override {
-        return apple::exact::sampleDigits(scene_, apple::sample(model_, state), finalTime_);
+        return apple::exact::sampleDigits(scene_, apple::readState(model_, state), finalTime_);
     }
-    double conserved(const SimTK::State& state) override { return apple::sample(model_, state).mechanicalEnergy; }
+    double conserved(const SimTK::State& state) override { return apple::readState(model_, state).mechanicalEnergy; }
 
 private:
     apple::Scene scene_;

@@ -7,7 +7,7 @@
 SIMLAB_PROBE(bookObservations) {
     using namespace book;
     simlab::probe::addLab<Sample, Scene, Model>();
-    simlab::probe::addTrade<Sample, Scene, Model>(cheapestSettings);
+    simlab::probe::addTrade<Sample, Scene, Model>(cheapestSettings, readState);
     simlab::probe::add("massProperties", [](const nlohmann::json& arguments) {
         const Scene scene = simlab::probe::argument<Scene>(arguments, "scene");
         Model model;

@@ -3,6 +3,7 @@
 // (The elliptic solution in exact.h loses digits to its own evaluation, most for the intermediate spin.)
 #include "book/BookSpin.h"
 #include "book/exact.h"
+#include "book/observations.h"
 #include "simlab/digits.h"
 #include "simlab/study.h"
 
@@ -28,10 +29,10 @@ public:
     const SimTK::MultibodySystem& system() const override { return model_.system; }
     const SimTK::State& initial() const override { return initial_; }
     double digits(const SimTK::State& state) override {
-        const book::Sample s = book::sample(model_, state);
+        const book::Sample s = book::readState(model_, state);
         return book::exact::spinDigits(scene_, s.w_B, reference_.at(s.time));
     }
-    double conserved(const SimTK::State& state) override { return book::sample(model_, state).kineticEnergy; }
+    double conserved(const SimTK::State& state) override { return book::readState(model_, state).kineticEnergy; }
 
 private:
     book::Scene scene_;

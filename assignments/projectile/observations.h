@@ -14,4 +14,15 @@ SIMLAB_WIRE(Sample, time, x, y, xVelocity, yVelocity, mechanicalEnergy)
 SIMLAB_WIRE(GroundHit, found, time, x)
 SIMLAB_WIRE(Landing, hit, endTime, integrator)
 
+/// The course's own reading of `state`: what a correct sample() returns, taken from the model the student built
+/// without calling their sample(). The trade question and the study measure digits with it, so that they are the
+/// digits of the state the integrator reached, not of what a sample() says.
+inline Sample readState(const Model& model, const SimTK::State& state) {
+    model.system.realize(state, SimTK::Stage::Dynamics);
+    const SimTK::Vec3 p_GB = model.ball.getBodyOriginLocation(state);
+    const SimTK::Vec3 v_GB = model.ball.getBodyOriginVelocity(state);
+    return {state.getTime(), p_GB[SimTK::XAxis], p_GB[SimTK::YAxis], v_GB[SimTK::XAxis], v_GB[SimTK::YAxis],
+            model.system.calcEnergy(state)};
+}
+
 }  // namespace projectile

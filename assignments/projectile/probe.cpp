@@ -7,7 +7,7 @@
 SIMLAB_PROBE(projectileObservations) {
     using namespace projectile;
     simlab::probe::addLab<Sample, Scene, Model>();
-    simlab::probe::addTrade<Sample, Scene, Model>(cheapestSettings);
+    simlab::probe::addTrade<Sample, Scene, Model>(cheapestSettings, readState);
     simlab::probe::add("landing", [](const nlohmann::json& arguments) {
         Landing landing = simulateLanding(simlab::probe::argument<Scene>(arguments, "scene"),
                                           simlab::probe::argument<simlab::RunSettings>(arguments, "settings"));

@@ -5,6 +5,7 @@
 
 #include "projectile/ProjectileMotion.h"
 #include "projectile/exact.h"
+#include "projectile/observations.h"
 #include "simlab/digits.h"
 #include "simlab/study.h"
 
@@ -32,14 +33,14 @@ public:
     const SimTK::MultibodySystem& system() const override { return model_.system; }
     const SimTK::State& initial() const override { return initial_; }
     double digits(const SimTK::State& state) override {
-        return projectile::exact::flightDigits(scene_, projectile::sample(model_, state));
+        return projectile::exact::flightDigits(scene_, projectile::readState(model_, state));
     }
     double finalDigits(const SimTK::State&) override {
         const projectile::GroundHit& hit = model_.groundHit;
         if (!hit.found) return 0;
         return projectile::exact::hitDigits(scene_, hit.time, hit.x);
     }
-    double conserved(const SimTK::State& state) override { return projectile::sample(model_, state).mechanicalEnergy; }
+    double conserved(const SimTK::State& state) override { return projectile::readState(model_, state).mechanicalEnergy; }
 
 private:
     projectile::Scene scene_;

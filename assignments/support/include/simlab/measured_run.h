@@ -55,18 +55,19 @@ struct ChoiceRun {
     MeasuredRun run;
 };
 
-/// Builds the student's model for `scene` and measures `choice` on it to `finalTime` (see measureRun), sampling
-/// the checked states with the contract's sample().
+/// Builds the student's model for `scene` and measures `choice` on it to `finalTime` (see measureRun), reading
+/// each checked state with `read`: the course's own reading, never the contract's sample(), so that the digits
+/// are those of the state the integrator reached.
 template <class Sample, class Scene, class Model>
 ChoiceRun<Sample> measureChoice(const Scene& scene, Model& model, const RunSettings& choice, double finalTime,
-                                const MeasureLimits& limits) {
+                                const MeasureLimits& limits, Sample (*read)(const Model&, const SimTK::State&)) {
     ChoiceRun<Sample> result;
     result.choice = choice;
     buildModel(scene, model);
     const SimTK::State initial = initialState(scene, model);
     const std::unique_ptr<SimTK::Integrator> integrator = integratorFor(choice, model.system, finalTime);
     result.run = measureRun(model.system, *integrator, initial, finalTime, limits,
-                            [&](const SimTK::State& state, bool) { result.samples.push_back(sample(model, state)); });
+                            [&](const SimTK::State& state, bool) { result.samples.push_back(read(model, state)); });
     return result;
 }
 

@@ -65,16 +65,17 @@ void addLab() {
 
 /// The trade question: "choice" measures the student's `cheapest()` (their answer, a RunSettings) on their own
 /// model of a scene, as the work-precision study measures a setting (simlab/measured_run.h), under the judge's
-/// cap on evaluations.
+/// cap on evaluations, reading the states with the course's `read` (the lab's readState), not the student's
+/// sample().
 template <class Sample, class Scene, class Model>
-void addTrade(RunSettings (*cheapest)()) {
-    add("choice", [cheapest](const nlohmann::json& arguments) {
+void addTrade(RunSettings (*cheapest)(), Sample (*read)(const Model&, const SimTK::State&)) {
+    add("choice", [cheapest, read](const nlohmann::json& arguments) {
         const Scene scene = argument<Scene>(arguments, "scene");
         MeasureLimits limits;
         limits.maxEvaluations = argument<double>(arguments, "max_evaluations");
         const RunSettings choice = cheapest();
         Model model;
-        return wire::toJson(measureChoice<Sample>(scene, model, choice, argument<double>(arguments, "final_time"), limits));
+        return wire::toJson(measureChoice(scene, model, choice, argument<double>(arguments, "final_time"), limits, read));
     });
 }
 
