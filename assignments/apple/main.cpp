@@ -1,6 +1,7 @@
 // The `apple` lab program (the course's side): runs the simulation written in NewtonsApple.cpp, prints its
 // table as it goes, writes the results file and says how many digits of y at the final time are right.
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -9,6 +10,9 @@
 #include "simlab/cli_checks.h"
 #include "simlab/digits.h"
 #include "simlab/driver.h"
+#include "simlab/messages.h"
+#include "simlab/results_table.h"
+#include "simlab/plot.h"
 #include "simlab/program.h"
 
 namespace {
@@ -29,6 +33,32 @@ double finalDigits(const apple::Scene& scene, const std::vector<apple::Sample>& 
     return simlab::accuracyDigits(last.yLocation, apple::exact::yLocation(scene, last.time));
 }
 
+const std::vector<std::string> kColumns = {"time", "yLocation", "yVelocity", "mechanicalEnergy", "yDifferenceFromExact"};
+
+// y(t) and y'(t) as simulated, every few samples, on the exact fall drawn as a line; `how` says what ran.
+simlab::Plot fallPlot(const apple::Scene& scene, const std::string& how, const std::vector<apple::Sample>& samples) {
+    simlab::Plot plot;
+    char title[300];
+    std::snprintf(title, sizeof title, "Newton's apple: dropped from %g m, g = %g m/s^2 - %s", scene.dropHeight,
+                  scene.gravity, how.c_str());
+    plot.title = title;
+    simlab::PlotCurve y("simulated y", true), vy("simulated y'", true);
+    simlab::PlotCurve yExact("exact: h - g t^2/2"), vyExact("exact: -g t");
+    for (std::size_t i : simlab::thinned(samples.size(), 60)) {
+        y.x.push_back(samples[i].time), y.y.push_back(samples[i].yLocation);
+        vy.x.push_back(samples[i].time), vy.y.push_back(samples[i].yVelocity);
+    }
+    const double end = samples.back().time;
+    for (int k = 0; k <= 200; ++k) {
+        const double t = end * k / 200;
+        yExact.x.push_back(t), yExact.y.push_back(apple::exact::yLocation(scene, t));
+        vyExact.x.push_back(t), vyExact.y.push_back(apple::exact::yVelocity(scene, t));
+    }
+    plot.panels.emplace_back("", "height y (m)", std::vector<simlab::PlotCurve>{yExact, y});
+    plot.panels.emplace_back("time t (s)", "velocity y' (m/s)", std::vector<simlab::PlotCurve>{vyExact, vy});
+    return plot;
+}
+
 int runOnce(const Options& o) {
     const simlab::RunSettings& run = o.program.run;
     char banner[256];
@@ -36,11 +66,29 @@ int runOnce(const Options& o) {
                   "Newton's apple: %g kg dropped from %g m, g = %g m/s^2; %s, accuracy %g, dt %g s, 0 <= t <= %g s",
                   o.scene.mass, o.scene.dropHeight, o.scene.gravity, run.integrator.c_str(), run.accuracy, run.dt,
                   run.finalTime);
-    simlab::Tabulation<apple::Sample> tabulation;
-    tabulation.columns = {"time", "yLocation", "yVelocity", "mechanicalEnergy", "yDifferenceFromExact"};
+    simlab::Tabulation<apple::Sample, apple::Model> tabulation;
+    tabulation.columns = kColumns;
     tabulation.row = [&](const apple::Sample& s) { return resultsRow(o.scene, s); };
     tabulation.banner = banner;
     tabulation.bodyRadius = o.scene.radius;
+    // The apple at its size, with a label that stays readable from as far back as the whole fall needs; the floor
+    // where the fall ends, so that the apple lands on it in the last frame.
+    const double yEnd = apple::exact::yLocation(o.scene, run.finalTime);
+    const double low = std::min(yEnd, 0.0), high = std::max(o.scene.dropHeight, 0.0), tall = high - low + 1;
+    tabulation.scenery.low = {-tall / 4, low - o.scene.radius, -1};
+    tabulation.scenery.high = {tall / 4, high + o.scene.radius, 1};
+    tabulation.scenery.floorHeight = low - o.scene.radius;
+    tabulation.scenery.trails = true;
+    tabulation.decorate = [&](apple::Model& m) {
+        using namespace SimTK;
+        simlab::decorateUnlessDrawn(
+            m.apple, {DecorativeSphere(o.scene.radius).setColor(Vec3(0.8, 0.05, 0.05)),
+                      DecorativeCylinder(o.scene.radius / 10, o.scene.radius / 3)
+                          .setTransform(Vec3(0, o.scene.radius * 1.2, 0))
+                          .setColor(Vec3(0.35, 0.2, 0.05)),
+                      DecorativeText("apple").setScale(tall / 14).setColor(Vec3(0.5, 0, 0)).setTransform(
+                          Vec3(tall / 50, 0, 0))});
+    };
     tabulation.program = "apple";
     tabulation.conserved = "mechanicalEnergy";
     apple::Model model;
@@ -51,6 +99,27 @@ int runOnce(const Options& o) {
     std::printf("y(%g s) = %.15g m; exact %.15g m: %.1f accurate digits (%s, %d steps)\n", last.time, last.yLocation,
                 apple::exact::yLocation(o.scene, last.time), digits, result.integrator.method.c_str(),
                 result.integrator.stepsTaken);
+    if (!o.program.plot.empty()) {
+        simlab::drawPlot(fallPlot(o.scene, simlab::describeRun(run), result.samples), o.program.plot);
+        std::printf("Plot drawn in %s\n", o.program.plot.c_str());
+    }
+    return 0;
+}
+
+// --from: an earlier run's results file drawn over the exact fall of this scene, which must be the one it ran.
+int drawFrom(const Options& o) {
+    std::vector<apple::Sample> samples;
+    for (const std::vector<double>& r : simlab::readResults(o.program.from, kColumns)) {
+        samples.push_back({r[0], r[1], r[2], r[3]});
+    }
+    const apple::Sample& first = samples.front();
+    if (std::abs(first.yLocation - o.scene.dropHeight) > 1e-9 * std::max(1.0, std::abs(o.scene.dropHeight))) {
+        throw std::runtime_error("'" + o.program.from + "' starts at y = " + simlab::shortNumber(first.yLocation) +
+                                 " m, this scene at " + simlab::shortNumber(o.scene.dropHeight) +
+                                 " m: give the options of the run that wrote it (--drop-height, --gravity)");
+    }
+    simlab::drawPlot(fallPlot(o.scene, "from " + o.program.from, samples), o.program.plot);
+    std::printf("Plot drawn in %s\n", o.program.plot.c_str());
     return 0;
 }
 
@@ -86,6 +155,7 @@ int main(int argc, char** argv) {
 
     if (const int status = simlab::checkRunSettings("apple", o.program.run); status >= 0) return status;
     return simlab::runGuarded("apple", [&] {
+        if (!o.program.from.empty()) return drawFrom(o);
         return o.program.trade ? runTrade(o) : runOnce(o);
     });
 }

@@ -19,6 +19,7 @@
 #include <stdexcept>
 
 #include "biosim/Project.h"
+#include "simlab/messages.h"
 #include "simlab/model_info.h"
 
 extern char** environ;
@@ -86,20 +87,7 @@ std::string dotEscape(const std::string& text) {
     return out;
 }
 
-std::string xmlEscape(const std::string& text) {
-    std::string out;
-    for (const char c : plainText(text)) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&apos;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
+std::string xmlEscape(const std::string& text) { return simlab::markupEscaped(plainText(text)); }
 
 /// Four significant digits; round-off below `tiny` shows as 0.
 std::string number(double value, double tiny = 0) {

@@ -11,6 +11,9 @@
 #include "book/exact.h"
 #include "simlab/cli_checks.h"
 #include "simlab/digits.h"
+#include "simlab/messages.h"
+#include "simlab/plot.h"
+#include "simlab/results_table.h"
 #include "simlab/program.h"
 
 namespace {
@@ -130,6 +133,90 @@ WDigits digitsAgainst(const book::exact::Reference& reference, const SimTK::Vec3
     return d;
 }
 
+const std::vector<std::string> kColumns = {"time", "wx", "wy", "wz", "Hx", "Hy", "Hz", "Hmag", "K", "HGx", "HGy", "HGz"};
+
+// w_B's components as simulated, every few samples, on Euler's equations integrated apart (a plot needs no more
+// than 1e-12 of them), and the relative changes of K and |H|, which should stay at zero.
+simlab::Plot spinPlot(const Options& o, const std::vector<Sample>& samples) {
+    simlab::Plot plot;
+    const Scene& scene = o.scene;
+    const std::string spin = o.omega.empty() ? "about the " + o.spin + " axis" : "from the given w0";
+    char title[240];
+    const std::string how = o.program.from.empty() ? simlab::describeRun(o.program.run) : "from " + o.program.from;
+    std::snprintf(title, sizeof title, "The spinning book: %s, w0 = (%g, %g, %g) rad/s - %s", spin.c_str(),
+                  scene.w_B0[0], scene.w_B0[1], scene.w_B0[2], how.c_str());
+    plot.title = title;
+    const char* names[] = {"wx", "wy", "wz"};
+    std::vector<simlab::PlotCurve> w;
+    for (const char* name : names) w.emplace_back(std::string("exact ") + name);
+    for (const char* name : names) w.emplace_back(std::string("simulated ") + name, true);
+    for (int i = 0; i < 3; ++i) w[i].color = w[3 + i].color = i + 1;  // a component's samples on its own line
+    simlab::OdeReference<3> reference = book::exact::eulerReference(scene, 1e-12L);
+    const double end = samples.back().time;
+    for (int k = 0; k <= 400; ++k) {
+        const double t = end * k / 400;
+        const std::array<long double, 3>& exact = reference.at(t);
+        for (int i = 0; i < 3; ++i) w[i].x.push_back(t), w[i].y.push_back(static_cast<double>(exact[i]));
+    }
+    for (std::size_t k : simlab::thinned(samples.size(), 80)) {
+        for (int i = 0; i < 3; ++i) w[3 + i].x.push_back(samples[k].time), w[3 + i].y.push_back(samples[k].w_B[i]);
+    }
+    simlab::PlotCurve K("K / K(0) - 1"), H("|H| / |H(0)| - 1");
+    for (const Sample& s : samples) {
+        K.x.push_back(s.time), K.y.push_back(s.kineticEnergy / samples.front().kineticEnergy - 1);
+        H.x.push_back(s.time), H.y.push_back(s.Hmag / samples.front().Hmag - 1);
+    }
+    plot.panels.emplace_back("", "w in the book's axes (rad/s)", w);
+    plot.panels.emplace_back("time t (s)", "relative change", std::vector<simlab::PlotCurve>{K, H});
+    plot.panels.back().scientificY = true;
+    return plot;
+}
+
+// The book as --animate draws it: a brick of its size whose six faces each have their own colour (x faces red,
+// y faces green, z faces blue; the + face of each pair the brighter), and its body axes.
+std::vector<SimTK::DecorativeGeometry> bookDrawing(const SimTK::Vec3& dimensions) {
+    using namespace SimTK;
+    const Vec3 half = dimensions / 2;
+    const double skin = std::max(half.norm() / 200, 1e-4);  // a face's thickness, just over the brick's own
+    std::vector<DecorativeGeometry> drawing{DecorativeBrick(half * 0.995).setColor(Vec3(0.92, 0.9, 0.82))};
+    for (int axis = 0; axis < 3; ++axis) {
+        for (const int side : {1, -1}) {
+            Vec3 faceHalf = half, at(0);
+            faceHalf[axis] = skin;
+            at[axis] = side * half[axis];
+            Vec3 color(0.15);
+            color[axis] = side > 0 ? 0.95 : 0.55;
+            drawing.push_back(DecorativeBrick(faceHalf).setTransform(at).setColor(color));
+        }
+    }
+    drawing.push_back(DecorativeFrame(half.norm() * 1.3).setLineThickness(3));
+    return drawing;
+}
+
+void drawRequestedPlot(const Options& o, const std::vector<Sample>& samples) {
+    if (o.program.plot.empty()) return;
+    simlab::drawPlot(spinPlot(o, samples), o.program.plot);
+    std::printf("Plot drawn in %s\n", o.program.plot.c_str());
+}
+
+// --from: an earlier run's results file drawn over this scene's exact spin, which must be the one it ran.
+int drawFrom(const Options& o) {
+    std::vector<Sample> samples;
+    for (const std::vector<double>& r : simlab::readResults(o.program.from, kColumns)) {
+        samples.push_back({r[0], SimTK::Vec3(r[1], r[2], r[3]), SimTK::Vec3(r[4], r[5], r[6]),
+                           SimTK::Vec3(r[9], r[10], r[11]), r[7], r[8]});
+    }
+    const SimTK::Vec3& w0 = samples.front().w_B;
+    if ((w0 - o.scene.w_B0).norm() > 1e-9 * std::max(1.0, o.scene.w_B0.norm())) {
+        throw std::runtime_error("'" + o.program.from + "' starts at w = (" + simlab::shortNumber(w0[0]) + ", " +
+                                 simlab::shortNumber(w0[1]) + ", " + simlab::shortNumber(w0[2]) +
+                                 ") rad/s, not this scene's: give the options of the run that wrote it (--spin or "
+                                 "--omega, --dimensions, --mass)");
+    }
+    drawRequestedPlot(o, samples);
+    return 0;
+}
+
 int runOnce(const Options& o) {
     const simlab::RunSettings& run = o.program.run;
     const SimTK::Vec3 I = book::exact::principalMoments(o.scene);
@@ -140,11 +227,16 @@ int runOnce(const Options& o) {
                   o.scene.mass, o.scene.dimensions[0], o.scene.dimensions[1], o.scene.dimensions[2], I[0], I[1], I[2],
                   o.scene.w_B0[0], o.scene.w_B0[1], o.scene.w_B0[2], run.integrator.c_str(), run.accuracy, run.dt,
                   run.finalTime);
-    simlab::Tabulation<Sample> tabulation;
-    tabulation.columns = {"time", "wx", "wy", "wz", "Hx", "Hy", "Hz", "Hmag", "K", "HGx", "HGy", "HGz"};
+    simlab::Tabulation<Sample, book::Model> tabulation;
+    tabulation.columns = kColumns;
     tabulation.row = resultsRow;
     tabulation.banner = banner;
     tabulation.bodyRadius = o.scene.dimensions.norm() / 4;
+    const double size = std::max(o.scene.dimensions.norm(), 1e-3);
+    tabulation.scenery.low = SimTK::Vec3(-size / 2);
+    tabulation.scenery.high = SimTK::Vec3(size / 2);
+    tabulation.scenery.floor = false;  // the book turns about a point fixed in space; a floor would cut it
+    tabulation.decorate = [&](book::Model& m) { simlab::decorateUnlessDrawn(m.book, bookDrawing(o.scene.dimensions)); };
     tabulation.program = "book";
     tabulation.conserved = "K";
     book::Model model;
@@ -172,6 +264,7 @@ int runOnce(const Options& o) {
         double moved = 0;
         for (const Sample& s : result.samples) moved = std::max(moved, s.w_B.norm());
         std::printf("The book starts at rest: the largest |w| over the run is %.2g rad/s\n", moved);
+        drawRequestedPlot(o, result.samples);
         return 0;
     }
     std::printf("Largest relative change over the run: K %.2g, |H| %.2g, H in Ground %.2g; w in the book %.2g, H in "
@@ -185,6 +278,7 @@ int runOnce(const Options& o) {
     if (std::abs(o.scene.w_B0[axes[1]]) > 2 * std::max(std::abs(o.scene.w_B0[axes[0]]), std::abs(o.scene.w_B0[axes[2]]))) {
         reportGrowth(o.scene, result.samples);
     }
+    drawRequestedPlot(o, result.samples);
     return 0;
 }
 
@@ -212,7 +306,7 @@ int runTrade(const Options& o) {
 int main(int argc, char** argv) {
     Options o;
     o.program.run = book::defaultRunSettings();
-    o.program.output = "BookSpinResults.txt";
+    o.program.output = "BookSpinResults-SPIN.txt";  // SPIN: the spin's name, so that each spin keeps its file
 
     CLI::App app{"The spinning book: a uniform book spun about one of its principal axes, torque-free. Which "
                  "quantities stay constant, and which spins are stable?",
@@ -234,12 +328,16 @@ int main(int argc, char** argv) {
     app.get_option("--trade")->description("instead of one run, print w's digits at the final time against cost for "
                                            "every integrator");
     if (const int status = simlab::parseCommandLine(app, argc, argv); status >= 0) return status;
+    if (app.get_option("--output")->count() == 0) {
+        o.program.output = "BookSpinResults-" + (o.omega.empty() ? o.spin : std::string("omega")) + ".txt";
+    }
 
     if (const int status = simlab::checkRunSettings("book", o.program.run); status >= 0) return status;
     return simlab::runGuarded("book", [&] {
         if (!o.dimensions.empty()) o.scene.dimensions = SimTK::Vec3(o.dimensions[0], o.dimensions[1], o.dimensions[2]);
         o.scene.w_B0 = o.omega.empty() ? book::exact::spin(o.scene, o.spin)
                                        : SimTK::Vec3(o.omega[0], o.omega[1], o.omega[2]);
+        if (!o.program.from.empty()) return drawFrom(o);
         return o.program.trade ? runTrade(o) : runOnce(o);
     });
 }

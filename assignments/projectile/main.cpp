@@ -12,6 +12,9 @@
 #include "projectile/landing.h"
 #include "simlab/cli_checks.h"
 #include "simlab/digits.h"
+#include "simlab/messages.h"
+#include "simlab/plot.h"
+#include "simlab/results_table.h"
 #include "simlab/program.h"
 
 namespace {
@@ -40,7 +43,7 @@ HitDigits hitDigits(const Scene& scene, const projectile::GroundHit& hit) {
             simlab::accuracyDigits(hit.x, projectile::exact::range(scene), scene.launchSpeed * tStar)};
 }
 
-void reportLanding(const Options& o) {
+projectile::GroundHit reportLanding(const Options& o) {
     const double tStar = projectile::exact::flightTime(o.scene), xStar = projectile::exact::range(o.scene);
     projectile::Landing landing;
     simlab::SolverChatter chatter(o.program.run.integrator == "CPodes");
@@ -49,14 +52,14 @@ void reportLanding(const Options& o) {
         landing = projectile::simulateLanding(o.scene, o.program.run, [&](const Sample& s) { progress.at(s.time); });
     } catch (const std::invalid_argument& e) {
         std::printf("No ground hit: %s\n", e.what());
-        return;
+        return {};
     }
     if (const std::string said = chatter.finish(); !said.empty()) simlab::tellUser("projectile: " + said);
     if (!landing.hit.found) {
         std::printf("No ground hit: the simulation ran to t = %g s and nothing recorded the ball coming back to "
                     "y = 0 (exact: t* = %.10g s). Does buildModel add an event handler that records it?\n",
                     landing.endTime, tStar);
-        return;
+        return {};
     }
     const HitDigits digits = hitDigits(o.scene, landing.hit);
     std::printf("Ground hit (event window %g s): t = %.12g s, x = %.12g m (%s, %d steps)\n",
@@ -64,6 +67,63 @@ void reportLanding(const Options& o) {
                 landing.integrator.stepsTaken);
     std::printf("  exact t* = 2 v0 sin(theta)/g = %.12g s: %.1f accurate digits\n", tStar, digits.time);
     std::printf("  exact x* = v0 cos(theta) t*  = %.12g m: %.1f accurate digits\n", xStar, digits.range);
+    return landing.hit;
+}
+
+const std::vector<std::string> kColumns = {"time",      "x", "y", "xVelocity", "yVelocity", "mechanicalEnergy",
+                                           "yDifferenceFromExact"};
+
+// The flight y(x) as simulated, every few samples, on the exact parabola, and the ground hit the event handler
+// found.
+simlab::Plot flightPlot(const Scene& scene, const std::string& how, const std::vector<Sample>& samples,
+                        const projectile::GroundHit& hit) {
+    simlab::Plot plot;
+    char title[300];
+    std::snprintf(title, sizeof title, "Projectile: %g m/s at %g degrees, g = %g m/s^2 - %s", scene.launchSpeed,
+                  scene.launchAngleDegrees, scene.gravity, how.c_str());
+    plot.title = title;
+    simlab::PlotCurve simulated("simulated", true), parabola("exact parabola");
+    for (std::size_t i : simlab::thinned(samples.size(), 60)) {
+        simulated.x.push_back(samples[i].x), simulated.y.push_back(samples[i].y);
+    }
+    const double end = std::min(samples.back().time, projectile::exact::flightTime(scene));
+    for (int k = 0; k <= 200; ++k) {
+        const double t = end * k / 200;
+        parabola.x.push_back(projectile::exact::x(scene, t)), parabola.y.push_back(projectile::exact::y(scene, t));
+    }
+    simlab::PlotPanel panel("range x (m)", "height y (m)", {parabola, simulated});
+    if (hit.found) {
+        char label[96];
+        std::snprintf(label, sizeof label, "ground hit: t = %.6g s, x = %.6g m", hit.time, hit.x);
+        panel.marks.push_back({hit.x, 0.0, label});
+    }
+    plot.panels.push_back(panel);
+    return plot;
+}
+
+
+
+// --from: an earlier run's results file drawn over the exact parabola of this scene, which must be the one it ran
+// (the file does not hold the ground hit, which is not marked).
+int drawFrom(const Options& o) {
+    std::vector<Sample> samples;
+    for (const std::vector<double>& r : simlab::readResults(o.program.from, kColumns)) {
+        samples.push_back({r[0], r[1], r[2], r[3], r[4], r[5]});
+    }
+    const Sample& first = samples.front();
+    const double speed = std::hypot(first.xVelocity, first.yVelocity);
+    const double angle = std::atan2(first.yVelocity, first.xVelocity) * 180 / M_PI;
+    if (std::abs(speed - o.scene.launchSpeed) > 1e-9 * o.scene.launchSpeed ||
+        std::abs(angle - o.scene.launchAngleDegrees) > 1e-7) {
+        throw std::runtime_error("'" + o.program.from + "' starts at " + simlab::shortNumber(speed) + " m/s, " +
+                                 simlab::shortNumber(angle) + " degrees, this scene at " +
+                                 simlab::shortNumber(o.scene.launchSpeed) + " m/s, " +
+                                 simlab::shortNumber(o.scene.launchAngleDegrees) +
+                                 " degrees: give the options of the run that wrote it (--speed, --angle, --gravity)");
+    }
+    simlab::drawPlot(flightPlot(o.scene, "from " + o.program.from, samples, projectile::GroundHit{}), o.program.plot);
+    std::printf("Plot drawn in %s\n", o.program.plot.c_str());
+    return 0;
 }
 
 int runOnce(const Options& o) {
@@ -74,11 +134,25 @@ int runOnce(const Options& o) {
                   "0 <= t <= %g s",
                   o.scene.mass, o.scene.launchSpeed, o.scene.launchAngleDegrees, o.scene.gravity,
                   run.integrator.c_str(), run.accuracy, run.dt, run.finalTime);
-    simlab::Tabulation<Sample> tabulation;
-    tabulation.columns = {"time", "x", "y", "xVelocity", "yVelocity", "mechanicalEnergy", "yDifferenceFromExact"};
+    simlab::Tabulation<Sample, projectile::Model> tabulation;
+    tabulation.columns = kColumns;
     tabulation.row = [&](const Sample& s) { return resultsRow(o.scene, s); };
     tabulation.banner = banner;
-    tabulation.bodyRadius = 1.0;  // drawn large: the flight is 190 m long
+    // A baseball's radius from its radius of gyration (a solid sphere's is sqrt(2/5) of it), a label readable from
+    // as far back as the whole arc needs, and the trail of the flight.
+    const double radius = o.scene.radiusOfGyration / std::sqrt(0.4);
+    const double far = std::min(projectile::exact::range(o.scene), projectile::exact::x(o.scene, run.finalTime));
+    const double span = std::max({far, projectile::exact::maxHeight(o.scene), 1.0});
+    tabulation.bodyRadius = radius;
+    tabulation.scenery.low = {0, 0, -1};
+    tabulation.scenery.high = {far, projectile::exact::maxHeight(o.scene), 1};
+    tabulation.scenery.trails = true;
+    tabulation.decorate = [radius, span](projectile::Model& m) {
+        using namespace SimTK;
+        simlab::decorateUnlessDrawn(m.ball, {DecorativeSphere(radius).setColor(Vec3(0.95, 0.95, 0.9)),
+                                             DecorativeText("ball").setScale(span / 14).setColor(Vec3(0.1)).setTransform(
+                                                 Vec3(span / 80, span / 80, 0))});
+    };
     tabulation.program = "projectile";
     tabulation.conserved = "mechanicalEnergy";
     projectile::Model model;
@@ -98,7 +172,11 @@ int runOnce(const Options& o) {
                 yExact, simlab::accuracyDigits(last.y, yExact, scale), scale);
     std::printf("x(%g s) = %.15g m; exact %.15g m: %.1f accurate digits (of v0 t = %.6g m)\n", last.time, last.x,
                 xExact, simlab::accuracyDigits(last.x, xExact, scale), scale);
-    reportLanding(o);
+    const projectile::GroundHit hit = reportLanding(o);
+    if (!o.program.plot.empty()) {
+        simlab::drawPlot(flightPlot(o.scene, simlab::describeRun(run), result.samples, hit), o.program.plot);
+        std::printf("Plot drawn in %s\n", o.program.plot.c_str());
+    }
     return 0;
 }
 
@@ -166,6 +244,7 @@ int main(int argc, char** argv) {
 
     if (const int status = simlab::checkRunSettings("projectile", o.program.run); status >= 0) return status;
     return simlab::runGuarded("projectile", [&] {
+        if (!o.program.from.empty()) return drawFrom(o);
         return o.program.trade ? runTrade(o) : runOnce(o);
     });
 }

@@ -42,7 +42,9 @@ void runBuild(const BuildOptions& o) {
         throw UsageError(printable(source) + (result.stage == "link" ? " did not link" : " did not compile"));
     }
     std::cerr << printable(result.warnings, true);
-    std::cout << "Built " << output << " from " << source << "; run ./" << output << " --help\n";
+    // A path with a slash runs as it is; a bare name needs ./ before it.
+    const std::string command = output.find('/') == std::string::npos ? "./" + output : output;
+    std::cout << "Built " << output << " from " << source << "; run " << command << " --help\n";
 }
 
 }  // namespace

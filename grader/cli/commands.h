@@ -33,5 +33,6 @@ void addPackage(CLI::App& app);
 void addAutograde(CLI::App& app);
 void addProject(CLI::App& app);
 void addStudy(CLI::App& app);
+void addPlot(CLI::App& app);
 
 }  // namespace simlab::cli

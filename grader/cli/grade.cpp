@@ -131,8 +131,9 @@ void runGrade(const GradeCommandOptions& o) {
 
     std::cout << "\n" << summaryTable(rubric, records);
     if (!o.junit.empty()) writeFileAtomically(o.junit, junitXml(assignment, records));
-    std::cout << "\nWrote " << printable(out) << "/gradebook.csv, " << printable(out) << "/summary.csv and "
-              << printable(out) << "/students/<id>/{results.json,feedback.md}"
+    std::cout << "\nWrote " << printable(out) << "/gradebook.csv, " << printable(out) << "/summary.csv, "
+              << printable(out) << "/report.html and " << printable(out)
+              << "/students/<id>/{results.json,feedback.md,feedback.html}"
               << (o.junit.empty() ? "" : ", " + printable(o.junit)) << "\n";
     if (result.graderErrors > 0) {
         throw std::runtime_error(std::to_string(result.graderErrors) +

@@ -27,6 +27,7 @@ struct PackageOptions {
 void printSummary(const engine::PackageSummary& s, const std::string& where) {
     std::cout << "Wrote " << where << ": " << s.files << " files.\n";
     for (const std::string& line : s.left) std::cout << "  left out: " << line << "\n";
+    for (const std::string& line : s.made) std::cout << "  made: " << line << "\n";
 }
 
 struct AutogradeOptions {

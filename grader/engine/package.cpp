@@ -10,6 +10,7 @@
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/process.h"
+#include "simlab/engine/text.h"
 
 namespace fs = std::filesystem;
 
@@ -93,6 +94,73 @@ void addCatch2(const Manifest& manifest, const std::string& dir, PackageSummary&
     summary.files += 2;
 }
 
+// The handouts as pages. Each handouts/<id>.md becomes handouts/<id>.html beside it: pandoc, standalone, with its
+// images inlined and its mathematics as MathML, so that the page opens from disk with no network. Where the
+// assignment's reference program draws (--plot) and replays (--replay), the page ends with the reference run's plot
+// and a link to its replay page, made here by running it. Says in `summary` what it made, or why nothing.
+void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSummary& summary) {
+    const std::string pandoc = fs::exists("/usr/bin/pandoc") ? "/usr/bin/pandoc" : "";
+    if (pandoc.empty()) {
+        summary.made.push_back("no handout pages: pandoc is not installed (scripts/install-deps installs it)");
+        return;
+    }
+    const std::string handouts = dir + "/handouts";
+    int pages = 0, runs = 0;
+    for (const Assignment& a : manifest.assignments) {
+        const std::string markdown = handouts + "/" + a.id + ".md";
+        if (!fs::exists(markdown)) continue;
+        std::string after;
+        if (!a.referenceProgramPath.empty()) {
+            TempDir scratch("simlab-handout-");
+            const std::string plot = "figures/" + a.id + "-reference.svg", replay = a.id + "-replay.html";
+            ProcessRequest r;
+            r.argv = {a.referenceProgramPath, "--quiet", "--output", scratch.path() + "/results.txt", "--plot",
+                      handouts + "/" + plot, "--replay", handouts + "/" + replay};
+            r.env = childEnvironment({"LC_ALL=C"});
+            r.workDir = scratch.path();
+            r.limits.wallSeconds = r.limits.cpuSeconds = 120;
+            r.limits.outputKiB = 1024;
+            r.keepOutput = 4096;
+            const ProcessResult ran = runProcess(r);
+            if (ran.exitedCleanly() && fs::exists(handouts + "/" + plot) && fs::exists(handouts + "/" + replay)) {
+                ++runs;
+                after = "<section id=\"reference-run\">\n<h2>The reference solution's run</h2>\n<p>What <code>" + a.program +
+                        "</code> draws with <code>--plot</code> on the reference solution, with its default settings:</p>\n"
+                        "<p><img src=\"" + plot + "\" alt=\"the reference run against the exact solution\" "
+                        "style=\"max-width: 100%\"></p>\n<p><a href=\"" + replay + "\">Replay the run in 3-D</a> "
+                        "(<code>--replay</code>: a page of its own, which also opens offline).</p>\n</section>\n";
+            } else {
+                std::error_code ignored;
+                fs::remove(handouts + "/" + plot, ignored);
+                fs::remove(handouts + "/" + replay, ignored);
+                // A program that does not draw refuses the options (a usage error, 2): its page is the handout
+                // alone. Anything else is a run that should have drawn, and is said.
+                if (!(ran.started && ran.signal == 0 && ran.exitCode == 2)) {
+                    std::string said = ran.output.substr(0, ran.output.find_last_not_of("\n") + 1);
+                    said = said.substr(said.find_last_of('\n') + 1);  // its last line: the error
+                    summary.made.push_back("no reference run in handouts/" + a.id + ".html: " + a.program + " " +
+                                           (ran.started ? "failed: " + printable(said) : ran.error));
+                }
+            }
+        }
+        std::string title = a.title.empty() ? a.id : a.title;
+        std::vector<std::string> argv = {pandoc, a.id + ".md", "--standalone", "--self-contained", "--mathml",
+                                         "--metadata", "pagetitle=" + title, "--output", a.id + ".html"};
+        const std::string afterFile = handouts + "/." + a.id + "-after.html";
+        if (!after.empty()) {
+            writeFileAtomically(afterFile, after);
+            argv.push_back("--include-after-body=." + a.id + "-after.html");
+        }
+        runTool(argv, handouts);
+        std::error_code ignored;
+        fs::remove(afterFile, ignored);
+        ++pages;
+    }
+    summary.files += pages + 2 * runs;
+    summary.made.push_back(std::to_string(pages) + " handout pages (handouts/<id>.html), " + std::to_string(runs) +
+                           " with the reference run's plot and replay");
+}
+
 void makeExecutable(const std::string& path) {
     fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
                     fs::perm_options::add);
@@ -143,6 +211,7 @@ PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& o
     fs::copy_file(manifest.sourceDir + "/handouts/README-student.md", outDir + "/README.md");
     ++summary.files;
     addCatch2(manifest, outDir, summary);
+    addHandoutPages(manifest, outDir, summary);
     return summary;
 }
 

@@ -4,6 +4,10 @@
 #   gnuplot -e "results='other.txt'" handouts/plots/babyboot.gp    another results file
 if (!exists("results")) results = "babybootResults.txt"
 if (exists("out")) { set terminal pngcairo size 900,700; set output out }
+if (!exists("out") && GPVAL_TERM eq "unknown") {
+  print "This gnuplot has no window (gnuplot-nox): add -e \"out='plot.png'\" for a PNG, or use the lab program's --plot."
+  exit status 1
+}
 
 set key autotitle columnhead
 set grid

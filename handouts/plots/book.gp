@@ -2,8 +2,12 @@
 #   gnuplot -p handouts/plots/book.gp                         a window (after build/bin/book --spin ... here)
 #   gnuplot -e "out='book.png'" handouts/plots/book.gp        a PNG instead
 #   gnuplot -e "results='other.txt'" handouts/plots/book.gp   another results file
-if (!exists("results")) results = "BookSpinResults.txt"
+if (!exists("results")) results = "BookSpinResults-min.txt"
 if (exists("out")) { set terminal pngcairo size 900,700; set output out }
+if (!exists("out") && GPVAL_TERM eq "unknown") {
+  print "This gnuplot has no window (gnuplot-nox): add -e \"out='plot.png'\" for a PNG, or use the lab program's --plot."
+  exit status 1
+}
 
 stats results using 9 every ::1::1 nooutput name "K"   # the first row after the header: K(0)
 stats results using 8 every ::1::1 nooutput name "H"   # and |H|(0)

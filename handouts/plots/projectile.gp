@@ -4,6 +4,10 @@
 # The parabola drawn is the lab's: 44.7 m/s at 35 degrees, g = 9.8 m/s^2.
 if (!exists("results")) results = "ProjectileMotionResults.txt"
 if (exists("out")) { set terminal pngcairo size 900,500; set output out }
+if (!exists("out") && GPVAL_TERM eq "unknown") {
+  print "This gnuplot has no window (gnuplot-nox): add -e \"out='plot.png'\" for a PNG, or use the lab program's --plot."
+  exit status 1
+}
 
 v0 = 44.7; theta = 35 * pi / 180; g = 9.8
 parabola(x) = tan(theta) * x - g * x**2 / (2 * (v0 * cos(theta))**2)

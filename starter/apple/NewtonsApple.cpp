@@ -34,7 +34,8 @@ void buildModel(const Scene& scene, Model& model) {
     //    - Mass properties: MassProperties(scene.mass, Vec3(0), UnitInertia::sphere(scene.radius)).
     //    - Give the apple only the motion the scene needs: it falls straight down. A MobilizedBody::Slider
     //      translates along the x axis of its two mobilizer frames; rotate both frames by Pi/2 about ZAxis
-    //      (Transform(Rotation(Pi / 2, ZAxis), Vec3(0))) so that axis is Ground's y.
+    //      (Transform(Rotation(Pi / 2, ZAxis), Vec3(0))) so that axis is Ground's y. The Slider's parent is
+    //      Ground, model.matter.Ground(): MobilizedBody::Slider(model.matter.Ground(), X_GF, body, X_AM).
     //    - Force::UniformGravity(model.forces, model.matter, Vec3(0, -scene.gravity, 0)).
     SIMLAB_TODO("build the model: the apple's body, its Slider along Ground's y, and gravity");
 }

@@ -39,8 +39,9 @@ class GroundHitHandler : public TriggeredEventHandler {
 public:
     GroundHitHandler(const MobilizedBody& ball, GroundHit& hit, double window)
         : TriggeredEventHandler(Stage::Position), ball_(ball), hit_(hit) {
-        // 1. The trigger: only a falling sign change counts (getTriggerInfo().setTriggerOnRisingSignTransition),
-        //    localized to within `window` seconds (setRequiredLocalizationTimeWindow).
+        // 1. The trigger: only a falling sign change counts, so turn rising ones off
+        //    (getTriggerInfo().setTriggerOnRisingSignTransition(false); falling ones are on by default), and
+        //    localize it to within `window` seconds (getTriggerInfo().setRequiredLocalizationTimeWindow(window)).
         SIMLAB_TODO("set the trigger: falling sign changes only, localized to within the window");
     }
 

@@ -11,8 +11,20 @@ check "the bundle has no corpus or CI" test ! -e bundle/tests -a ! -e bundle/.ci
 check "the bundle keeps the starter and the handout" test -f bundle/starter/apple/NewtonsApple.cpp -a -f bundle/handouts/apple.md
 # Nothing of the solution's code or of the hidden variants' values is anywhere in it.
 check "no line of the solution's model" bash -c "! grep -rqF 'model.apple.setOneQ(state, 0, scene.dropHeight);' bundle"
-check "no hidden variant's values (Jupiter's gravity, the long fall)" bash -c "! grep -rqE '24\.79|50000' --exclude-dir=third_party bundle"
+# (The replay pages hold the reference runs' sampled values, among them a speed of -24.794 m/s: not a variant's.)
+check "no hidden variant's values (Jupiter's gravity, the long fall)" \
+  bash -c "! grep -rqE '24\.79|50000' --exclude-dir=third_party --exclude='*-replay.html' bundle"
 check "the student README replaces the instructors'" grep -q 'Fill in the .SIMLAB_TODO' bundle/README.md
+check "each handout is a page too, the labs' with the reference run's plot and replay" \
+  bash -c "test -f bundle/handouts/biosim.html && for lab in apple projectile book; do test -f bundle/handouts/\$lab.html -a -f bundle/handouts/\$lab-replay.html -a -f bundle/handouts/figures/\$lab-reference.svg || exit 1; done"
+check "  which say so" grep -q 'made: 4 handout pages (handouts/<id>.html), 3 with the reference run' package.out
+if command -v chromium >/dev/null; then
+  for page in apple projectile book biosim; do
+    check "  handouts/$page.html opens offline in Chromium, every link resolving" \
+      "$SOURCE_DIR/tests/pages/page-check" "bundle/handouts/$page.html" --links
+  done
+  check "  and so does a replay" "$SOURCE_DIR/tests/pages/page-check" bundle/handouts/book-replay.html
+fi
 run_capture again "$SIMLAB" package student -o bundle
 check "it refuses to write into a folder that is not empty" test "$(status_of again)" -eq 2
 

@@ -182,7 +182,7 @@ TEST_CASE("a name with quotes, a line break and markup is escaped in DOT and SVG
 
     const std::string svg = biosim::pictureSvg(s);
     CHECK(svg.find("say &quot;hi&quot; &lt;b&gt;&amp;\\N</text>") != std::string::npos);
-    CHECK(svg.find("it&apos;s &lt;odd&gt;") != std::string::npos);
+    CHECK(svg.find("it&#39;s &lt;odd&gt;") != std::string::npos);
     CHECK(svg.find("<b>") == std::string::npos);
     CHECK(svg.find("<odd>") == std::string::npos);
     CHECK(svg.find("say \"") == std::string::npos);

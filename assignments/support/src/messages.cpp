@@ -1,5 +1,6 @@
 #include "simlab/messages.h"
 
+#include <cstdio>
 #include <sstream>
 
 namespace simlab {
@@ -35,6 +36,28 @@ std::string oneLineMessage(const std::string& message, std::size_t maxLength) {
     }
     while (!out.empty() && out.back() == ' ') out.pop_back();
     if (out.size() > maxLength) out = out.substr(0, maxLength) + "...";
+    return out;
+}
+
+std::string shortNumber(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
+
+std::string markupEscaped(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    for (const char c : text) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            case '\'': out += "&#39;"; break;
+            default: out += c;
+        }
+    }
     return out;
 }
 

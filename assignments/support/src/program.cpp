@@ -1,4 +1,5 @@
 #include "simlab/program.h"
+#include "simlab/plot.h"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -50,8 +51,23 @@ void addProgramOptions(CLI::App& app, ProgramOptions& options) {
     app.add_option("--output,-o", options.output, "results file (tab-separated columns)")->capture_default_str();
     app.add_flag("--quiet,-q", options.quiet, "do not print the table on the screen");
     app.add_flag("--animate", options.animate, "show the motion in Simbody's visualizer (needs a display)");
+    CLI::Option* plot =
+        app.add_option("--plot", options.plot, "draw the run against the exact solution into this .png or .svg file")
+            ->check([](const std::string& path) { return plotPathProblem(path); });
+    CLI::Option* from = app.add_option("--from", options.from,
+                                       "with --plot: draw this results file of an earlier run instead of running")
+                            ->needs(plot);
+    CLI::Option* replay =
+        app.add_option("--replay", options.replay, "write a page that replays the run in 3-D into this .html file")
+            ->check([](const std::string& path) {
+                const bool html = path.size() > 5 && path.compare(path.size() - 5, 5, ".html") == 0;
+                return html ? std::string() : "a replay is an .html file, not '" + path + "'";
+            });
     app.add_flag("--trade", options.trade,
-                 "instead of one run, print accuracy digits against cost for every integrator");
+                 "instead of one run, print accuracy digits against cost for every integrator")
+        ->excludes(plot)
+        ->excludes(replay);
+    from->excludes(replay)->excludes("--animate");
     app.add_option("--repeats", options.repeats, "with --trade: runs per row; the median time is shown")
         ->check(CLI::Range(1, 100))
         ->capture_default_str();
@@ -282,13 +298,14 @@ void printTrade(std::ostream& out, const RunSettings& base, const std::string& f
 
 namespace {
 
-// Draws every body other than Ground as a sphere at its origin.
-class BodySpheres : public SimTK::DecorationGenerator {
+// Draws each body that has no decorations of its own as a sphere at its origin, so that nothing is invisible.
+class BareBodySpheres : public SimTK::DecorationGenerator {
 public:
-    BodySpheres(const SimTK::SimbodyMatterSubsystem& matter, double radius) : matter_(matter), radius_(radius) {}
+    BareBodySpheres(const SimTK::SimbodyMatterSubsystem& matter, double radius) : matter_(matter), radius_(radius) {}
     void generateDecorations(const SimTK::State& state, SimTK::Array_<SimTK::DecorativeGeometry>& geometry) override {
         for (int i = 1; i < matter_.getNumBodies(); ++i) {
             const SimTK::MobilizedBody& body = matter_.getMobilizedBody(SimTK::MobilizedBodyIndex(i));
+            if (body.getBody().getNumDecorations() > 0) continue;
             geometry.push_back(SimTK::DecorativeSphere(radius_)
                                    .setTransform(body.getBodyTransform(state))
                                    .setColor(SimTK::Red));
@@ -300,9 +317,36 @@ private:
     double radius_;
 };
 
+// Draws where each body's origin has been, as a line through its positions at the frames shown so far.
+class Trails : public SimTK::DecorationGenerator {
+public:
+    explicit Trails(const SimTK::SimbodyMatterSubsystem& matter) : matter_(matter) {}
+    void generateDecorations(const SimTK::State& state, SimTK::Array_<SimTK::DecorativeGeometry>& geometry) override {
+        paths_.resize(matter_.getNumBodies());
+        for (int i = 1; i < matter_.getNumBodies(); ++i) {
+            std::vector<SimTK::Vec3>& path = paths_[i];
+            if (!path.empty() && state.getTime() == 0) path.clear();  // a new run
+            path.push_back(matter_.getMobilizedBody(SimTK::MobilizedBodyIndex(i)).getBodyOriginLocation(state));
+            for (std::size_t k = 1; k < path.size(); ++k) {
+                geometry.push_back(SimTK::DecorativeLine(path[k - 1], path[k]).setColor(SimTK::Gray).setLineThickness(2));
+            }
+        }
+    }
+
+private:
+    const SimTK::SimbodyMatterSubsystem& matter_;
+    std::vector<std::vector<SimTK::Vec3>> paths_;
+};
+
 }  // namespace
 
-std::function<void()> attachVisualizer(SimTK::MultibodySystem& system, double frameInterval, double radius) {
+void decorateUnlessDrawn(SimTK::MobilizedBody& body, const std::vector<SimTK::DecorativeGeometry>& geometry) {
+    if (body.getBody().getNumDecorations() > 0) return;
+    for (const SimTK::DecorativeGeometry& g : geometry) body.updBody().addDecoration(g);  // placed by its own transform
+}
+
+std::function<void()> attachVisualizer(SimTK::MultibodySystem& system, double frameInterval, double radius,
+                                       const Scenery& scenery) {
     const char* display = std::getenv("DISPLAY");
     if (!display || !*display) {
         throw std::runtime_error("--animate needs a display and DISPLAY is not set (over ssh use -X; without a "
@@ -313,7 +357,29 @@ std::function<void()> attachVisualizer(SimTK::MultibodySystem& system, double fr
     SimTK::Visualizer visualizer(system);  // a counted handle: the reporter keeps it alive
     visualizer.setMode(SimTK::Visualizer::RealTime);
     visualizer.setShowSimTime(true);
-    visualizer.addDecorationGenerator(new BodySpheres(system.getMatterSubsystem(), radius));
+    visualizer.setSystemUpDirection(SimTK::YAxis);
+    // Only what the bodies' decorations draw (and the spheres below): Simbody's own frames and wire spheres on
+    // every body and mobilizer would hide the scene.
+    system.updMatterSubsystem().setShowDefaultGeometry(false);
+    if (scenery.floor) {
+        visualizer.setGroundHeight(scenery.floorHeight);
+    } else {
+        visualizer.setBackgroundType(SimTK::Visualizer::SolidColor);
+    }
+    visualizer.addDecorationGenerator(new BareBodySpheres(system.getMatterSubsystem(), radius));
+    if (scenery.trails) visualizer.addDecorationGenerator(new Trails(system.getMatterSubsystem()));
+    // The camera looks at the box's middle from in front, a little above and to the right, far enough back that
+    // the whole box fits in its field of view (which is vertical).
+    const SimTK::Vec3 middle = (scenery.low + scenery.high) / 2, size = scenery.high - scenery.low;
+    const double fieldOfView = SimTK::Pi / 4;
+    const double aspect = 4.0 / 3;  // the visualizer's window
+    const double distance =
+        0.6 * std::max({size[0] / aspect, size[1], 1e-3}) / std::tan(fieldOfView / 2) + size[2] / 2;
+    const SimTK::Vec3 from = middle + distance * SimTK::UnitVec3(0.15, 0.1, 1).asVec3();
+    visualizer.setCameraFieldOfView(fieldOfView);
+    visualizer.setCameraClippingPlanes(distance / 1000, distance * 10);
+    visualizer.setCameraTransform(SimTK::Transform(from));
+    visualizer.pointCameraAt(middle, SimTK::Vec3(0, 1, 0));
     system.addEventReporter(new SimTK::Visualizer::Reporter(visualizer, frameInterval));  // the system adopts it
     return [visualizer] { visualizer.flushFrames(); };
 }

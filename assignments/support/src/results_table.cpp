@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <ostream>
 #include <stdexcept>
 
@@ -86,6 +88,43 @@ void ResultsTable::note(const std::string& text) {
     noted_ = true;
     std::fprintf(file_, "# %s\n", text.c_str());
     std::fflush(file_);
+}
+
+std::vector<std::vector<double>> readResults(const std::string& path, const std::vector<std::string>& columns) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error("cannot read results file '" + path + "': " + std::strerror(errno));
+    std::string expected;
+    for (std::size_t i = 0; i < columns.size(); ++i) expected += (i ? "\t" : "") + columns[i];
+    std::string line;
+    if (!std::getline(in, line) || line != expected) {
+        std::string start;
+        for (std::size_t i = 0; i < columns.size() && i < 3; ++i) start += (i ? ", " : "") + columns[i];
+        throw std::runtime_error("'" + path + "' is not a results file of this program (its header starts " + start +
+                                 ")");
+    }
+    std::vector<std::vector<double>> rows;
+    for (int number = 2; std::getline(in, line); ++number) {
+        if (line.empty() || line[0] == '#') continue;
+        std::vector<double> row;
+        const char* at = line.c_str();
+        while (*at) {
+            char* end = nullptr;
+            const double value = std::strtod(at, &end);
+            if (end == at || (*end && *end != '\t')) {
+                throw std::runtime_error("'" + path + "', line " + std::to_string(number) + ": not a table of numbers");
+            }
+            row.push_back(value);
+            at = *end ? end + 1 : end;
+        }
+        if (row.size() != columns.size()) {
+            throw std::runtime_error("'" + path + "', line " + std::to_string(number) + ": " +
+                                     std::to_string(row.size()) + " values for " + std::to_string(columns.size()) +
+                                     " columns");
+        }
+        rows.push_back(std::move(row));
+    }
+    if (rows.empty()) throw std::runtime_error("'" + path + "' has no rows: the run it comes from recorded nothing");
+    return rows;
 }
 
 }  // namespace simlab

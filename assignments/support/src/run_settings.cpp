@@ -1,6 +1,7 @@
 #include "simlab/run_settings.h"
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
@@ -16,6 +17,18 @@ int RunSettings::sampleCount() const {
 double RunSettings::sampleTime(int k) const {
     return k >= sampleCount() ? finalTime : k * dt;
 }
+
+std::string describeStepping(const RunSettings& run) {
+    char text[64];
+    if (run.fixedStep || run.integrator == "SemiExplicitEuler") {
+        std::snprintf(text, sizeof text, "fixed steps of %g s", run.dt);
+    } else {
+        std::snprintf(text, sizeof text, "accuracy %g", run.accuracy);
+    }
+    return text;
+}
+
+std::string describeRun(const RunSettings& run) { return run.integrator + ", " + describeStepping(run); }
 
 void validate(const RunSettings& run) {
     auto fail = [](const std::string& what) { throw std::invalid_argument(what); };

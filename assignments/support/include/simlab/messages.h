@@ -1,4 +1,5 @@
-// One line from a message that runs over several: what a one-line error, a study's row or a grader's reason shows.
+// Text as people read it: one line from a message that runs over several (what a one-line error, a study's row or
+// a grader's reason shows), and text made safe to put in a page.
 #pragma once
 
 #include <cstddef>
@@ -10,5 +11,11 @@ namespace simlab {
 /// without Simbody's "SimTK Exception thrown at file:line" preamble and "Error detected by Simbody method", and
 /// without the lines a solver adds after the reason (a line that only names the method keeps the next one).
 std::string oneLineMessage(const std::string& message, std::size_t maxLength = 240);
+
+/// `value` in at most 6 significant digits ("%g"), for a message.
+std::string shortNumber(double value);
+
+/// `text` as HTML or XML character data or an attribute's value: &, <, >, " and ' as character references.
+std::string markupEscaped(const std::string& text);
 
 }  // namespace simlab

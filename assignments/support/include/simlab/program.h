@@ -12,6 +12,7 @@
 
 #include "simlab/driver.h"
 #include "simlab/messages.h"
+#include "simlab/replay.h"
 #include "simlab/results_table.h"
 #include "simlab/run_settings.h"
 
@@ -26,11 +27,15 @@ struct ProgramOptions {
     std::string output;    ///< results file
     bool quiet = false;    ///< do not print the table on the screen
     bool animate = false;  ///< show the motion in Simbody's visualizer
+    std::string plot;      ///< draw the run, with the exact solution where there is one, into this PNG or SVG
+    std::string replay;    ///< write a page that replays the run in 3-D, beside its table, into this HTML file
+    std::string from;      ///< with plot: draw this results file of an earlier run instead of running
     bool trade = false;    ///< print digits against cost for every integrator instead of one run
     int repeats = 5;       ///< runs per row of the trade table (the median time is shown)
 };
 
-/// Adds --integrator, --accuracy, --dt, --final-time, --fixed-step, --output, --quiet, --animate, --trade and --repeats,
+/// Adds --integrator, --accuracy, --dt, --final-time, --fixed-step, --output, --quiet, --animate, --plot, --from,
+/// --replay, --trade and --repeats,
 /// with `options` holding the defaults, and makes parse errors one line: "<program>: error: ...".
 void addProgramOptions(CLI::App& app, ProgramOptions& options);
 
@@ -109,20 +114,36 @@ private:
     std::unique_ptr<Watch> watch_;
 };
 
-/// Adds a Simbody visualizer to `system` (call before its topology is realized) that draws every body as a
-/// sphere of `radius` m and shows a frame every `frameInterval` s of simulated time, in real time. Needs a
+/// What --animate shows of a run besides the bodies: where to look, the floor, the bodies' trails.
+struct Scenery {
+    SimTK::Vec3 low{-1, -1, -1}, high{1, 1, 1};  ///< m, in Ground: a box the whole motion stays in; the camera frames it
+    bool floor = true;                            ///< draw the visualizer's floor ...
+    double floorHeight = 0;                       ///< ... at this y (m)
+    bool trails = false;                          ///< a line behind each body, where its origin has been
+};
+
+/// Adds a Simbody visualizer to `system` (call before its topology is realized) that shows a frame every
+/// `frameInterval` s of simulated time, in real time, with the camera framing `scenery`'s box. A body is drawn as
+/// its decorations say (the course's, or a student's own); one without any as a sphere of `radius` m. Needs a
 /// display; throws std::runtime_error saying so if there is none. The visualizer plays behind the simulation:
 /// call the returned function once the simulation is over to wait for the last frame, while `system` still
 /// exists.
-std::function<void()> attachVisualizer(SimTK::MultibodySystem& system, double frameInterval, double radius);
+std::function<void()> attachVisualizer(SimTK::MultibodySystem& system, double frameInterval, double radius,
+                                       const Scenery& scenery = {});
+
+/// Adds `geometry` to `body` unless something already draws it: what a student put on a body in buildModel is
+/// shown as drawn, instead of the course's drawing. Call before the topology is realized.
+void decorateUnlessDrawn(SimTK::MobilizedBody& body, const std::vector<SimTK::DecorativeGeometry>& geometry);
 
 /// How a lab program shows a run.
-template <class Sample>
+template <class Sample, class Model>
 struct Tabulation {
     std::vector<std::string> columns;                         ///< the results file's header
     std::function<std::vector<double>(const Sample&)> row;    ///< one value per column
     std::string banner;                                       ///< one line saying what runs
-    double bodyRadius = 0.05;                                 ///< m, the spheres --animate draws
+    double bodyRadius = 0.05;                                 ///< m, the sphere --animate draws for a bare body
+    Scenery scenery;                                          ///< what else --animate shows
+    std::function<void(Model&)> decorate;                     ///< adds the course's drawing of the bodies
     std::string program;                                      ///< for the progress lines of a long run
     std::string conserved;       ///< a column the run should conserve (the energy), or empty
     double conservedGrowth = 1e6;  ///< the run fails if |conserved| grows past this many times its first value
@@ -133,18 +154,26 @@ struct Tabulation {
 /// say where the results went.
 template <class Sample, class Scene, class Model>
 RunResult<Sample> runTabulated(const Scene& scene, Model& model, const ProgramOptions& options,
-                               const Tabulation<Sample>& tabulation) {
+                               const Tabulation<Sample, Model>& tabulation) {
     ResultsTable table(tabulation.columns, options.output, options.quiet ? nullptr : &std::cout);
     if (!tabulation.conserved.empty()) table.watchGrowth(tabulation.conserved, tabulation.conservedGrowth);
     std::cout << tabulation.banner << std::endl;
     Progress progress(tabulation.program, options.run.finalTime);
     RunHooks<Model> hooks;
     std::function<void()> finishAnimation;
-    if (options.animate) {
+    std::unique_ptr<ReplayRecorder> replay;
+    std::vector<std::vector<double>> rows;  // for the replay's charts
+    if (options.animate || !options.replay.empty()) {
         hooks.afterBuild = [&](Model& m) {
-            finishAnimation = attachVisualizer(m.system, 1.0 / 30, tabulation.bodyRadius);
+            if (tabulation.decorate) tabulation.decorate(m);
+            if (options.animate) {
+                finishAnimation = attachVisualizer(m.system, 1.0 / 30, tabulation.bodyRadius, tabulation.scenery);
+            }
+            if (!options.replay.empty()) replay = std::make_unique<ReplayRecorder>(m.system, 1.0 / 30);
         };
-        hooks.afterRun = [&](const Model&, const SimTK::Integrator&) { finishAnimation(); };
+        hooks.afterRun = [&](const Model&, const SimTK::Integrator&) {
+            if (finishAnimation) finishAnimation();
+        };
     }
     RunResult<Sample> result;
     SolverChatter chatter(options.run.integrator == "CPodes");
@@ -154,6 +183,7 @@ RunResult<Sample> runTabulated(const Scene& scene, Model& model, const ProgramOp
             [&](const Sample& s) {
                 const std::vector<double> row = tabulation.row(s);
                 table.add(row);
+                if (!options.replay.empty()) rows.push_back(row);
                 if (!tabulation.program.empty()) progress.at(row.front());
             },
             hooks);
@@ -166,6 +196,10 @@ RunResult<Sample> runTabulated(const Scene& scene, Model& model, const ProgramOp
     if (const std::string said = chatter.finish(); !said.empty()) tellUser(tabulation.program + ": " + said);
     if (result.samples.empty()) throw std::runtime_error("the simulation recorded no samples");
     std::cout << "\nResults written to " << table.path() << '\n';
+    if (replay) {
+        replay->write(options.replay, tabulation.banner, tabulation.columns, rows);
+        std::cout << "Replay written to " << options.replay << " (open it in a web browser)\n";
+    }
     return result;
 }
 

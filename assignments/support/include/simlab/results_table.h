@@ -46,4 +46,9 @@ private:
     bool noted_ = false;
 };
 
+/// The rows of a results file a lab program wrote with `columns` (its header must be exactly those), comment lines
+/// ("# ...") skipped. Throws std::runtime_error, in one line naming the file (and the line), if it cannot be read,
+/// is another program's, has a row that is not `columns.size()` numbers, or has no rows.
+std::vector<std::vector<double>> readResults(const std::string& path, const std::vector<std::string>& columns);
+
 }  // namespace simlab

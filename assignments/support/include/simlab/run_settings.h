@@ -19,6 +19,12 @@ struct RunSettings {
     double sampleTime(int k) const;
 };
 
+/// How the run steps, for a title: "accuracy 1e-07", or "fixed steps of 0.01 s" (SemiExplicitEuler's always are).
+std::string describeStepping(const RunSettings& run);
+
+/// What runs, for a title: "RungeKuttaMerson, accuracy 1e-07".
+std::string describeRun(const RunSettings& run);
+
 /// Throws std::invalid_argument, with a message naming the setting, unless the settings are usable.
 void validate(const RunSettings& run);
 

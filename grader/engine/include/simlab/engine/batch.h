@@ -3,17 +3,22 @@
 // Output folder layout:
 //     gradebook.csv                  student, score, max, status, then the points of each test
 //     summary.csv                    per test: pass rate and the spread of what it measured
+//     report.html                    the class at a glance: scores, each test, who needs a look, the slowest
 //     students/<id>/results.json     Gradescope's schema
 //     students/<id>/feedback.md      what the student reads
+//     students/<id>/feedback.html    the same as a page
 //     students/<id>/record.json      what simlab keeps to resume: the grade and the key it was made with
 // Each student's files are written atomically as they finish, record.json last, and gradebook.csv is rewritten
 // (atomically) from the records after each one. A run killed at any moment loses at most the students being
 // graded; the next run regrades exactly those whose record is missing or whose key changed (the submission's
 // content, the grader, the rubric or the limits). An interrupt records nothing for a student it cut short.
+// summary.csv and report.html are written (atomically) at the end of every run, an interrupted or resumed one
+// too; a kept record whose feedback.html is missing (graded by an earlier simlab) gets one then.
 //
 // Folder and file names, compiler messages and test output are bytes from students: every writer makes them
 // safe for its format (valid UTF-8 in JSON, control characters escaped for terminals and Markdown, formulas
-// neutralized in CSV), and a student's files are read as data (files.h: readHandedIn).
+// neutralized in CSV, every text escaped in HTML), and a student's files are read as data (files.h: readHandedIn).
+// The writers of these formats are in writers.h, one file each under engine/writers/.
 #pragma once
 
 #include <functional>
@@ -22,6 +27,8 @@
 #include <vector>
 
 #include "simlab/engine/grade.h"
+#include "simlab/engine/record.h"
+#include "simlab/engine/writers.h"
 
 namespace simlab::engine {
 
@@ -50,21 +57,6 @@ struct Gathered {
 Gathered gatherSubmission(const std::string& folder, const Rubric& rubric, const Limits& limits, bool recursive,
                           bool followFolder);
 
-/// A student's grade as kept in record.json and shown in the gradebook.
-struct StudentRecord {
-    std::string id;
-    std::string key;     ///< what the grade was made from; a different key means regrade
-    std::string status;  ///< graded, misnamed file, missing file, unsafe file, file too large, did not compile,
-                         ///< forbidden code, did not link, grader error
-    std::string note;
-    std::string file;    ///< the file graded, relative to the student's folder
-    double score = 0;
-    double maxScore = 0;
-    double seconds = 0;
-    std::string compiler;  ///< the compiler's message: why it failed, or its warnings (first lines)
-    std::vector<TestResult> tests;
-};
-
 struct ClassProgress {
     int done = 0;     ///< students finished, reused ones included
     int total = 0;
@@ -73,19 +65,6 @@ struct ClassProgress {
     double eta = -1;  ///< seconds left, once it can be estimated
     const StudentRecord* last = nullptr;  ///< the student just finished
     bool lastReused = false;
-};
-
-/// An entry of the submissions folder that is not a student: a hidden folder (its name starts with a dot), a
-/// file, a link. Listed, never dropped silently.
-struct Skipped {
-    std::string name;
-    std::string why;
-};
-
-struct ClassResult {
-    std::vector<StudentRecord> records;  ///< every student in the folder, sorted by id
-    std::vector<Skipped> skipped;
-    int graderErrors = 0;                ///< students simlab itself could not grade (recorded; retried next run)
 };
 
 struct ClassOptions {
@@ -100,18 +79,6 @@ struct ClassOptions {
 ClassResult gradeClass(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
                        const std::string& submissionsDir, const std::string& outDir, const ClassOptions& options,
                        const std::function<void(const ClassProgress&)>& onProgress);
-
-/// The class summary, per test: pass rate and median, min and max of its measured figure. As a text table and
-/// as CSV (what summary.csv holds).
-std::string summaryTable(const Rubric& rubric, const std::vector<StudentRecord>& records);
-std::string summaryCsv(const Rubric& rubric, const std::vector<StudentRecord>& records);
-
-/// JUnit XML: one test suite per student, one test case per test.
-std::string junitXml(const Assignment& assignment, const std::vector<StudentRecord>& records);
-
-/// What a student reads: each test with its points, outcome and reason, and how to reproduce it.
-std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& record,
-                             const std::vector<ManualItem>& manual = {}, const std::vector<std::string>& attached = {});
 
 /// Grade one student folder the way gradeClass does (used by Gradescope's run_autograder, where the folder is
 /// the uploaded submission, and by the corpus): find the file, read it with care, grade it on every test, or

@@ -1,0 +1,172 @@
+#include "simlab/plot.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "simlab/messages.h"
+
+extern char** environ;
+
+namespace simlab {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool endsWith(const std::string& s, const std::string& tail) {
+    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// A gnuplot string in single quotes, where only a doubled quote is special; no control characters.
+std::string quoted(const std::string& text) {
+    std::string out = "'";
+    for (char c : text) {
+        if (c == '\'') out += "''";
+        else if (static_cast<unsigned char>(c) >= 0x20) out += c;
+        else out += ' ';
+    }
+    return out + "'";
+}
+
+std::string number(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.10g", v);
+    return buffer;
+}
+
+// The gnuplot script that draws `plot` into `output` with `terminal`. Each curve's points go in a datablock of
+// their own, so the script is the whole figure and reads no other file.
+std::string script(const Plot& plot, const std::string& terminal, const std::string& output) {
+    std::ostringstream gp;
+    const int panels = static_cast<int>(plot.panels.size());
+    const int height = panels > 1 ? 330 * panels + 60 : 560;
+    gp << "set terminal " << terminal << " size 960," << height << " font 'sans,11' background '#ffffff'\n"
+       << "set termoption noenhanced\n"  // names like w_B and y'' are printed as written
+       << "set output " << quoted(output) << "\n"
+       << "set grid\nset key below\nset datafile missing 'NaN'\n"
+       << "set lmargin at screen 0.09\nset rmargin at screen 0.96\n";  // panels line up
+    int block = 0;
+    for (const PlotPanel& panel : plot.panels) {
+        for (const PlotCurve& curve : panel.curves) {
+            gp << "$d" << block++ << " << EOD\n";
+            for (std::size_t i = 0; i < curve.x.size() && i < curve.y.size(); ++i) {
+                if (std::isfinite(curve.x[i]) && std::isfinite(curve.y[i])) {
+                    gp << number(curve.x[i]) << ' ' << number(curve.y[i]) << '\n';
+                }
+            }
+            gp << "EOD\n";
+        }
+        for (const PlotMark& mark : panel.marks) {
+            gp << "$d" << block++ << " << EOD\n" << number(mark.x) << ' ' << number(mark.y) << "\nEOD\n";
+        }
+    }
+    gp << "set multiplot layout " << std::max(panels, 1) << ",1 title " << quoted(plot.title) << "\n";
+    block = 0;
+    for (const PlotPanel& panel : plot.panels) {
+        gp << "set xlabel " << quoted(panel.xLabel) << "\nset ylabel " << quoted(panel.yLabel) << "\n"
+           << (panel.scientificY ? "set format y '%.1e'\n" : "set format y '% g'\n") << "plot ";
+        int color = 1;
+        for (std::size_t c = 0; c < panel.curves.size(); ++c) {
+            const PlotCurve& curve = panel.curves[c];
+            gp << (c ? ", \\\n     " : "") << "$d" << block++ << " using 1:2 ";
+            const int lc = curve.color > 0 ? curve.color : color++;
+            if (curve.markers) {
+                gp << "with points pointtype 6 pointsize 0.9 lc " << lc;  // open circles: the line shows through
+            } else {
+                gp << "with lines linewidth 2 lc " << lc << (curve.dashed ? " dashtype 2" : "");
+            }
+            gp << " title " << quoted(curve.title);
+        }
+        for (std::size_t m = 0; m < panel.marks.size(); ++m) {
+            gp << (panel.curves.empty() && m == 0 ? "" : ", \\\n     ") << "$d" << block++
+               << " using 1:2 with points pointtype 9 pointsize 2.2 lc rgb '#c00000' title "
+               << quoted(panel.marks[m].label);
+        }
+        if (panel.curves.empty() && panel.marks.empty()) gp << "NaN notitle";
+        gp << "\n";
+    }
+    gp << "unset multiplot\nset output\n";
+    return gp.str();
+}
+
+}  // namespace
+
+std::string plotPathProblem(const std::string& path) {
+    if (endsWith(path, ".png") || endsWith(path, ".svg")) return "";
+    return "a plot is a .png or an .svg file, not '" + path + "'";
+}
+
+std::vector<std::size_t> thinned(std::size_t n, std::size_t most) {
+    std::vector<std::size_t> kept;
+    if (n == 0 || most == 0) return kept;
+    const std::size_t step = n <= most ? 1 : (n - 1 + most - 2) / (most - 1);
+    for (std::size_t i = 0; i < n; i += step) kept.push_back(i);
+    if (kept.back() != n - 1) kept.push_back(n - 1);
+    return kept;
+}
+
+void drawPlot(const Plot& plot, const std::string& path) {
+    if (const std::string problem = plotPathProblem(path); !problem.empty()) throw std::runtime_error(problem);
+    const fs::path target = fs::absolute(path);
+    const std::string stem = target.string() + ".drawing-" + std::to_string(::getpid());
+    const std::string partial = stem + (endsWith(path, ".svg") ? ".svg" : ".png");
+    const std::string scriptPath = stem + ".gp", complaints = stem + ".log";
+    {
+        std::ofstream out(scriptPath);
+        out << script(plot, endsWith(path, ".svg") ? "svg" : "pngcairo", partial);
+        if (!out) throw std::runtime_error("cannot write the plot to " + path + ": " + std::strerror(errno));
+    }
+    // gnuplot, not a shell: no name needs quoting, and its complaints go to a file read back here.
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, complaints.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    char gnuplot[] = "gnuplot";
+    std::string scriptArgument = scriptPath;
+    char* argv[] = {gnuplot, scriptArgument.data(), nullptr};
+    pid_t pid = 0;
+    const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
+    posix_spawn_file_actions_destroy(&actions);
+    int status = 0;
+    if (spawned == 0) waitpid(pid, &status, 0);
+    std::string said;
+    {
+        std::ifstream log(complaints);
+        std::string line;
+        while (said.empty() && std::getline(log, line)) {
+            if (line.find_first_not_of(" \t^") != std::string::npos) said = line;
+        }
+    }
+    std::error_code ignored;
+    fs::remove(scriptPath, ignored);
+    fs::remove(complaints, ignored);
+    const bool drawn = spawned == 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::file_size(partial, ignored) > 0;
+    if (!drawn) {
+        fs::remove(partial, ignored);
+        if (spawned == ENOENT) {
+            throw std::runtime_error("drawing " + path + " needs gnuplot (scripts/install-deps installs gnuplot-nox)");
+        }
+        throw std::runtime_error("gnuplot could not draw " + path +
+                                 (said.empty() ? std::string() : ": " + oneLineMessage(said)));
+    }
+    std::error_code renamed;
+    fs::rename(partial, target, renamed);
+    if (renamed) {
+        fs::remove(partial, ignored);
+        throw std::runtime_error("cannot write the plot to " + path);
+    }
+}
+
+}  // namespace simlab

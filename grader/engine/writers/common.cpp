@@ -1,0 +1,54 @@
+#include "common.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace simlab::engine::writers {
+
+Spread spreadOf(std::vector<double> values) {
+    Spread s;
+    s.count = static_cast<int>(values.size());
+    if (values.empty()) return s;
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    s.median = n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+    s.min = values.front();
+    s.max = values.back();
+    return s;
+}
+
+std::vector<TestSummary> summarize(const Rubric& rubric, const std::vector<StudentRecord>& records) {
+    std::vector<TestSummary> out;
+    for (const RubricTest& test : rubric.tests) {
+        TestSummary s;
+        s.test = &test;
+        for (const StudentRecord& r : records) {
+            for (const TestResult& t : r.tests) {
+                if (t.name != test.name || t.outcome == Outcome::MissingFile) continue;
+                ++s.graded;
+                s.passed += t.outcome == Outcome::Passed;
+                if (t.figure) {
+                    s.values.push_back(*t.figure);
+                    s.unit = t.unit;
+                }
+            }
+        }
+        std::sort(s.values.begin(), s.values.end());
+        s.figures = spreadOf(s.values);
+        out.push_back(s);
+    }
+    return out;
+}
+
+std::string number(double v) {
+    if (std::isnan(v)) return "";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", v);
+    return text;
+}
+
+std::string jsonText(const nlohmann::json& j) {
+    return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+}  // namespace simlab::engine::writers

@@ -1,0 +1,49 @@
+#include "feedback.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "simlab/engine/report.h"
+#include "simlab/engine/text.h"
+
+namespace simlab::engine::writers {
+
+Feedback feedbackOf(const Assignment& assignment, const StudentRecord& r, const std::vector<ManualItem>& manual,
+                    const std::vector<std::string>& attached) {
+    Feedback f;
+    f.title = assignment.title;
+    f.id = r.id;
+    f.score = points(r.score) + "/" + points(r.maxScore);
+    if (r.status != "graded") f.status = r.status;
+    f.note = r.note;
+    if (!r.compiler.empty()) {
+        f.compilerTitle = r.status == "did not compile" ? "The compiler's message:"
+                          : r.status == "did not link"  ? "The linker's message:"
+                          : r.status == "forbidden code" ? "Why the file was refused:"
+                                                         : "The compiler's warnings:";
+        f.compiler = printable(r.compiler, true);
+    }
+    const std::string file = r.file.empty() ? assignment.source : r.file;
+    f.check = "simlab check " + assignment.id + " " + file;
+    f.plainCommand = std::all_of(file.begin(), file.end(), [](unsigned char c) {
+        return std::isalnum(c) || c == '.' || c == '_' || c == '-' || c == '/' || c == '+';
+    });
+    for (const TestResult& t : r.tests) {
+        FeedbackTest shown;
+        shown.result = &t;
+        shown.points = points(t.score) + "/" + points(t.maxScore);
+        shown.outcome = outcomeName(t.outcome);
+        shown.detailed = !(t.outcome == Outcome::Passed && t.reason.empty());
+        shown.hidden = t.visibility == "hidden";
+        if (t.outcome != Outcome::Passed && t.visibility == "visible") {
+            shown.reproduce = f.check + " --test \"" + t.name + "\"";
+        }
+        f.tests.push_back(shown);
+    }
+    f.attached = attached;
+    f.manual = manual;
+    for (const ManualItem& m : manual) f.manualPoints += m.points;
+    return f;
+}
+
+}  // namespace simlab::engine::writers

@@ -1,0 +1,92 @@
+// feedback.html: what a student reads, as a page of its own.
+#include <sstream>
+
+#include "common.h"
+#include "feedback.h"
+#include "html.h"
+#include "simlab/engine/report.h"
+#include "simlab/engine/writers.h"
+
+namespace simlab::engine {
+
+namespace {
+
+using writers::htmlText;
+
+// "14.8 digits": what the test measured.
+std::string figureText(const TestResult& t) {
+    return writers::number(*t.figure) + (t.unit.empty() ? "" : " " + t.unit);
+}
+
+}  // namespace
+
+std::string feedbackHtml(const Assignment& assignment, const StudentRecord& record,
+                         const std::vector<ManualItem>& manual, const std::vector<std::string>& attached) {
+    const writers::Feedback f = writers::feedbackOf(assignment, record, manual, attached);
+    std::ostringstream out;
+    out << writers::pageStart(f.title + ": " + f.id);
+    out << "<header>\n<h1>" << htmlText(f.title) << ": " << htmlText(f.id) << "</h1>\n";
+    out << "<p class=\"score\">Score: <strong>" << f.score << "</strong>";
+    if (!f.status.empty()) out << " <span class=\"badge error\">" << htmlText(f.status) << "</span>";
+    out << "</p>\n";
+    if (!f.note.empty()) out << "<p>" << htmlText(f.note) << ".</p>\n";
+    out << "</header>\n";
+
+    if (!f.compilerTitle.empty()) {
+        const std::string heading = f.compilerTitle.substr(0, f.compilerTitle.size() - 1);  // without the colon
+        out << "<h2>" << htmlText(heading) << "</h2>\n<pre>" << writers::htmlBlock(f.compiler) << "</pre>\n";
+    }
+
+    out << "<h2>Tests</h2>\n<table class=\"tests\">\n<thead><tr><th class=\"num\">points</th><th>outcome</th>"
+           "<th>test</th><th>measured</th></tr></thead>\n<tbody>\n";
+    for (std::size_t i = 0; i < f.tests.size(); ++i) {
+        const writers::FeedbackTest& t = f.tests[i];
+        const std::string name = htmlText(t.result->name);
+        out << "<tr><td class=\"num\">" << t.points << "</td><td><span class=\"badge "
+            << writers::outcomeClass(t.outcome) << "\">" << htmlText(t.outcome) << "</span></td><td class=\"name\">"
+            << (t.detailed ? "<a href=\"#test-" + std::to_string(i + 1) + "\">" + name + "</a>" : name)
+            << "</td><td class=\"figure\">"
+            << (t.result->figure && !t.hidden ? htmlText(figureText(*t.result)) : "") << "</td></tr>\n";
+    }
+    out << "</tbody>\n</table>\n";
+
+    for (std::size_t i = 0; i < f.tests.size(); ++i) {
+        const writers::FeedbackTest& t = f.tests[i];
+        if (!t.detailed) continue;
+        out << "<section class=\"test " << writers::outcomeClass(t.outcome) << "\" id=\"test-" << i + 1 << "\">\n"
+            << "<h3>" << htmlText(t.result->name) << "</h3>\n<p><strong>" << t.points << "</strong> <span class=\"badge "
+            << writers::outcomeClass(t.outcome) << "\">" << htmlText(t.outcome) << "</span> ";
+        if (t.hidden) {
+            out << "A hidden test: your instructor has the details.</p>\n</section>\n";
+            continue;
+        }
+        out << htmlText(t.result->reason) << "</p>\n";
+        if (!t.result->feedback.empty()) {
+            out << "<ul>\n";
+            for (const std::string& line : t.result->feedback) out << "<li>" << htmlText(line) << "</li>\n";
+            out << "</ul>\n";
+        }
+        if (!t.reproduce.empty()) out << "<p>Reproduce: <code>" << htmlText(t.reproduce) << "</code></p>\n";
+        out << "</section>\n";
+    }
+
+    if (!f.attached.empty()) {
+        out << "<p>Drawn from your model, beside this file:";
+        for (const std::string& name : f.attached) {
+            out << " <a href=\"" << writers::urlSegment(name) << "\">" << htmlText(name) << "</a>";
+        }
+        out << "</p>\n";
+    }
+    if (!f.manual.empty()) {
+        out << "<h2>Graded by hand, pending (" << points(f.manualPoints) << " points)</h2>\n<ul>\n";
+        for (const ManualItem& m : f.manual) {
+            out << "<li>" << htmlText(m.name) << " (" << points(m.points) << ")</li>\n";
+        }
+        out << "</ul>\n";
+    }
+    out << "<footer>Check your file on the visible tests with <code>" << htmlText(f.check) << "</code>.</footer>\n";
+    out << writers::pageEnd();
+    return out.str();
+}
+
+}  // namespace simlab::engine

@@ -1,0 +1,10 @@
+// results.json: Gradescope's document for a graded submission (report.h's toGradescope), as a file.
+#include "common.h"
+#include "simlab/engine/report.h"
+#include "simlab/engine/writers.h"
+
+namespace simlab::engine {
+
+std::string resultsJson(const GradeReport& report) { return writers::jsonText(toGradescope(report)); }
+
+}  // namespace simlab::engine

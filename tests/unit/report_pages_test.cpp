@@ -1,0 +1,170 @@
+// The HTML pages of a graded class: feedback.html and report.html show every test, and every text from a student
+// (ids, reasons, compiler messages) is escaped, in valid UTF-8, so that nothing of it becomes markup.
+#include <catch2/catch.hpp>
+#include <initializer_list>
+#include <string>
+
+#include "simlab/engine/text.h"
+#include "simlab/engine/writers.h"
+
+namespace {
+
+using simlab::engine::Outcome;
+using simlab::engine::StudentRecord;
+using simlab::engine::TestResult;
+
+const std::string kInvalidUtf8 = "\xff\xfe\xc0\x80";  // bytes that are not UTF-8
+
+simlab::engine::Assignment apple() {
+    simlab::engine::Assignment a;
+    a.id = "apple";
+    a.title = "Newton's apple";
+    a.source = "NewtonsApple.cpp";
+    return a;
+}
+
+TestResult test(const std::string& name, Outcome outcome, double score, double max, const std::string& reason) {
+    TestResult t;
+    t.name = name;
+    t.visibility = "visible";
+    t.outcome = outcome;
+    t.score = score;
+    t.maxScore = max;
+    t.reason = reason;
+    return t;
+}
+
+// A student whose id and messages are hostile: markup, quotes, ampersands, bytes that are not UTF-8, a terminal
+// escape and a right-to-left override.
+StudentRecord hostileStudent() {
+    StudentRecord r;
+    r.id = "<script>alert(1)</script>";
+    r.status = "graded";
+    r.note = "graded <b>x</b>.cpp; \"quoted\" & 'single'";
+    r.file = "NewtonsApple.cpp";
+    r.score = 12.5;
+    r.maxScore = 30;
+    r.seconds = 3.25;
+    r.compiler = "warning: <unused> \"x\" & y " + kInvalidUtf8 + "\nsecond line \x1b[2J";
+    TestResult digits = test("y at the final time has the target accuracy digits", Outcome::Passed, 10, 10,
+                             "14.8 digits, need 10");
+    digits.figure = 14.8;
+    digits.unit = "digits";
+    r.tests.push_back(digits);
+    TestResult hostile = test("the energy <stays> & \"holds\"", Outcome::Failed, 2.5, 10,
+                              "drift \"&<>\" " + kInvalidUtf8 + " \xe2\x80\xae" "reversed");
+    hostile.feedback = {"<img src=x onerror=alert(1)>"};
+    r.tests.push_back(hostile);
+    TestResult hidden = test("hidden: other heights", Outcome::Crashed, 0, 10, "the secret height is 42 m");
+    hidden.visibility = "hidden";
+    hidden.figure = 42;
+    hidden.unit = "m";
+    r.tests.push_back(hidden);
+    return r;
+}
+
+simlab::Rubric rubricOf(const StudentRecord& r) {
+    simlab::Rubric rubric;
+    rubric.assignment = "apple";
+    for (const TestResult& t : r.tests) {
+        simlab::RubricTest test;
+        test.name = t.name;
+        test.points = t.maxScore;
+        test.visibility = t.visibility;
+        rubric.tests.push_back(test);
+    }
+    return rubric;
+}
+
+// Every part is in the page.
+void checkHolds(const std::string& page, std::initializer_list<std::string> parts) {
+    for (const std::string& part : parts) CHECK_THAT(page, Catch::Contains(part));
+}
+
+// Nothing a student wrote became markup, and the page is text a browser reads as UTF-8.
+void checkSafe(const std::string& page) {
+    CHECK(simlab::engine::isValidUtf8(page));
+    CHECK_THAT(page, Catch::Contains("<meta charset=\"utf-8\">"));
+    CHECK_THAT(page, !Catch::Contains("<script", Catch::CaseSensitive::No));
+    // No markup a student wrote, no terminal escape, no right-to-left override (it shows as "\u202e"), nothing
+    // fetched.
+    for (const char* absent : {"<img", "<b>", "<unused>", "\x1b", "\xe2\x80\xae", "src=\""}) {
+        CHECK_THAT(page, !Catch::Contains(absent));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("feedback.html escapes a hostile id, reason and compiler message", "[report][html]") {
+    const std::string page = simlab::engine::feedbackHtml(apple(), hostileStudent());
+    checkSafe(page);
+    checkHolds(page, {"&lt;script&gt;alert(1)&lt;/script&gt;",
+                      "drift &quot;&amp;&lt;&gt;&quot; \xEF\xBF\xBD",
+                      "\\u202ereversed",
+                      "&lt;img src=x onerror=alert(1)&gt;",
+                      "graded &lt;b&gt;x&lt;/b&gt;.cpp; &quot;quoted&quot; &amp; &apos;single&apos;",
+                      "warning: &lt;unused&gt; &quot;x&quot; &amp; y \xEF\xBF\xBD",
+                      "second line \\x1b[2J"});
+}
+
+TEST_CASE("feedback.html has each test's line: its points, outcome and figure", "[report][html]") {
+    const std::string page = simlab::engine::feedbackHtml(apple(), hostileStudent());
+    checkHolds(page, {"Score: <strong>12.5/30</strong>",
+                      "<td class=\"num\">10/10</td><td><span class=\"badge pass\">passed</span></td>",
+                      "y at the final time has the target accuracy digits</a></td><td class=\"figure\">14.8 digits</td>",
+                      "<td class=\"num\">2.5/10</td><td><span class=\"badge fail\">failed</span></td>",
+                      "the energy &lt;stays&gt; &amp; &quot;holds&quot;",
+                      "<td class=\"num\">0/10</td><td><span class=\"badge error\">crashed</span></td>",
+                      "Reproduce: <code>simlab check apple NewtonsApple.cpp --test &quot;the energy &lt;stays&gt; &amp; "
+                      "&quot;holds&quot;&quot;</code>"});
+    // A hidden test: its points and outcome, never its reason or figure.
+    checkHolds(page, {"hidden: other heights", "A hidden test: your instructor has the details."});
+    CHECK_THAT(page, !Catch::Contains("secret"));
+    CHECK_THAT(page, !Catch::Contains("42 m"));
+}
+
+TEST_CASE("report.html escapes hostile ids and links each student's feedback by a URL-encoded path",
+          "[report][html]") {
+    simlab::engine::ClassResult result;
+    StudentRecord hostile = hostileStudent();
+    hostile.status = "did not link";
+    StudentRecord spaced = hostileStudent();
+    spaced.id = "ada lovelace " + kInvalidUtf8;
+    spaced.score = 30;
+    result.records = {hostile, spaced};
+    result.skipped = {{"<iframe>.txt", "a file, not a student's folder"}};
+    const std::string page = simlab::engine::classReportHtml(apple(), rubricOf(hostile), result);
+    checkSafe(page);
+    CHECK_THAT(page, !Catch::Contains("<iframe"));
+    checkHolds(page, {"<a href=\"students/%3Cscript%3Ealert%281%29%3C%2Fscript%3E/feedback.html\">"
+                      "&lt;script&gt;alert(1)&lt;/script&gt;</a>",
+                      "<a href=\"students/ada%20lovelace%20%FF%FE%C0%80/feedback.html\">ada lovelace \xEF\xBF\xBD",
+                      "2 students: median <strong>21.2</strong>",
+                      "did not link",
+                      "&lt;iframe&gt;.txt"});
+    // Each test with its pass rate; the one with a figure with its spread.
+    checkHolds(page, {"y at the final time has the target accuracy digits</td><td class=\"num\">10</td>"
+                      "<td class=\"num\">2/2 (100%)",
+                      "the energy &lt;stays&gt; &amp; &quot;holds&quot;",
+                      "0/2 (0%)",
+                      "14.8 [14.8, 14.8] digits"});
+}
+
+TEST_CASE("report.html draws figures that span many orders of magnitude on log axes", "[report][html]") {
+    simlab::engine::ClassResult result;
+    for (double drift : {0.0, 1.9e-14, 2e-14, 3e-10, 2.0}) {
+        StudentRecord r;
+        r.id = "s" + std::to_string(result.records.size());
+        r.status = "graded";
+        r.maxScore = 10;
+        TestResult t = test("the energy stays", Outcome::Passed, 10, 10, "");
+        t.figure = drift;
+        t.unit = "relative energy drift";
+        r.tests.push_back(t);
+        result.records.push_back(r);
+    }
+    const std::string page = simlab::engine::classReportHtml(apple(), rubricOf(result.records[0]), result);
+    CHECK(simlab::engine::isValidUtf8(page));
+    CHECK_THAT(page, Catch::Contains("from 0 to 2 relative energy drift, log scale"));
+    CHECK_THAT(page, Catch::Contains("2e-14 [0, 2] relative energy drift"));
+}
