@@ -9,11 +9,14 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 
 #include "biosim/course.h"
 #include "biosim/schematic.h"
 #include "simlab/digits.h"
+#include "simlab/plot.h"
 #include "simlab/program.h"
+#include "simlab/replay.h"
 #include "simlab/results_table.h"
 
 namespace {
@@ -111,6 +114,35 @@ void reportEnergy(const Declaration& d, const Parameters& p, const biosim::Obser
                 scale);
 }
 
+// Every declared column against time, one panel per unit (angles together, speeds together, the energy), `how`
+// saying what ran. A project has no exact solution to lay over its run.
+simlab::Plot projectPlot(const Declaration& d, const std::string& how, const std::vector<std::vector<double>>& rows) {
+    simlab::Plot plot;
+    plot.title = d.program + ": " + d.title + " - " + how;
+    std::vector<std::string> units;
+    for (const biosim::Column& c : d.columns) {
+        if (std::find(units.begin(), units.end(), c.unit) == units.end()) units.push_back(c.unit);
+    }
+    for (std::size_t u = 0; u < units.size(); ++u) {
+        std::vector<simlab::PlotCurve> curves;
+        for (std::size_t c = 0; c < d.columns.size(); ++c) {
+            if (d.columns[c].unit != units[u]) continue;
+            simlab::PlotCurve curve(d.columns[c].name + " (" + d.columns[c].meaning + ")");
+            for (const std::vector<double>& row : rows) curve.x.push_back(row[0]), curve.y.push_back(row[c + 1]);
+            curves.push_back(curve);
+        }
+        plot.panels.emplace_back(u + 1 == units.size() ? "time t (s)" : "", units[u], curves);
+    }
+    return plot;
+}
+
+void drawRequestedPlot(const Declaration& d, const Options& o, const std::string& how,
+                       const std::vector<std::vector<double>>& rows) {
+    if (o.program.plot.empty()) return;
+    simlab::drawPlot(projectPlot(d, how, rows), o.program.plot);
+    std::printf("Plot drawn in %s\n", o.program.plot.c_str());
+}
+
 int runOnce(const Declaration& d, const Parameters& p, const Options& o) {
     const simlab::RunSettings& run = o.program.run;
     simlab::ResultsTable table(headerOf(d), o.program.output, o.program.quiet ? nullptr : &std::cout);
@@ -119,24 +151,33 @@ int runOnce(const Declaration& d, const Parameters& p, const Options& o) {
     std::fflush(stdout);
     biosim::ObserveHooks hooks;
     std::function<void()> finishAnimation;
-    if (o.program.animate) {
-        hooks.afterBuild = [&](biosim::Model& m) {
-            finishAnimation = simlab::attachVisualizer(m.system, 1.0 / 30, 0.02);
-        };
-        hooks.afterRun = [&] { finishAnimation(); };
-    }
+    std::unique_ptr<simlab::ReplayRecorder> replay;
+    hooks.afterBuild = [&](biosim::Model& m) {
+        if (o.program.animate) finishAnimation = simlab::attachVisualizer(m.system, 1.0 / 30, 0.02);
+        if (!o.program.replay.empty()) replay = std::make_unique<simlab::ReplayRecorder>(m.system, 1.0 / 30);
+    };
+    hooks.afterRun = [&] {
+        if (finishAnimation) finishAnimation();
+    };
     simlab::Progress progress(d.program, run.finalTime);
+    std::vector<std::vector<double>> rows;  // for the plot and the replay
     hooks.onRow = [&](double t, const std::vector<double>& row) {
         progress.at(t);
         std::vector<double> values{t};
         values.insert(values.end(), row.begin(), row.end());
         table.add(values);
+        if (!o.program.plot.empty() || !o.program.replay.empty()) rows.push_back(values);
     };
     const biosim::Observed observed = biosim::observe(d, p, run, hooks);
     std::printf("\nResults written to %s (%s, %d steps; the model has %d degrees of freedom)\n", table.path().c_str(),
                 observed.integrator.method.c_str(), observed.integrator.stepsTaken,
                 observed.model.degreesOfFreedom());
     reportEnergy(d, p, observed);
+    drawRequestedPlot(d, o, simlab::describeRun(run), rows);
+    if (replay) {
+        replay->write(o.program.replay, d.program + ": " + d.title, headerOf(d), rows);
+        std::printf("Replay written to %s (open it in a web browser)\n", o.program.replay.c_str());
+    }
     return 0;
 }
 
@@ -197,6 +238,10 @@ int main(int argc, char** argv) {
             const double value = biosim::answer(p);
             std::printf("%s: the answer to the project's question is %.6g\n", d.program.c_str(), value);
             return std::isfinite(value) ? 0 : 1;
+        }
+        if (!o.program.from.empty()) {
+            drawRequestedPlot(d, o, "from " + o.program.from, simlab::readResults(o.program.from, headerOf(d)));
+            return 0;
         }
         return o.program.trade ? runTrade(d, p, o) : runOnce(d, p, o);
     });

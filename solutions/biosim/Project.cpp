@@ -13,6 +13,7 @@
 // qA = 90 deg, qB = 1 deg.
 #include "biosim/Project.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace biosim {
@@ -64,10 +65,21 @@ void buildModel(const Parameters& p, Model& model) {
     // A: a thin rod along its y axis, its mass centre LA below the pivot; no moment about its own axis.
     const Vec3 p_AAcm(0, -p["LA"], 0);
     const Inertia I_AAcm(p["IAx"], 0, p["IAx"]);
-    const Body::Rigid rodA(MassProperties(p["mA"], p_AAcm, I_AAcm.shiftFromMassCenter(p_AAcm, p["mA"])));
+    Body::Rigid rodA(MassProperties(p["mA"], p_AAcm, I_AAcm.shiftFromMassCenter(p_AAcm, p["mA"])));
+    // How --animate and --replay draw it (nothing here changes the motion): a thin cylinder from the pivot to the
+    // plate's pin (Simbody's cylinders lie along their y axis).
+    rodA.addDecoration(Vec3(0, -p["LB"] / 2, 0),
+                       DecorativeCylinder(0.01, p["LB"] / 2).setColor(Vec3(0.45, 0.3, 0.15)));
 
     // B: the plate, with its origin at its centre and the moments named by the axes above.
-    const Body::Rigid plateB(MassProperties(p["mB"], Vec3(0), Inertia(p["IBx"], p["IBy"], p["IBz"])));
+    Body::Rigid plateB(MassProperties(p["mB"], Vec3(0), Inertia(p["IBx"], p["IBy"], p["IBz"])));
+    // Drawn as the uniform brick with these moments: its half-lengths h satisfy I_x = m (h_y^2 + h_z^2) / 3, ...
+    const Vec3 I_B(p["IBx"], p["IBy"], p["IBz"]);
+    Vec3 half;
+    for (int i = 0; i < 3; ++i) {
+        half[i] = std::sqrt(std::max(1.5 * (I_B[(i + 1) % 3] + I_B[(i + 2) % 3] - I_B[i]) / p["mB"], 1e-6));
+    }
+    plateB.addDecoration(Transform(), DecorativeBrick(half).setColor(Vec3(0.2, 0.45, 0.8)));
 
     // A Pin turns about the z axis of its frames. The first pin's z is Ground's x (the swing axis) ...
     const Rotation R_GF(Pi / 2, YAxis);

@@ -28,6 +28,10 @@ run_capture nognuplot env PATH=/nonexistent "$bin/apple-reference" --quiet --out
 check "without gnuplot the run says so in one line, and leaves no file" \
   bash -c "test $(status_of nognuplot) -eq 1 && test \$(wc -l <nognuplot.err) -eq 1 && grep -q 'needs gnuplot' nognuplot.err && ! test -e lost.png"
 
+run_capture boot "$bin/babyboot" --quiet --output boot.txt --plot boot.svg
+check "babyboot --plot draws a project's columns, one panel per unit" \
+  bash -c "test $(status_of boot) -eq 0 && grep -q 'qA (the rod' boot.svg && grep -q 'uB (the rate of qB)' boot.svg && grep -q 'RungeKuttaMerson, accuracy 1e-07' boot.svg"
+
 # simlab plot: a results file drawn afterwards by the lab program (here the starter's, which draws without running
 # any student code), checked against the scene it names.
 run_capture max "$bin/book-reference" --quiet --spin max --output max.txt
