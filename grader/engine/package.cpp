@@ -104,7 +104,7 @@ void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSu
         summary.made.push_back("no handout pages: pandoc is not installed (scripts/install-deps installs it)");
         return;
     }
-    const std::string handouts = dir + "/handouts";
+    const std::string handouts = fs::absolute(dir).string() + "/handouts";  // the programs run elsewhere
     int pages = 0, runs = 0;
     for (const Assignment& a : manifest.assignments) {
         const std::string markdown = handouts + "/" + a.id + ".md";

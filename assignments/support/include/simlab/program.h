@@ -150,8 +150,8 @@ struct Tabulation {
 };
 
 /// One run of a lab program: open the results file (an unwritable path fails before anything runs), print the
-/// banner, simulate with the course's driver while printing and saving each row, animate with --animate, and
-/// say where the results went.
+/// banner, simulate with the course's driver while printing and saving each row, with the course's drawing of the
+/// bodies animate it (--animate) and record it for its replay page (--replay), and say where everything went.
 template <class Sample, class Scene, class Model>
 RunResult<Sample> runTabulated(const Scene& scene, Model& model, const ProgramOptions& options,
                                const Tabulation<Sample, Model>& tabulation) {

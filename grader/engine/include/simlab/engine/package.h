@@ -23,7 +23,7 @@ struct PackageSummary {
 /// handouts/README-student.md as its README.md, and this system's Catch2 2.13 header (third_party/catch2) for
 /// systems that ship Catch2 3. It builds and self-checks on its own. Where pandoc is installed, each handout is
 /// also a page (handouts/<id>.html: one file that opens offline), with the reference solution's run drawn in it
-/// and, for the labs that replay, its replay page beside it.
+/// and its replay page beside it (for each assignment whose program draws and replays).
 PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& outDir);
 
 /// Write Gradescope's autograder archive for `assignment`: the project without solutions, tests, CI and
