@@ -1,6 +1,7 @@
 #include "simlab/model_info.h"
 
 #include <sstream>
+#include <stdexcept>
 
 #include "Simbody.h"
 
@@ -82,6 +83,25 @@ bool ModelInfo::uses(const std::string& kind) const {
         if (m.kind == kind) return true;
     }
     return false;
+}
+
+void requireSimulatedMotion(const SimTK::SimbodyMatterSubsystem& matter) {
+    for (int i = 1; i < matter.getNumBodies(); ++i) {
+        if (matter.getMobilizedBody(SimTK::MobilizedBodyIndex(i)).hasMotion()) {
+            throw std::runtime_error("the model gives body " + std::to_string(i) +
+                                     " a Motion, which dictates how it moves: the lab asks for its motion to be "
+                                     "simulated from forces, not written into the model");
+        }
+    }
+    for (int i = 0; i < matter.getNumConstraints(); ++i) {
+        const SimTK::Constraint& c = matter.getConstraint(SimTK::ConstraintIndex(i));
+        if (SimTK::Constraint::PrescribedMotion::isInstanceOf(c) || SimTK::Constraint::Custom::isInstanceOf(c)) {
+            throw std::runtime_error("the model has a constraint that can make a coordinate follow a function of "
+                                     "time (constraint " + std::to_string(i) + ", " +
+                                     (SimTK::Constraint::Custom::isInstanceOf(c) ? "Custom" : "PrescribedMotion") +
+                                     "): the lab asks for the motion to be simulated from forces");
+        }
+    }
 }
 
 }  // namespace simlab

@@ -58,6 +58,7 @@ RunResult<Sample> run(const Scene& scene, Model& model, const RunSettings& setti
     buildModel(scene, model);
     if (hooks.afterBuild) hooks.afterBuild(model);
     const SimTK::State initial = initialState(scene, model);
+    requireSimulatedMotion(model.matter);
     RunResult<Sample> result;
     result.model = describeModel(model.matter, initial);
     const std::unique_ptr<SimTK::Integrator> integrator = makeIntegrator(model, settings);
@@ -65,6 +66,7 @@ RunResult<Sample> run(const Scene& scene, Model& model, const RunSettings& setti
     // Room for twice the samples the settings call for: more means the stepping loop does not stop.
     Recorder<Sample> recorder(onSample, 2 * static_cast<std::size_t>(settings.sampleCount() + 1) + 10);
     simulate(model, *integrator, initial, settings, recorder);
+    requireSimulatedMotion(model.matter);  // nothing added along the way either
     result.samples = recorder.rows();
     result.integrator = statsOf(*integrator);
     if (hooks.afterRun) hooks.afterRun(model, *integrator);

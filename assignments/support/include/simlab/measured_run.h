@@ -65,6 +65,7 @@ ChoiceRun<Sample> measureChoice(const Scene& scene, Model& model, const RunSetti
     result.choice = choice;
     buildModel(scene, model);
     const SimTK::State initial = initialState(scene, model);
+    requireSimulatedMotion(model.matter);
     const std::unique_ptr<SimTK::Integrator> integrator = integratorFor(choice, model.system, finalTime);
     result.run = measureRun(model.system, *integrator, initial, finalTime, limits,
                             [&](const SimTK::State& state, bool) { result.samples.push_back(read(model, state)); });

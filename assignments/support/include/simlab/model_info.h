@@ -40,6 +40,11 @@ struct ModelInfo {
 /// Describe the model in `matter`. `state` must come from the model's system (topology realized).
 ModelInfo describeModel(const SimTK::SimbodyMatterSubsystem& matter, const SimTK::State& state);
 
+/// Throws std::runtime_error, in one line, if `matter` is told how to move rather than left to be simulated: a body
+/// with a Motion, or a constraint that can make a coordinate follow a function of time (PrescribedMotion, or a
+/// Custom constraint). A lab's answer would then be written into the model, not computed by the integrator.
+void requireSimulatedMotion(const SimTK::SimbodyMatterSubsystem& matter);
+
 /// Name of a mobilizer kind as Simbody spells it ("Slider", "Free", ...), or "Custom".
 std::string mobilizerKind(const SimTK::SimbodyMatterSubsystem& matter, int bodyIndex);
 

@@ -59,7 +59,9 @@ void addLab() {
         const Scene scene = argument<Scene>(arguments, "scene");
         Model model;
         buildModel(scene, model);
-        return wire::toJson(describeModel(model.matter, initialState(scene, model)));
+        const SimTK::State initial = initialState(scene, model);
+        requireSimulatedMotion(model.matter);
+        return wire::toJson(describeModel(model.matter, initial));
     });
 }
 
