@@ -6,6 +6,7 @@
 
 #include "simlab/engine/text.h"
 #include "simlab/engine/writers.h"
+#include "../../grader/engine/writers/common.h"
 
 namespace {
 
@@ -167,4 +168,21 @@ TEST_CASE("report.html draws figures that span many orders of magnitude on log a
     CHECK(simlab::engine::isValidUtf8(page));
     CHECK_THAT(page, Catch::Contains("from 0 to 2 relative energy drift, log scale"));
     CHECK_THAT(page, Catch::Contains("2e-14 [0, 2] relative energy drift"));
+}
+
+TEST_CASE("pictures go inside a page as base64 data URIs", "[report][html]") {
+    using simlab::engine::writers::base64;
+    // RFC 4648, section 10.
+    CHECK(base64("") == "");
+    CHECK(base64("f") == "Zg==");
+    CHECK(base64("fo") == "Zm8=");
+    CHECK(base64("foo") == "Zm9v");
+    CHECK(base64("foob") == "Zm9vYg==");
+    CHECK(base64("fooba") == "Zm9vYmE=");
+    CHECK(base64("foobar") == "Zm9vYmFy");
+    CHECK(base64(std::string("\xff\xfe\x00", 3)) == "//4A");  // every bit of a byte, a NUL included
+    CHECK(simlab::engine::writers::dataUri("image/svg+xml", "<svg/>") == "data:image/svg+xml;base64,PHN2Zy8+");
+    CHECK(simlab::engine::writers::pictureType("run.svg") == "image/svg+xml");
+    CHECK(simlab::engine::writers::pictureType("run.png") == "image/png");
+    CHECK(simlab::engine::writers::pictureType("tree.dot").empty());
 }

@@ -33,6 +33,15 @@ std::vector<TestSummary> summarize(const Rubric& rubric, const std::vector<Stude
 /// "0.833", "14.8", "1.97e-14" (three significant digits); empty for NaN.
 std::string number(double v);
 
+/// `bytes` in base64 (RFC 4648, the standard alphabet, padded with '='): for a data URI.
+std::string base64(const std::string& bytes);
+/// A data URI holding `bytes` of media type `mime` ("image/svg+xml"), base64-encoded: a picture inside a page or
+/// a JSON document, with nothing beside it to fetch.
+std::string dataUri(const std::string& mime, const std::string& bytes);
+/// The media type a picture's file name says, by its extension: "image/svg+xml" for .svg, "image/png" for .png;
+/// empty for anything else.
+std::string pictureType(const std::string& name);
+
 /// A JSON document as simlab writes its files: indented by 2, invalid UTF-8 replaced, a newline at the end.
 std::string jsonText(const nlohmann::json& j);
 
