@@ -7,6 +7,7 @@
 
 #include "apple/NewtonsApple.h"
 #include "apple/exact.h"
+#include "apple/run_plot.h"
 #include "simlab/cli_checks.h"
 #include "simlab/digits.h"
 #include "simlab/driver.h"
@@ -34,30 +35,6 @@ double finalDigits(const apple::Scene& scene, const std::vector<apple::Sample>& 
 }
 
 const std::vector<std::string> kColumns = {"time", "yLocation", "yVelocity", "mechanicalEnergy", "yDifferenceFromExact"};
-
-// y(t) and y'(t) as simulated, every few samples, on the exact fall drawn as a line; `how` says what ran.
-simlab::Plot fallPlot(const apple::Scene& scene, const std::string& how, const std::vector<apple::Sample>& samples) {
-    simlab::Plot plot;
-    char title[300];
-    std::snprintf(title, sizeof title, "Newton's apple: dropped from %g m, g = %g m/s^2 - %s", scene.dropHeight,
-                  scene.gravity, how.c_str());
-    plot.title = title;
-    simlab::PlotCurve y("simulated y", true), vy("simulated y'", true);
-    simlab::PlotCurve yExact("exact: h - g t^2/2"), vyExact("exact: -g t");
-    for (std::size_t i : simlab::thinned(samples.size(), 60)) {
-        y.x.push_back(samples[i].time), y.y.push_back(samples[i].yLocation);
-        vy.x.push_back(samples[i].time), vy.y.push_back(samples[i].yVelocity);
-    }
-    const double end = samples.back().time;
-    for (int k = 0; k <= 200; ++k) {
-        const double t = end * k / 200;
-        yExact.x.push_back(t), yExact.y.push_back(apple::exact::yLocation(scene, t));
-        vyExact.x.push_back(t), vyExact.y.push_back(apple::exact::yVelocity(scene, t));
-    }
-    plot.panels.emplace_back("", "height y (m)", std::vector<simlab::PlotCurve>{yExact, y});
-    plot.panels.emplace_back("time t (s)", "velocity y' (m/s)", std::vector<simlab::PlotCurve>{vyExact, vy});
-    return plot;
-}
 
 int runOnce(const Options& o) {
     const simlab::RunSettings& run = o.program.run;
@@ -100,7 +77,7 @@ int runOnce(const Options& o) {
                 apple::exact::yLocation(o.scene, last.time), digits, result.integrator.method.c_str(),
                 result.integrator.stepsTaken);
     if (!o.program.plot.empty()) {
-        simlab::drawPlot(fallPlot(o.scene, simlab::describeRun(run), result.samples), o.program.plot);
+        simlab::drawPlot(apple::runPlot(o.scene, simlab::describeRun(run), result.samples), o.program.plot);
         std::printf("Plot drawn in %s\n", o.program.plot.c_str());
     }
     return 0;
@@ -118,7 +95,7 @@ int drawFrom(const Options& o) {
                                  " m, this scene at " + simlab::shortNumber(o.scene.dropHeight) +
                                  " m: give the options of the run that wrote it (--drop-height, --gravity)");
     }
-    simlab::drawPlot(fallPlot(o.scene, "from " + o.program.from, samples), o.program.plot);
+    simlab::drawPlot(apple::runPlot(o.scene, "from " + o.program.from, samples), o.program.plot);
     std::printf("Plot drawn in %s\n", o.program.plot.c_str());
     return 0;
 }

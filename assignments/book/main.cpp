@@ -9,6 +9,7 @@
 
 #include "book/BookSpin.h"
 #include "book/exact.h"
+#include "book/run_plot.h"
 #include "simlab/cli_checks.h"
 #include "simlab/digits.h"
 #include "simlab/messages.h"
@@ -135,43 +136,6 @@ WDigits digitsAgainst(const book::exact::Reference& reference, const SimTK::Vec3
 
 const std::vector<std::string> kColumns = {"time", "wx", "wy", "wz", "Hx", "Hy", "Hz", "Hmag", "K", "HGx", "HGy", "HGz"};
 
-// w_B's components as simulated, every few samples, on Euler's equations integrated apart (a plot needs no more
-// than 1e-12 of them), and the relative changes of K and |H|, which should stay at zero.
-simlab::Plot spinPlot(const Options& o, const std::vector<Sample>& samples) {
-    simlab::Plot plot;
-    const Scene& scene = o.scene;
-    const std::string spin = o.omega.empty() ? "about the " + o.spin + " axis" : "from the given w0";
-    char title[240];
-    const std::string how = o.program.from.empty() ? simlab::describeRun(o.program.run) : "from " + o.program.from;
-    std::snprintf(title, sizeof title, "The spinning book: %s, w0 = (%g, %g, %g) rad/s - %s", spin.c_str(),
-                  scene.w_B0[0], scene.w_B0[1], scene.w_B0[2], how.c_str());
-    plot.title = title;
-    const char* names[] = {"wx", "wy", "wz"};
-    std::vector<simlab::PlotCurve> w;
-    for (const char* name : names) w.emplace_back(std::string("exact ") + name);
-    for (const char* name : names) w.emplace_back(std::string("simulated ") + name, true);
-    for (int i = 0; i < 3; ++i) w[i].color = w[3 + i].color = i + 1;  // a component's samples on its own line
-    simlab::OdeReference<3> reference = book::exact::eulerReference(scene, 1e-12L);
-    const double end = samples.back().time;
-    for (int k = 0; k <= 400; ++k) {
-        const double t = end * k / 400;
-        const std::array<long double, 3>& exact = reference.at(t);
-        for (int i = 0; i < 3; ++i) w[i].x.push_back(t), w[i].y.push_back(static_cast<double>(exact[i]));
-    }
-    for (std::size_t k : simlab::thinned(samples.size(), 80)) {
-        for (int i = 0; i < 3; ++i) w[3 + i].x.push_back(samples[k].time), w[3 + i].y.push_back(samples[k].w_B[i]);
-    }
-    simlab::PlotCurve K("K / K(0) - 1"), H("|H| / |H(0)| - 1");
-    for (const Sample& s : samples) {
-        K.x.push_back(s.time), K.y.push_back(s.kineticEnergy / samples.front().kineticEnergy - 1);
-        H.x.push_back(s.time), H.y.push_back(s.Hmag / samples.front().Hmag - 1);
-    }
-    plot.panels.emplace_back("", "w in the book's axes (rad/s)", w);
-    plot.panels.emplace_back("time t (s)", "relative change", std::vector<simlab::PlotCurve>{K, H});
-    plot.panels.back().scientificY = true;
-    return plot;
-}
-
 // The book as --animate draws it: a brick of its size whose six faces each have their own colour (x faces red,
 // y faces green, z faces blue; the + face of each pair the brighter), and its body axes.
 std::vector<SimTK::DecorativeGeometry> bookDrawing(const SimTK::Vec3& dimensions) {
@@ -195,7 +159,9 @@ std::vector<SimTK::DecorativeGeometry> bookDrawing(const SimTK::Vec3& dimensions
 
 void drawRequestedPlot(const Options& o, const std::vector<Sample>& samples) {
     if (o.program.plot.empty()) return;
-    simlab::drawPlot(spinPlot(o, samples), o.program.plot);
+    const std::string spin = o.omega.empty() ? "about the " + o.spin + " axis" : "from the given w0";
+    const std::string how = o.program.from.empty() ? simlab::describeRun(o.program.run) : "from " + o.program.from;
+    simlab::drawPlot(book::runPlot(o.scene, spin, how, samples), o.program.plot);
     std::printf("Plot drawn in %s\n", o.program.plot.c_str());
 }
 

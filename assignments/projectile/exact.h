@@ -32,6 +32,14 @@ inline double yOfX(const Scene& s, double x) {
 }
 
 inline double flightTime(const Scene& s) { return 2 * yVelocity0(s) / s.gravity; }  ///< t*
+
+/// The flight of a ball launched `depth` metres below the ground's level (from a trench), which rises through
+/// y = 0 and comes down through it later: the later root of -depth + vy0 t - g t^2/2 = 0 (NaN if it never
+/// reaches the ground's level).
+inline double flightTimeFrom(const Scene& s, double depth) {
+    const double vy = yVelocity0(s);
+    return (vy + std::sqrt(vy * vy - 2 * s.gravity * depth)) / s.gravity;
+}
 inline double range(const Scene& s) { return xVelocity0(s) * flightTime(s); }         ///< x*
 inline double maxHeight(const Scene& s) { return yVelocity0(s) * yVelocity0(s) / (2 * s.gravity); }
 inline double mechanicalEnergy(const Scene& s) { return 0.5 * s.mass * s.launchSpeed * s.launchSpeed; }

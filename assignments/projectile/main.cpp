@@ -10,6 +10,7 @@
 #include "projectile/ProjectileMotion.h"
 #include "projectile/exact.h"
 #include "projectile/landing.h"
+#include "projectile/run_plot.h"
 #include "simlab/cli_checks.h"
 #include "simlab/digits.h"
 #include "simlab/messages.h"
@@ -73,36 +74,6 @@ projectile::GroundHit reportLanding(const Options& o) {
 const std::vector<std::string> kColumns = {"time",      "x", "y", "xVelocity", "yVelocity", "mechanicalEnergy",
                                            "yDifferenceFromExact"};
 
-// The flight y(x) as simulated, every few samples, on the exact parabola, and the ground hit the event handler
-// found.
-simlab::Plot flightPlot(const Scene& scene, const std::string& how, const std::vector<Sample>& samples,
-                        const projectile::GroundHit& hit) {
-    simlab::Plot plot;
-    char title[300];
-    std::snprintf(title, sizeof title, "Projectile: %g m/s at %g degrees, g = %g m/s^2 - %s", scene.launchSpeed,
-                  scene.launchAngleDegrees, scene.gravity, how.c_str());
-    plot.title = title;
-    simlab::PlotCurve simulated("simulated", true), parabola("exact parabola");
-    for (std::size_t i : simlab::thinned(samples.size(), 60)) {
-        simulated.x.push_back(samples[i].x), simulated.y.push_back(samples[i].y);
-    }
-    const double end = std::min(samples.back().time, projectile::exact::flightTime(scene));
-    for (int k = 0; k <= 200; ++k) {
-        const double t = end * k / 200;
-        parabola.x.push_back(projectile::exact::x(scene, t)), parabola.y.push_back(projectile::exact::y(scene, t));
-    }
-    simlab::PlotPanel panel("range x (m)", "height y (m)", {parabola, simulated});
-    if (hit.found) {
-        char label[96];
-        std::snprintf(label, sizeof label, "ground hit: t = %.6g s, x = %.6g m", hit.time, hit.x);
-        panel.marks.push_back({hit.x, 0.0, label});
-    }
-    plot.panels.push_back(panel);
-    return plot;
-}
-
-
-
 // --from: an earlier run's results file drawn over the exact parabola of this scene, which must be the one it ran
 // (the file does not hold the ground hit, which is not marked).
 int drawFrom(const Options& o) {
@@ -121,7 +92,7 @@ int drawFrom(const Options& o) {
                                  simlab::shortNumber(o.scene.launchAngleDegrees) +
                                  " degrees: give the options of the run that wrote it (--speed, --angle, --gravity)");
     }
-    simlab::drawPlot(flightPlot(o.scene, "from " + o.program.from, samples, projectile::GroundHit{}), o.program.plot);
+    simlab::drawPlot(projectile::runPlot(o.scene, "from " + o.program.from, samples, projectile::GroundHit{}), o.program.plot);
     std::printf("Plot drawn in %s\n", o.program.plot.c_str());
     return 0;
 }
@@ -174,7 +145,7 @@ int runOnce(const Options& o) {
                 xExact, simlab::accuracyDigits(last.x, xExact, scale), scale);
     const projectile::GroundHit hit = reportLanding(o);
     if (!o.program.plot.empty()) {
-        simlab::drawPlot(flightPlot(o.scene, simlab::describeRun(run), result.samples, hit), o.program.plot);
+        simlab::drawPlot(projectile::runPlot(o.scene, simlab::describeRun(run), result.samples, hit), o.program.plot);
         std::printf("Plot drawn in %s\n", o.program.plot.c_str());
     }
     return 0;

@@ -54,14 +54,26 @@ StudentRecord recordOf(const std::string& id, const std::string& key, const Grad
 
 // The files of a student's folder that a test drew for the feedback (attachments.h names them), for a record kept
 // from an earlier run, whose report is gone.
-std::vector<std::string> attachedBeside(const std::string& dir) {
-    std::vector<std::string> attached;
+std::vector<Attachment> attachedBeside(const std::string& dir) {
+    std::vector<Attachment> attached;
     for (const FolderEntry& e : listFolder(dir, /*followFolder=*/false)) {
         if (e.type == EntryType::Regular && wire::isAttachmentName(e.name) && e.name != kFeedbackHtml) {
-            attached.push_back(e.name);
+            Attachment a{e.name, ""};
+            try {
+                if (fs::file_size(dir + "/" + e.name) <= wire::kMaxAttachmentBytes) a.bytes = readFile(dir + "/" + e.name);
+            } catch (const std::exception&) {
+                // linked, not shown
+            }
+            attached.push_back(std::move(a));
         }
     }
     return attached;
+}
+
+std::vector<std::string> namesOf(const std::vector<Attachment>& attached) {
+    std::vector<std::string> names;
+    for (const Attachment& a : attached) names.push_back(a.name);
+    return names;
 }
 
 }  // namespace
@@ -236,17 +248,17 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
             writeFileAtomically(dir + "/results.json", resultsJson(*report));
             writeFileAtomically(dir + "/output.txt", testOutputText(*report));
         }
-        std::vector<std::string> attached;
+        std::vector<Attachment> attached;
         if (report) {
             for (const TestResult& t : report->tests) {
                 for (const auto& [name, text] : t.attachments) {
                     if (name == kFeedbackHtml) continue;  // the page below
                     writeFileAtomically(dir + "/" + name, text);
-                    attached.push_back(name);
+                    attached.push_back({name, text});
                 }
             }
         }
-        writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, record, rubric.manual, attached));
+        writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, record, rubric.manual, namesOf(attached)));
         writeFileAtomically(dir + "/" + kFeedbackHtml, feedbackHtml(assignment, record, rubric.manual, attached));
         if (writeRecord) writeFileAtomically(dir + "/record.json", recordJson(record));  // last: the commit
 

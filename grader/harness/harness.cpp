@@ -18,6 +18,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -27,6 +30,7 @@
 #include "simlab/attachments.h"
 #include "simlab/grading.h"
 #include "simlab/observe.h"
+#include "simlab/plot.h"
 #include "simlab/rubric.h"
 
 namespace simlab::grading {
@@ -155,6 +159,33 @@ void attach(const std::string& name, const std::string& text) {
     if (!isAttachmentName(name)) throw std::invalid_argument("attach: '" + name + "' is not a plain file name");
     if (text.size() > kMaxAttachmentBytes) throw std::invalid_argument("attach: " + name + " is over 256 KiB");
     verdict().attachments.push_back({{"name", name}, {"text", text}});
+}
+
+void attachPlot(const std::string& name, const Plot& plot) {
+    try {
+        if (name.size() < 4 || name.compare(name.size() - 4, 4, ".svg") != 0) {
+            throw std::invalid_argument("'" + name + "' does not end in .svg");
+        }
+        const char* tmp = std::getenv("TMPDIR");
+        std::string dir = std::string(tmp && *tmp ? tmp : "/tmp") + "/simlab-plot-XXXXXX";
+        if (!::mkdtemp(dir.data())) throw std::runtime_error(std::string("no temporary folder: ") + std::strerror(errno));
+        const std::string path = dir + "/" + name;
+        std::string text;
+        try {
+            drawPlot(plot, path);
+            std::ifstream in(path, std::ios::binary);
+            text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        } catch (...) {
+            std::remove(path.c_str());
+            ::rmdir(dir.c_str());
+            throw;
+        }
+        std::remove(path.c_str());
+        ::rmdir(dir.c_str());
+        attach(name, text);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "simlab: no %s for the feedback: %s\n", name.c_str(), e.what());
+    }
 }
 
 bool atLeast(double value, double floor, double target, const std::string& unit) {

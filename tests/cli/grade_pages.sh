@@ -28,6 +28,21 @@ check "and linked by its URL-encoded folder" \
 check "report.html loads cleanly and every link resolves" "$page_check" grades/report.html --links
 check "a student's feedback.html loads cleanly and its links resolve" \
   "$page_check" grades/students/segfault/feedback.html --links
+check "the reference's feedback.html loads cleanly and its links resolve (your-run.svg beside it)" \
+  "$page_check" grades/students/reference/feedback.html --links --shot runs reference-runs.png
+check "and draws the run the tests plotted inside the page: an SVG with the simulated and the exact curves" \
+  python3 - grades/students/reference/feedback.html <<'PY'
+import base64, re, sys, xml.etree.ElementTree as ET
+page = open(sys.argv[1], encoding="utf-8").read()
+found = re.findall(r'<img src="data:image/svg\+xml;base64,([A-Za-z0-9+/=]+)"', page)
+assert len(found) == 1, f"{len(found)} inline SVG pictures"
+svg = ET.fromstring(base64.b64decode(found[0]))
+text = " ".join(svg.itertext())
+assert "simulated y" in text and "exact: h - g t^2/2" in text, text[:300]
+assert len(svg.findall(".//{http://www.w3.org/2000/svg}path")) > 10
+PY
+check "a file that did not compile drew no run, and its page says nothing of one" \
+  bash -c "! grep -q 'Your runs, drawn' grades/students/compile-error/feedback.html"
 check "the hostile student's feedback.html loads cleanly" "$page_check" "grades/students/$hostile/feedback.html"
 check "a compile error's feedback.html loads cleanly" "$page_check" grades/students/compile-error/feedback.html
 

@@ -124,6 +124,18 @@ TEST_CASE("feedback.html has each test's line: its points, outcome and figure", 
     CHECK_THAT(page, !Catch::Contains("42 m"));
 }
 
+TEST_CASE("feedback.html shows the runs the tests drew in the page, and links every file drawn", "[report][html]") {
+    const std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\"><path d=\"M0 0L1 1\"/></svg>";
+    const std::string page = simlab::engine::feedbackHtml(
+        apple(), hostileStudent(), {}, {{"your-run.svg", svg}, {"schematic-tree.dot", "digraph { a -> b }"}});
+    checkHolds(page, {"<h2 id=\"runs\">Your runs, drawn</h2>",
+                      "<img src=\"" + simlab::engine::writers::dataUri("image/svg+xml", svg) + "\" alt=\"your-run.svg\"",
+                      "<a href=\"your-run.svg\">your-run.svg</a>", "<a href=\"schematic-tree.dot\">"});
+    CHECK_THAT(page, !Catch::Contains("<path"));        // the picture's markup is never the page's own
+    CHECK_THAT(page, !Catch::Contains("digraph"));      // a file that is not a picture is linked, not shown
+    CHECK_THAT(simlab::engine::feedbackHtml(apple(), hostileStudent()), !Catch::Contains("Your runs, drawn"));
+}
+
 TEST_CASE("report.html escapes hostile ids and links each student's feedback by a URL-encoded path",
           "[report][html]") {
     simlab::engine::ClassResult result;

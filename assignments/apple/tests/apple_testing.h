@@ -8,6 +8,7 @@
 #include "apple/NewtonsApple.h"
 #include "apple/exact.h"
 #include "apple/observations.h"
+#include "apple/run_plot.h"
 #include "simlab/digits.h"
 #include "simlab/testing.h"
 

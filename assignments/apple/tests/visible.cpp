@@ -36,6 +36,9 @@ TEST_CASE("the velocity follows v = -g t at every sample", "[apple][velocity]") 
     const Scene scene;
     const simlab::RunSettings settings = defaultRunSettings();
     const Run run = simulate(scene, settings);
+    if (!run.samples.empty()) {  // the run as the feedback page shows it, whatever this test finds of it
+        grading::attachPlot("your-run.svg", runPlot(scene, "your run: " + simlab::describeRun(settings), run.samples));
+    }
     lastSample(run, settings.finalTime);
     // Errors relative to the final speed g T, so the sample at rest (v = 0) counts like the others.
     const double scale = scene.gravity * settings.finalTime;

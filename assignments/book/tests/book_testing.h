@@ -12,6 +12,7 @@
 #include "book/BookSpin.h"
 #include "book/exact.h"
 #include "book/observations.h"
+#include "book/run_plot.h"
 #include "simlab/testing.h"
 
 namespace book::testing {

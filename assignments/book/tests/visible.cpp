@@ -126,7 +126,13 @@ TEST_CASE("spin about the intermediate axis tumbles while the others hold steady
     std::string problems;
     for (const std::string& axis : axisNames()) {
         const Scene scene = spun(Scene{}, axis);
-        const Wobble w = wobbleOf(scene, axis, simulateWhole(scene));
+        const Run run = simulateWhole(scene);
+        if (!run.samples.empty()) {  // each spin as the feedback page shows it, whatever this test finds of it
+            grading::attachPlot("your-run-" + axis + ".svg",
+                                runPlot(scene, "about the " + axis + " axis",
+                                        "your run: " + simlab::describeRun(defaultRunSettings()), run.samples));
+        }
+        const Wobble w = wobbleOf(scene, axis, run);
         if (axis == "intermediate" && !w.spinReverses) problems += "the intermediate-axis spin never reverses; ";
         if (axis != "intermediate" && (w.spinReverses || w.largestWobble >= 1)) {
             problems += "about the " + axis + " axis the wobble grows to " + grading::show(w.largestWobble) + " rad/s; ";

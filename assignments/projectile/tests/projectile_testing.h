@@ -9,6 +9,7 @@
 #include "projectile/exact.h"
 #include "projectile/landing.h"
 #include "projectile/observations.h"
+#include "projectile/run_plot.h"
 #include "simlab/digits.h"
 #include "simlab/testing.h"
 
@@ -45,11 +46,12 @@ inline double parabolaDigits(const Scene& scene, const Run& run) {
     return worst;
 }
 
-/// The student's simulation of `scene` run until their event handler ends it at the ground (simulateLanding).
-inline Landing observeLanding(const Scene& scene, const simlab::RunSettings& run) {
-    return simlab::observe::decode<Landing>(
-        simlab::observe::ask("landing", {{"scene", simlab::wire::toJson(scene)}, {"settings", simlab::wire::toJson(run)}}),
-        "landing");
+/// The student's simulation of `scene` run until their event handler ends it at the ground (simulateLanding),
+/// launched from `depth` metres below the ground's level when it is not zero.
+inline Landing observeLanding(const Scene& scene, const simlab::RunSettings& run, double depth = 0) {
+    nlohmann::json arguments = {{"scene", simlab::wire::toJson(scene)}, {"settings", simlab::wire::toJson(run)}};
+    if (depth != 0) arguments["depth"] = depth;
+    return simlab::observe::decode<Landing>(simlab::observe::ask("landing", arguments), "landing");
 }
 
 /// The ground hit's digits of time and of range (relative to v0 t*, so a vertical launch counts too), 0 if the

@@ -62,6 +62,50 @@ TEST_CASE("the ground hit range comes from an event to the target digits", "[pro
     CHECK(grading::atLeast(digits.range, grading::param("floor"), grading::param("target"), "digits of x*"));
 }
 
+TEST_CASE("only a descent through y = 0 is a ground hit: from a trench the ball flies on", "[projectile][ground]") {
+    // The ball starts 2 m below the ground's level (the course moves it there after initialState), rises through
+    // y = 0 at 0.08 s and comes down through it at 5.15 s. A handler that also triggers on rising transitions ends
+    // the flight at the first crossing.
+    const Scene scene;
+    const double depth = 2;
+    const Landing landing = observeLanding(scene, defaultRunSettings(), depth);
+    const double tHit = exact::flightTimeFrom(scene, depth);
+    const double tRise = 2 * exact::yVelocity0(scene) / scene.gravity - tHit;  // the two roots add up to 2 vy0 / g
+    INFO("no ground hit was recorded (the simulation ran to t = " << landing.endTime << " s)");
+    CHECK(landing.hit.found);
+    if (!landing.hit.found) return;
+    if (std::abs(landing.hit.time - tRise) < 0.5 * (tHit - tRise)) {
+        grading::feedback("the flight ended at t = " + grading::show(landing.hit.time) + " s, as the ball rose out of "
+                          "the trench through y = 0: the ground is hit only coming down, so the handler's trigger "
+                          "takes falling sign transitions and not rising ones");
+    }
+    const double digits = simlab::accuracyDigits(landing.hit.time, tHit);
+    CHECK(grading::atLeast(digits, grading::param("floor"), grading::param("target"), "digits of the landing time"));
+}
+
+TEST_CASE("the simulation ends at the ground hit and records its state last", "[projectile][ground]") {
+    // Samples every 0.01 s asked for up to 6 s, past the hit at t* = 5.2324 s: the event handler ends the
+    // simulation there, simulate records that state and stops, and no row after it repeats it.
+    const Scene scene;
+    const simlab::RunSettings settings = settingsFor(/*finalTime=*/6.0, /*dt=*/0.01);
+    const Run run = simulate(scene, settings);
+    requireSamples(run);
+    const Sample& last = run.samples.back();
+    GroundHit end;  // where the run stopped, marked on the feedback's plot if it stopped early
+    end.found = last.time < settings.finalTime - 1e-9;
+    end.time = last.time;
+    end.x = last.x;
+    grading::attachPlot("your-run.svg", runPlot(scene, "your run: " + simlab::describeRun(settings), run.samples, end));
+    std::size_t repeats = 0;
+    for (std::size_t k = 1; k < run.samples.size(); ++k) repeats += !(run.samples[k].time > run.samples[k - 1].time);
+    const double tStar = exact::flightTime(scene);
+    INFO(repeats << " samples repeat an earlier time (the last at t = " << last.time
+                 << " s): once the handler has ended the simulation, stop the loop (integrator.isSimulationOver())");
+    CHECK(repeats == 0);
+    INFO("the last sample is at t = " << last.time << " s; the ball lands at t* = " << tStar << " s");
+    CHECK(last.time == Approx(tStar).margin(1e-4));
+}
+
 TEST_CASE("the mechanical energy stays at its launch value", "[projectile][energy]") {
     // Only gravity acts: kinetic + potential energy stays at m v0^2 / 2, to about the integrator's accuracy.
     const Scene scene;

@@ -21,8 +21,10 @@ std::string figureText(const TestResult& t) {
 }  // namespace
 
 std::string feedbackHtml(const Assignment& assignment, const StudentRecord& record,
-                         const std::vector<ManualItem>& manual, const std::vector<std::string>& attached) {
-    const writers::Feedback f = writers::feedbackOf(assignment, record, manual, attached);
+                         const std::vector<ManualItem>& manual, const std::vector<Attachment>& attached) {
+    std::vector<std::string> names;
+    for (const Attachment& a : attached) names.push_back(a.name);
+    const writers::Feedback f = writers::feedbackOf(assignment, record, manual, names);
     std::ostringstream out;
     out << writers::pageStart(f.title + ": " + f.id);
     out << "<header>\n<h1>" << htmlText(f.title) << ": " << htmlText(f.id) << "</h1>\n";
@@ -49,6 +51,18 @@ std::string feedbackHtml(const Assignment& assignment, const StudentRecord& reco
             << (t.result->figure && !t.hidden ? htmlText(figureText(*t.result)) : "") << "</td></tr>\n";
     }
     out << "</tbody>\n</table>\n";
+
+    // The pictures the tests drew of the student's runs, in the page itself; each is also a file beside it.
+    bool pictures = false;
+    for (const Attachment& a : attached) {
+        const std::string type = writers::pictureType(a.name);
+        if (type.empty() || a.bytes.empty()) continue;
+        if (!pictures) out << "<h2 id=\"runs\">Your runs, drawn</h2>\n";
+        pictures = true;
+        out << "<figure><img src=\"" << writers::dataUri(type, a.bytes) << "\" alt=\"" << htmlText(a.name)
+            << "\" style=\"max-width: 100%\"><figcaption><a href=\"" << writers::urlSegment(a.name) << "\">"
+            << htmlText(a.name) << "</a></figcaption></figure>\n";
+    }
 
     for (std::size_t i = 0; i < f.tests.size(); ++i) {
         const writers::FeedbackTest& t = f.tests[i];

@@ -94,7 +94,9 @@ std::string pageStart(const std::string& title) {
     std::ostringstream out;
     out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
         << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-        << "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; style-src 'unsafe-inline'\">\n"
+        // Nothing fetched and no script: inline style, and pictures only from data URIs inside the page.
+        << "<meta http-equiv=\"Content-Security-Policy\" "
+           "content=\"default-src 'none'; style-src 'unsafe-inline'; img-src data:\">\n"
         << "<title>" << htmlText(title) << "</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n";
     return out.str();
 }

@@ -46,6 +46,7 @@ struct RunResult {
 template <class Model>
 struct RunHooks {
     std::function<void(Model&)> afterBuild;                             ///< e.g. attach a visualizer
+    std::function<void(const Model&, SimTK::State&)> atStart;           ///< e.g. move the initial state
     std::function<void(const Model&, const SimTK::Integrator&)> afterRun;  ///< e.g. read what the model kept
 };
 
@@ -57,7 +58,8 @@ RunResult<Sample> run(const Scene& scene, Model& model, const RunSettings& setti
                       const RunHooks<Model>& hooks = {}) {
     buildModel(scene, model);
     if (hooks.afterBuild) hooks.afterBuild(model);
-    const SimTK::State initial = initialState(scene, model);
+    SimTK::State initial = initialState(scene, model);
+    if (hooks.atStart) hooks.atStart(model, initial);
     requireSimulatedMotion(model.matter);
     RunResult<Sample> result;
     result.model = describeModel(model.matter, initial);

@@ -12,6 +12,10 @@
 
 #include <string>
 
+namespace simlab {
+struct Plot;
+}
+
 namespace simlab::grading {
 
 /// The rubric's number `key` for the running test (e.g. "target"). Throws if the rubric has none.
@@ -38,6 +42,11 @@ bool atMost(double value, double allowed, const std::string& what);
 /// A file for the student's feedback folder, e.g. attach("schematic-tree.svg", svg): a plain name (letters,
 /// digits, '.', '-', '_'; no leading dot), at most 256 KiB, three per test. simlab writes it beside the report.
 void attach(const std::string& name, const std::string& text);
+
+/// Draws `plot` as SVG (simlab/plot.h, with gnuplot) and attaches it as `name`, which ends in ".svg": the student's
+/// run as their feedback page shows it. A drawing that cannot be made (no gnuplot, a file over the size) is said on
+/// the judge's output, for instructors, and leaves the test as it was: a picture is never part of a verdict.
+void attachPlot(const std::string& name, const Plot& plot);
 
 /// The path of a file the student handed in beside their source (one of the rubric's extra_files). Throws,
 /// saying where the file belongs, if they did not.

@@ -40,10 +40,18 @@ std::string junitXml(const Assignment& assignment, const std::vector<StudentReco
 std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& record,
                              const std::vector<ManualItem>& manual = {}, const std::vector<std::string>& attached = {});
 
+/// A file a test drew for the student's feedback (a plot of their run, a drawing of their model): its name, as it
+/// lies beside the feedback, and its bytes.
+struct Attachment {
+    std::string name;
+    std::string bytes;
+};
+
 /// The same feedback as a self-contained HTML page (inline style, no script, nothing fetched): the same facts as
-/// feedbackMarkdown, and each test's measured figure where it has one.
+/// feedbackMarkdown, each test's measured figure where it has one, and the pictures among `attached` (SVG, PNG)
+/// shown in the page as data URIs; the other files are linked.
 std::string feedbackHtml(const Assignment& assignment, const StudentRecord& record,
-                         const std::vector<ManualItem>& manual = {}, const std::vector<std::string>& attached = {});
+                         const std::vector<ManualItem>& manual = {}, const std::vector<Attachment>& attached = {});
 
 /// The class as a self-contained HTML page (inline style and SVG, no script, nothing fetched): the scores'
 /// histogram, each test's pass rate and the spread of its figure, the submissions that were not graded or scored
