@@ -21,7 +21,7 @@ double RunSettings::sampleTime(int k) const {
 std::string describeStepping(const RunSettings& run) {
     char text[64];
     if (run.fixedStep || run.integrator == "SemiExplicitEuler") {
-        std::snprintf(text, sizeof text, "fixed steps of %g s", run.dt);
+        std::snprintf(text, sizeof text, "fixed step %g s", run.dt);
     } else {
         std::snprintf(text, sizeof text, "accuracy %g", run.accuracy);
     }

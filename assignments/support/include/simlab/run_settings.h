@@ -19,7 +19,8 @@ struct RunSettings {
     double sampleTime(int k) const;
 };
 
-/// How the run steps, for a title: "accuracy 1e-07", or "fixed steps of 0.01 s" (SemiExplicitEuler's always are).
+/// How the run steps, for a title: "accuracy 1e-07", or "fixed step 0.01 s" (SemiExplicitEuler's always is). The
+/// trade question's lines say a setting the same way.
 std::string describeStepping(const RunSettings& run);
 
 /// What runs, for a title: "RungeKuttaMerson, accuracy 1e-07".

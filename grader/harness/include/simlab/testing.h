@@ -157,8 +157,7 @@ bool gradeTrade(const ChoiceRun<Sample>& result, double digits) {
     const double target = grading::param("digits"), cheapest = grading::param("cheapest");
     const double fullWithin = grading::param("full_within"), nonePast = grading::param("none_past");
     const RunSettings& c = result.choice;
-    const std::string setting = c.integrator + (c.fixedStep ? ", fixed step " + grading::show(c.dt) + " s"
-                                                            : ", accuracy " + grading::show(c.accuracy));
+    const std::string setting = describeRun(c);
     const double evaluations = result.run.integrator.realizations;
     const double ratio = evaluations / cheapest;
     // Every outcome is measured as the cost against the cheapest, so that a class's figures for this test are one
