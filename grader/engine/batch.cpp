@@ -60,7 +60,8 @@ std::vector<Attachment> attachedBeside(const std::string& dir) {
         if (e.type == EntryType::Regular && wire::isAttachmentName(e.name) && e.name != kFeedbackHtml) {
             Attachment a{e.name, ""};
             try {
-                if (fs::file_size(dir + "/" + e.name) <= wire::kMaxAttachmentBytes) a.bytes = readFile(dir + "/" + e.name);
+                const std::string path = dir + "/" + e.name;
+                if (fs::file_size(path) <= wire::kMaxAttachmentBytes) a.bytes = readFile(path);
             } catch (const std::exception&) {
                 // linked, not shown
             }
@@ -215,7 +216,8 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     for (const auto& [id, r] : records) {
         const std::string dir = outDir + "/students/" + id;
         if (!fs::exists(dir + "/" + kFeedbackHtml)) {
-            writeFileAtomically(dir + "/" + kFeedbackHtml, feedbackHtml(assignment, r, rubric.manual, attachedBeside(dir)));
+            writeFileAtomically(dir + "/" + kFeedbackHtml,
+                                feedbackHtml(assignment, r, rubric.manual, attachedBeside(dir)));
         }
     }
 

@@ -168,7 +168,9 @@ void attachPlot(const std::string& name, const Plot& plot) {
         }
         const char* tmp = std::getenv("TMPDIR");
         std::string dir = std::string(tmp && *tmp ? tmp : "/tmp") + "/simlab-plot-XXXXXX";
-        if (!::mkdtemp(dir.data())) throw std::runtime_error(std::string("no temporary folder: ") + std::strerror(errno));
+        if (!::mkdtemp(dir.data())) {
+            throw std::runtime_error(std::string("no temporary folder: ") + std::strerror(errno));
+        }
         const std::string path = dir + "/" + name;
         std::string text;
         try {

@@ -152,8 +152,8 @@ void drawPlot(const Plot& plot, const std::string& path) {
     std::error_code ignored;
     fs::remove(scriptPath, ignored);
     fs::remove(complaints, ignored);
-    const bool drawn = spawned == 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::is_regular_file(partial, ignored) &&
-                       fs::file_size(partial, ignored) > 0;
+    const bool drawn = spawned == 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
+                       fs::is_regular_file(partial, ignored) && fs::file_size(partial, ignored) > 0;
     if (!drawn) {
         fs::remove(partial, ignored);
         if (spawned == ENOENT) {
