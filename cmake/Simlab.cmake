@@ -215,10 +215,10 @@ function(simlab_write_manifest)
     $<TARGET_FILE:simlab_rubric> $<TARGET_FILE:Catch2::Catch2WithMain> $<TARGET_FILE:tomlplusplus::tomlplusplus>
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
   _simlab_json_list(program_libraries
-    $<TARGET_FILE:simlab_program> $<TARGET_FILE:simlab_support>
+    $<TARGET_FILE:simlab_program> $<TARGET_FILE:simlab_plot> $<TARGET_FILE:simlab_support>
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
   _simlab_json_list(study_libraries
-    $<TARGET_FILE:simlab_study> $<TARGET_FILE:simlab_program> $<TARGET_FILE:simlab_support>
+    $<TARGET_FILE:simlab_study> $<TARGET_FILE:simlab_program> $<TARGET_FILE:simlab_plot> $<TARGET_FILE:simlab_support>
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
   file(GENERATE OUTPUT ${SIMLAB_MANIFEST} CONTENT "{
   \"version\": \"${PROJECT_VERSION}\",
