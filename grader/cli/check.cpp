@@ -12,6 +12,7 @@
 #include "simlab/engine/manifest.h"
 #include "simlab/engine/report.h"
 #include "simlab/engine/text.h"
+#include "simlab/engine/writers.h"
 #include "simlab/rubric.h"
 
 namespace simlab::cli {
@@ -67,6 +68,8 @@ void runCheck(const CheckOptions& o) {
     }
     if (o.format == "json") {
         std::cout << toGradescope(report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+    } else if (o.format == "classroom") {
+        std::cout << classroomJson(report);
     } else {
         std::cout << renderText(report);
         if (!written.empty()) {
@@ -86,8 +89,10 @@ void addCheck(CLI::App& app) {
                  "process. Exits 0 whenever grading happened, whatever the score.");
     check->add_option("assignment", options->assignment, "which assignment (simlab list shows them)")->required();
     check->add_option("source", options->source, "your file (default: the starter in this tree)");
-    check->add_option("--format", options->format, "text, or json: a Gradescope results.json on stdout")
-        ->check(CLI::IsMember({"text", "json"}))
+    check->add_option("--format", options->format,
+                      "text; json: a Gradescope results.json on stdout; classroom: GitHub Classroom's runner "
+                      "result (what the template repository's workflow reports)")
+        ->check(CLI::IsMember({"text", "json", "classroom"}))
         ->capture_default_str();
     check->add_flag("--all", options->all, "run the hidden tests too (instructors)");
     check->add_option("--timeout", options->timeout,

@@ -31,6 +31,7 @@ void addBuild(CLI::App& app);
 void addList(CLI::App& app);
 void addPackage(CLI::App& app);
 void addAutograde(CLI::App& app);
+void addExport(CLI::App& app);
 void addProject(CLI::App& app);
 void addStudy(CLI::App& app);
 void addPlot(CLI::App& app);

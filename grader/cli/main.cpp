@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
     simlab::cli::addList(app);
     simlab::cli::addPackage(app);
     simlab::cli::addAutograde(app);
+    simlab::cli::addExport(app);
     simlab::cli::addProject(app);
     simlab::cli::addStudy(app);
     simlab::cli::addPlot(app);

@@ -1,6 +1,8 @@
-// simlab package: the student bundle and the Gradescope autograder; simlab autograde: what run_autograder runs.
+// simlab package: the student bundle and each platform's package (Gradescope, PrairieLearn, GitHub Classroom);
+// simlab autograde: what Gradescope's run_autograder and PrairieLearn's entry point run.
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 
@@ -12,6 +14,7 @@
 #include "simlab/engine/package.h"
 #include "simlab/engine/report.h"
 #include "simlab/engine/text.h"
+#include "simlab/engine/writers.h"
 
 namespace fs = std::filesystem;
 
@@ -22,6 +25,7 @@ namespace {
 struct PackageOptions {
     std::string assignment;
     std::string output;
+    engine::PrairieLearnOptions prairieLearn;
 };
 
 void printSummary(const engine::PackageSummary& s, const std::string& where) {
@@ -34,9 +38,10 @@ struct AutogradeOptions {
     std::string assignment;
     std::string submission;
     std::string results;
+    std::string format = "gradescope";
 };
 
-// Gradescope needs a results.json whatever happens: an error becomes one, with the reason in its output.
+// The platform needs a results.json whatever happens: an error becomes one, with the reason in it.
 void runAutograde(const AutogradeOptions& o) {
     using namespace simlab::engine;
     fs::create_directories(fs::absolute(o.results).parent_path());
@@ -50,10 +55,13 @@ void runAutograde(const AutogradeOptions& o) {
         const GradeReport report =
             gradeFolder(Builder(manifest), assignment, rubric, o.submission, /*recursive=*/true, /*followFolder=*/true,
                         options);
-        writeFileAtomically(o.results,
-                            toGradescope(report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+        writeFileAtomically(o.results, o.format == "prairielearn" ? prairieLearnJson(report) : resultsJson(report));
         std::cout << renderText(report);
     } catch (const std::exception& e) {
+        if (o.format == "prairielearn") {
+            writeFileAtomically(o.results, prairieLearnErrorJson(e.what()));
+            throw;
+        }
         const nlohmann::json failed = {
             {"score", 0},
             {"output", std::string("The autograder could not grade this submission: ") + printable(e.what())},
@@ -63,11 +71,29 @@ void runAutograde(const AutogradeOptions& o) {
     }
 }
 
+using PackageWriter =
+    std::function<engine::PackageSummary(const engine::Manifest&, const engine::Assignment&, const PackageOptions&)>;
+
+// A `package` subcommand that writes one assignment's package to --output with `write`.
+CLI::App* addAssignmentPackage(CLI::App* package, const std::string& name, const std::string& help,
+                               const std::string& output, const std::shared_ptr<PackageOptions>& options,
+                               const PackageWriter& write) {
+    CLI::App* sub = package->add_subcommand(name, help);
+    sub->add_option("assignment", options->assignment, "which assignment")->required();
+    sub->add_option("-o,--output", options->output, output)->required();
+    sub->callback([options, write] {
+        const engine::Manifest manifest = engine::loadManifest();
+        printSummary(write(manifest, manifest.find(options->assignment), *options), options->output);
+    });
+    return sub;
+}
+
 }  // namespace
 
 void addPackage(CLI::App& app) {
-    CLI::App* package = app.add_subcommand("package", "Make what you hand out: the student bundle, or Gradescope's "
-                                                      "autograder archive.");
+    CLI::App* package = app.add_subcommand(
+        "package", "Make what you hand out: the student bundle, or an assignment's autograder for Gradescope, "
+                   "PrairieLearn or GitHub Classroom (README.md says which to choose when).");
     package->require_subcommand(1);
 
     auto student = std::make_shared<PackageOptions>();
@@ -80,29 +106,59 @@ void addPackage(CLI::App& app) {
         printSummary(engine::writeStudentBundle(manifest, student->output), student->output);
     });
 
-    auto gradescope = std::make_shared<PackageOptions>();
-    CLI::App* g = package->add_subcommand(
-        "gradescope", "Write a Gradescope autograder archive for one assignment: setup.sh builds simlab on "
-                      "Gradescope's image (choose Ubuntu 24.04), run_autograder grades each submission on every "
-                      "test, hidden tests marked by their rubric visibility.");
-    g->add_option("assignment", gradescope->assignment, "which assignment")->required();
-    g->add_option("-o,--output", gradescope->output, "the zip file to write")->required();
-    g->callback([gradescope] {
-        const engine::Manifest manifest = engine::loadManifest();
-        const engine::Assignment& assignment = manifest.find(gradescope->assignment);
-        printSummary(engine::writeGradescopeZip(manifest, assignment, gradescope->output), gradescope->output);
-    });
+    addAssignmentPackage(
+        package, "gradescope",
+        "Write a Gradescope autograder archive for one assignment: setup.sh builds simlab on Gradescope's image "
+        "(choose Ubuntu 24.04), run_autograder grades each submission on every test, hidden tests marked by their "
+        "rubric visibility.",
+        "the zip file to write", std::make_shared<PackageOptions>(),
+        [](const engine::Manifest& m, const engine::Assignment& a, const PackageOptions& o) {
+            return engine::writeGradescopeZip(m, a, o.output);
+        });
+
+    auto prairieLearn = std::make_shared<PackageOptions>();
+    CLI::App* p = addAssignmentPackage(
+        package, "prairielearn",
+        "Write a PrairieLearn question folder for one assignment, graded externally on every test: info.json, "
+        "question.html, the starter file, tests/run_autograder (the entry point: grades /grade/student into "
+        "/grade/results/results.json), and image/, the grading image's Dockerfile and sources (build and push it "
+        "under the --image name).",
+        "a new folder: the question (copy it into questions/)", prairieLearn,
+        [](const engine::Manifest& m, const engine::Assignment& a, const PackageOptions& o) {
+            return engine::writePrairieLearnQuestion(m, a, o.output, o.prairieLearn);
+        });
+    p->add_option("--image", prairieLearn->prairieLearn.image,
+                  "the grading image's name, as PrairieLearn pulls it (default: simlab-grader)");
+    p->add_option("--timeout", prairieLearn->prairieLearn.timeout,
+                  "seconds a grading job may take, 1 to 600 (default: 300)")
+        ->check(CLI::Range(1, 600));
+    p->add_flag("--upload", prairieLearn->prairieLearn.upload,
+                "students upload their file (pl-file-upload) instead of editing it in the page");
+
+    addAssignmentPackage(
+        package, "github-classroom",
+        "Write the template repository of a GitHub Classroom assignment: the student bundle and a workflow that, on "
+        "every push, builds simlab, runs the visible tests and reports their points to Classroom. Those points are "
+        "a self-check (the student's repository can change them); grade the cloned repositories with simlab grade.",
+        "a new folder: the template repository", std::make_shared<PackageOptions>(),
+        [](const engine::Manifest& m, const engine::Assignment& a, const PackageOptions& o) {
+            return engine::writeClassroomTemplate(m, a, o.output);
+        });
 }
 
 void addAutograde(CLI::App& app) {
     auto options = std::make_shared<AutogradeOptions>();
     CLI::App* a = app.add_subcommand(
-        "autograde", "Grade one submission folder on every test and write a Gradescope results.json (what the "
-                     "archive's run_autograder runs). The file is searched for in subfolders too; a lone C++ file "
-                     "of another name is graded and noted.");
+        "autograde", "Grade one submission folder on every test and write the platform's results.json (what "
+                     "Gradescope's run_autograder and PrairieLearn's entry point run). The file is searched for in "
+                     "subfolders too; a lone C++ file of another name is graded and noted. A results.json is "
+                     "written whatever happens.");
     a->add_option("assignment", options->assignment, "which assignment")->required();
     a->add_option("--submission", options->submission, "the submission folder")->required();
     a->add_option("--results", options->results, "where to write results.json")->required();
+    a->add_option("--format", options->format, "gradescope, or prairielearn")
+        ->check(CLI::IsMember({"gradescope", "prairielearn"}))
+        ->capture_default_str();
     a->callback([options] { runAutograde(*options); });
 }
 

@@ -1,6 +1,7 @@
 #include "simlab/engine/package.h"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <functional>
 #include <set>
@@ -10,7 +11,10 @@
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/process.h"
+#include "simlab/engine/report.h"
 #include "simlab/engine/text.h"
+#include "simlab/rubric.h"
+#include "writers/html.h"
 
 namespace fs = std::filesystem;
 
@@ -166,6 +170,39 @@ void makeExecutable(const std::string& path) {
                     fs::perm_options::add);
 }
 
+// A package's folder: new, or empty.
+void requireNewFolder(const std::string& outDir) {
+    if (fs::exists(outDir) && !fs::is_empty(outDir)) {
+        throw UsageError("'" + outDir + "' exists and is not empty; name a new folder");
+    }
+}
+
+// A platform's grader runs the hidden tests too.
+void requireHiddenTests(const Assignment& assignment) {
+    if (!assignment.hiddenTestsBuilt) {
+        throw UsageError("the autograder needs the hidden tests, which this copy of simlab does not have");
+    }
+}
+
+// The file `path` with its line `line` left out (a .gitignore's rule).
+void dropLine(const std::string& path, const std::string& line) {
+    std::istringstream in(readFile(path));
+    std::string kept, each;
+    while (std::getline(in, each)) {
+        if (each != line) kept += each + "\n";
+    }
+    writeFileAtomically(path, kept);
+}
+
+// A UUID of the form PrairieLearn's info.json takes (version 4's layout), the same for the same `name`: a
+// question packaged again keeps its identity, and its statistics, in PrairieLearn.
+std::string stableUuid(const std::string& name) {
+    std::string h = Hash().add("simlab PrairieLearn question").add(name).hex().substr(0, 32);
+    h[12] = '4';
+    h[16] = "89ab"[std::stoi(h.substr(16, 1), nullptr, 16) & 3];
+    return h.substr(0, 8) + "-" + h.substr(8, 4) + "-" + h.substr(12, 4) + "-" + h.substr(16, 4) + "-" + h.substr(20);
+}
+
 }  // namespace
 
 std::vector<std::string> projectFiles(const std::string& sourceDir) {
@@ -195,9 +232,7 @@ std::vector<std::string> projectFiles(const std::string& sourceDir) {
 }
 
 PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& outDir) {
-    if (fs::exists(outDir) && !fs::is_empty(outDir)) {
-        throw UsageError("'" + outDir + "' exists and is not empty; name a new folder");
-    }
+    requireNewFolder(outDir);
     std::set<std::string> hidden;
     for (const Assignment& a : manifest.assignments) {
         for (const std::string& h : a.hiddenTests) hidden.insert(relativeTo(h, manifest.sourceDir));
@@ -217,9 +252,7 @@ PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& o
 
 PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& assignment, const std::string& zip) {
     if (!fs::exists("/usr/bin/zip")) throw UsageError("zip is not installed (apt-get install zip)");
-    if (!assignment.hiddenTestsBuilt) {
-        throw UsageError("the autograder needs the hidden tests, which this copy of simlab does not have");
-    }
+    requireHiddenTests(assignment);
     const fs::path target = fs::absolute(zip);
     if (!fs::is_directory(target.parent_path())) {
         throw UsageError("cannot write '" + zip + "': no directory " + target.parent_path().string());
@@ -250,6 +283,159 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
     std::error_code ignored;
     fs::remove(target, ignored);
     runTool({"/usr/bin/zip", "-q", "-r", "-X", target.string(), "."}, staging.path());
+    return summary;
+}
+
+PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignment& assignment,
+                                         const std::string& outDir, const PrairieLearnOptions& options) {
+    requireHiddenTests(assignment);
+    requireNewFolder(outDir);
+    if (options.timeout < 1 || options.timeout > 600) {
+        throw UsageError("--timeout must be 1 to 600 seconds (PrairieLearn's limit)");
+    }
+    const bool imageName = !options.image.empty() && std::all_of(options.image.begin(), options.image.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || std::string("._-/:@").find(c) != std::string::npos;
+    });
+    if (!imageName) throw UsageError("'" + options.image + "' is not a Docker image name (such as course/simlab:2025)");
+    fs::create_directories(outDir + "/tests");
+    // The grading image's build context: the project as Gradescope's archive has it, and its Dockerfile.
+    PackageSummary summary = copyFiles(manifest, instructorOnly(), outDir + "/image/simlab");
+    addCatch2(manifest, outDir + "/image/simlab", summary);
+    writeFileAtomically(outDir + "/image/Dockerfile",
+        "# The grading image of the simlab " + assignment.id + " question: Ubuntu 24.04 with simlab built in\n"
+        "# /simlab (scripts/setup installs the packages and builds; simlab needs CMake 3.25 and\n"
+        "# libtomlplusplus-dev). Build it here and push it where PrairieLearn pulls images from, under the name\n"
+        "# that ../info.json gives as externalGradingOptions.image:\n"
+        "#     docker build -t " + options.image + " . && docker push " + options.image + "\n"
+        "FROM ubuntu:24.04\n"
+        "COPY simlab /simlab\n"
+        "RUN SIMLAB_CMAKE_ARGS=-DBUILD_TESTING=OFF /simlab/scripts/setup && rm -rf /var/lib/apt/lists/*\n");
+
+    // The entry point: PrairieLearn copies the question's tests/ to /grade/tests and runs it there.
+    const std::string results = "$root/results/results.json";
+    writeFileAtomically(outDir + "/tests/run_autograder",
+        "#!/usr/bin/env bash\n"
+        "# PrairieLearn runs this in the grading container for every submission: it grades /grade/student on every\n"
+        "# test of the " + assignment.id + " assignment and writes /grade/results/results.json.\n"
+        "#   GRADE_ROOT  replaces /grade (for testing)\n"
+        "#   SIMLAB      the simlab command (default: the grading image's)\n"
+        "root=${GRADE_ROOT:-/grade}\n"
+        "simlab=${SIMLAB:-/simlab/build/bin/simlab}\n"
+        "mkdir -p \"$root/results\"\n"
+        "if [[ ! -x $simlab ]]; then\n"
+        "  echo '{\"gradable\": false, \"score\": 0, \"message\": \"The autograder could not grade this submission: "
+        "simlab is not in the grading image.\", \"format_errors\": [\"simlab is not in the grading image\"]}' >\"" +
+            results + "\"\n"
+        "  exit 1\n"
+        "fi\n"
+        "exec \"$simlab\" autograde " + assignment.id + " --format prairielearn --submission \"$root/student\" --results \"" +
+            results + "\"\n");
+    makeExecutable(outDir + "/tests/run_autograder");
+
+    const nlohmann::json info = {
+        {"uuid", stableUuid(assignment.id)},
+        {"title", assignment.title.empty() ? assignment.id : assignment.title},
+        {"topic", "simlab"},
+        {"tags", {"simlab", assignment.id}},
+        {"type", "v3"},
+        {"singleVariant", true},
+        {"gradingMethod", "External"},
+        {"externalGradingOptions",
+         {{"enabled", true},
+          {"image", options.image},
+          {"entrypoint", "/grade/tests/run_autograder"},
+          {"timeout", options.timeout}}}};
+    writeFileAtomically(outDir + "/info.json", info.dump(4) + "\n");
+
+    const std::string file = writers::htmlText(assignment.source);
+    const std::string input =
+        options.upload ? "  <pl-file-upload file-names=\"" + file + "\"></pl-file-upload>\n"
+                       : "  <pl-file-editor file-name=\"" + file + "\" ace-mode=\"ace/mode/c_cpp\" source-file-name=\"" +
+                             file + "\"></pl-file-editor>\n";
+    writeFileAtomically(outDir + "/question.html",
+        "<pl-question-panel>\n"
+        "  <p>" + writers::htmlText(assignment.title) + ": complete <code>" + file + "</code> as the handout says, "
+        "then submit it. The autograder builds it against the course's grader and runs every test; each test's "
+        "points and outcome, and the plots of your run, show under your submission.</p>\n" + input +
+        "</pl-question-panel>\n\n"
+        "<pl-submission-panel>\n"
+        "  <pl-external-grader-results></pl-external-grader-results>\n"
+        "  <pl-file-preview></pl-file-preview>\n"
+        "</pl-submission-panel>\n");
+    if (!options.upload) {
+        fs::copy_file(assignment.starter, outDir + "/" + assignment.source);
+        ++summary.files;
+    }
+    summary.files += 4;
+    summary.made.push_back("info.json (image " + options.image + ", timeout " + std::to_string(options.timeout) +
+                           " s), question.html, tests/run_autograder, image/Dockerfile");
+    return summary;
+}
+
+PackageSummary writeClassroomTemplate(const Manifest& manifest, const Assignment& assignment, const std::string& outDir) {
+    PackageSummary summary = writeStudentBundle(manifest, outDir);
+    // The template is a repository: the carried Catch2 header must be committed with it (GitHub's Ubuntu 24.04
+    // ships Catch2 3).
+    if (fs::exists(outDir + "/.gitignore")) dropLine(outDir + "/.gitignore", "/third_party/");
+
+    const std::string file = relativeTo(assignment.starter, manifest.sourceDir);
+    const std::string check = "build/bin/simlab check " + assignment.id + " " + file;
+    double visible = 0;
+    for (const RubricTest& t : loadRubric(assignment.rubric).tests) {
+        if (t.visible()) visible += t.points;
+    }
+    // If simlab could not be built or run, the reporter still gets a result: an error, worth the visible points.
+    const std::string failed = "{\"version\": 1, \"status\": \"error\", \"max_score\": " + points(visible) +
+                               ", \"tests\": [{\"name\": \"simlab check\", \"status\": \"error\", \"score\": 0, "
+                               "\"message\": \"simlab could not build or run: see the steps above\", \"line_no\": 0}]}";
+    fs::create_directories(outDir + "/.github/workflows");
+    writeFileAtomically(outDir + "/.github/workflows/classroom.yml",
+        "# GitHub Classroom's autograding of the " + assignment.id + " lab: on every push, build simlab, run the\n"
+        "# visible tests on " + file + " and report the points to Classroom (the name of the workflow\n"
+        "# and of its job are the ones Classroom looks for). The points are a self-check: this runs in the\n"
+        "# student's repository, which the student can change. Grades come from the instructor's simlab grade.\n"
+        "name: Autograding Tests\n"
+        "on:\n"
+        "  - push\n"
+        "  - workflow_dispatch\n"
+        "permissions:\n"
+        "  checks: write\n"
+        "  actions: read\n"
+        "  contents: read\n"
+        "jobs:\n"
+        "  run-autograding-tests:\n"
+        "    runs-on: ubuntu-24.04\n"
+        "    if: github.actor != 'github-classroom[bot]'\n"
+        "    steps:\n"
+        "      - name: Checkout code\n"
+        "        uses: actions/checkout@v4\n"
+        "      - name: Build simlab\n"
+        "        run: SIMLAB_CMAKE_ARGS=-DBUILD_TESTING=OFF scripts/setup\n"
+        "      - name: Run the visible tests\n"
+        "        id: simlab\n"
+        "        if: always()\n"
+        "        run: |\n"
+        "          if ! " + check + " --format classroom >\"$RUNNER_TEMP/simlab.json\"; then\n"
+        "            echo '" + failed + "' >\"$RUNNER_TEMP/simlab.json\"\n"
+        "          fi\n"
+        "          echo \"result=$(base64 -w 0 \"$RUNNER_TEMP/simlab.json\")\" >>\"$GITHUB_OUTPUT\"\n"
+        "      - name: Autograding Reporter\n"
+        "        if: always()\n"
+        "        uses: classroom-resources/autograding-grading-reporter@v1\n"
+        "        env:\n"
+        "          SIMLAB_RESULTS: \"${{ steps.simlab.outputs.result }}\"\n"
+        "        with:\n"
+        "          runners: simlab\n");
+
+    writeFileAtomically(outDir + "/README.md", readFile(outDir + "/README.md") +
+        "\n## Your repository checks itself\n\n"
+        "Every push runs `.github/workflows/classroom.yml` (the Actions tab shows it): it builds simlab, runs `" +
+        check + "` on the visible tests, and GitHub Classroom shows the points, the same points as that command "
+        "gives on your machine. They are a self-check, not your grade: your instructor grades the last commit "
+        "before the deadline with every test, the hidden ones too.\n");
+    summary.files += 1;
+    summary.made.push_back(".github/workflows/classroom.yml: on every push, the visible tests of " + assignment.id +
+                           " (" + points(visible) + " points), reported to GitHub Classroom");
     return summary;
 }
 

@@ -1,4 +1,7 @@
-// What simlab hands out: the student bundle, and the Gradescope autograder archive.
+// What simlab hands out: the student bundle, and an assignment's package for each platform that grades it -
+// Gradescope's autograder archive, a PrairieLearn question, a GitHub Classroom template repository. Every
+// platform's grader runs `simlab autograde` or `simlab check` on the same engine; only the format of the results
+// differs (writers.h).
 #pragma once
 
 #include <string>
@@ -31,5 +34,27 @@ PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& o
 /// /autograder/results/results.json; AUTOGRADER_ROOT changes /autograder). It carries this system's Catch2 2.13
 /// header too, in third_party/catch2, for Gradescope's Ubuntu 24.04 image, whose Catch2 is version 3.
 PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& assignment, const std::string& zip);
+
+struct PrairieLearnOptions {
+    std::string image = "simlab-grader";  ///< the grading image's name on Docker Hub, as info.json gives it
+    int timeout = 300;                    ///< seconds a grading job may take (PrairieLearn allows 600 at most)
+    bool upload = false;                  ///< the student uploads the file (pl-file-upload), not edits it in the page
+};
+
+/// Write a PrairieLearn question for `assignment` to `outDir` (new or empty): info.json (external grading with
+/// the image and tests/run_autograder as its entry point), question.html (the file in pl-file-editor, or
+/// pl-file-upload; pl-external-grader-results in the submission panel), the starter file the editor opens with,
+/// tests/run_autograder (grade /grade/student into /grade/results/results.json; GRADE_ROOT changes /grade and
+/// SIMLAB names the simlab command), and image/: the grading image's Dockerfile beside the project without
+/// solutions, tests, CI and benchmarks, which it builds with scripts/setup.
+PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignment& assignment,
+                                         const std::string& outDir, const PrairieLearnOptions& options);
+
+/// Write the template repository of a GitHub Classroom assignment to `outDir` (new or empty): the student bundle
+/// (writeStudentBundle: starter, contract, build, handouts) and .github/workflows/classroom.yml, which on every
+/// push builds simlab, runs `simlab check --format classroom` on the assignment's visible tests and hands the
+/// result to GitHub Classroom's grading reporter. Those points are a self-check, which the student's repository
+/// can change; the README says so.
+PackageSummary writeClassroomTemplate(const Manifest& manifest, const Assignment& assignment, const std::string& outDir);
 
 }  // namespace simlab::engine

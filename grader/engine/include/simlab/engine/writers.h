@@ -9,6 +9,12 @@
 //     results.json           results_json.cpp       resultsJson (the document is report.h's toGradescope)
 //     record.json            record_json.cpp        recordJson, readRecordJson
 //     output.txt             output_text.cpp        testOutputText
+//     PrairieLearn's         prairielearn_json.cpp  prairieLearnJson, prairieLearnErrorJson
+//       results.json
+//     GitHub Classroom's     classroom_json.cpp     classroomJson
+//       runner result
+//     Canvas's gradebook     canvas_csv.cpp         canvasCsv
+//       import CSV
 //
 // Every writer makes the students' bytes (ids, file names, compiler messages, reasons) safe for its format with
 // text.h, and none throws for anything those bytes hold.
@@ -20,6 +26,7 @@
 
 #include "simlab/engine/grade.h"
 #include "simlab/engine/record.h"
+#include "simlab/engine/roster.h"
 
 namespace simlab::engine {
 
@@ -68,5 +75,32 @@ std::optional<StudentRecord> readRecordJson(const std::string& text);
 
 /// output.txt: what each test's process printed and the grader's account of the tests, for instructors.
 std::string testOutputText(const GradeReport& report);
+
+/// PrairieLearn's results.json for an external grader (its documented fields): score in [0, 1], gradable (false,
+/// with format_errors, when there was no file to grade), message, output, and tests[] with name, points,
+/// max_points, message, output and, for visible tests, the pictures they drew as images (data URIs). Hidden tests
+/// show their points and outcome only. Never longer than `limitBytes` (PrairieLearn takes 1 MB): pictures are
+/// left out first, the largest first, then the texts are cut.
+std::string prairieLearnJson(const GradeReport& report, std::size_t limitBytes = 1000000);
+/// PrairieLearn's results.json when simlab could not grade at all: not gradable (no attempt is charged), and why.
+std::string prairieLearnErrorJson(const std::string& why);
+
+/// The runner result GitHub Classroom's grading reporter reads (base64-encoded in <RUNNER>_RESULTS): version 1,
+/// status (pass, fail, or error when nothing was built), max_score, and tests[] with name, status, score, message,
+/// test_code (the command that runs the test alone), filename, line_no and duration (ms).
+std::string classroomJson(const GradeReport& report);
+
+/// Canvas's gradebook import for one assignment column, from the class's records and the roster.
+struct CanvasExport {
+    std::string csv;
+    int scored = 0;                        ///< roster students with a score in the file
+    std::vector<std::string> notGraded;    ///< on the roster, no grade (no folder, or a grader error): left blank
+    std::vector<std::string> notOnRoster;  ///< graded, but not on the roster: not in the file
+};
+/// One row per roster student, in the roster's order: Student, ID, SIS User ID, SIS Login ID, Section, then the
+/// score under the header `column` ("Newton's apple (1234)": Canvas matches the assignment by the id in
+/// parentheses, else by name), after a "Points Possible" row.
+CanvasExport canvasCsv(const std::string& column, double pointsPossible, const std::vector<RosterEntry>& roster,
+                       const std::vector<StudentRecord>& records);
 
 }  // namespace simlab::engine

@@ -1,0 +1,200 @@
+// The platforms' writers: PrairieLearn's results.json, GitHub Classroom's runner result, Canvas's gradebook CSV
+// and the roster it is made with. Each takes a student's bytes as they come and says them safely.
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "simlab/engine/errors.h"
+#include "simlab/engine/roster.h"
+#include "simlab/engine/text.h"
+#include "simlab/engine/writers.h"
+
+using namespace simlab::engine;
+using nlohmann::json;
+
+namespace {
+
+TestResult test(const std::string& name, double score, double max, Outcome outcome, const std::string& visibility) {
+    TestResult t;
+    t.name = name;
+    t.score = score;
+    t.maxScore = max;
+    t.outcome = outcome;
+    t.visibility = visibility;
+    return t;
+}
+
+GradeReport report() {
+    GradeReport r;
+    r.assignment = "apple";
+    r.title = "Newton's apple";
+    r.source = "NewtonsApple.cpp";
+    r.build.ok = true;
+    TestResult drawn = test("the fall", 10, 10, Outcome::Passed, "visible");
+    drawn.reason = "14.8 digits";
+    drawn.attachments = {{"apple-run.svg", "<svg xmlns='http://www.w3.org/2000/svg'/>"}, {"apple-run.txt", "t y"}};
+    r.tests.push_back(drawn);
+    TestResult lost = test("the energy \x1b[2J\xff", 0, 5, Outcome::Failed, "visible");
+    lost.reason = "drift \xc0\x80 1e-3";
+    lost.feedback = {"look at \x1b]0;title\x07 the step"};
+    r.tests.push_back(lost);
+    TestResult hidden = test("hidden: other heights", 5, 5, Outcome::Passed, "hidden");
+    hidden.reason = "13 digits at h = 7";
+    hidden.attachments = {{"secret.svg", "<svg/>"}};
+    r.tests.push_back(hidden);
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("PrairieLearn: score in [0, 1], the tests' points, visible pictures as data URIs", "[platforms]") {
+    const std::string text = prairieLearnJson(report());
+    CHECK(isValidUtf8(text));
+    const json doc = json::parse(text);
+    CHECK(doc["gradable"] == true);
+    CHECK(doc["score"].get<double>() == Approx(0.75));
+    REQUIRE(doc["tests"].size() == 3);
+    CHECK(doc["tests"][0]["points"] == 10);
+    CHECK(doc["tests"][0]["max_points"] == 10);
+    CHECK(doc["tests"][0]["message"] == "passed: 14.8 digits");
+    REQUIRE(doc["tests"][0]["images"].size() == 1);  // the .txt is not a picture
+    CHECK(doc["tests"][0]["images"][0]["label"] == "apple-run.svg");
+    CHECK(doc["tests"][0]["images"][0]["url"] ==
+          "data:image/svg+xml;base64,PHN2ZyB4bWxucz0naHR0cDovL3d3dy53My5vcmcvMjAwMC9zdmcnLz4=");
+    // A student's bytes: no control character and no invalid UTF-8 reaches the page.
+    const std::string name = doc["tests"][1]["name"], message = doc["tests"][1]["message"], output = doc["tests"][1]["output"];
+    CHECK(isValidUtf8(name));
+    CHECK(message.find('\x1b') == std::string::npos);
+    CHECK(output.find('\x1b') == std::string::npos);
+    CHECK(output.find('\x07') == std::string::npos);
+    // A hidden test: its points and outcome, nothing of what it measured or drew.
+    CHECK(doc["tests"][2]["points"] == 5);
+    CHECK(doc["tests"][2]["message"] == "passed (a hidden test: the details are your instructor's)");
+    CHECK_FALSE(doc["tests"][2].contains("images"));
+    CHECK(text.find("h = 7") == std::string::npos);
+}
+
+TEST_CASE("PrairieLearn: no file is not gradable; a grader error neither", "[platforms]") {
+    GradeReport r = report();
+    r.status = "missing file";
+    r.note = "no NewtonsApple.cpp";
+    const json doc = json::parse(prairieLearnJson(r));
+    CHECK(doc["gradable"] == false);
+    CHECK(doc["format_errors"] == json::array({"no NewtonsApple.cpp"}));
+    const json failed = json::parse(prairieLearnErrorJson("no manifest \x1b[2J"));
+    CHECK(failed["gradable"] == false);
+    CHECK(failed["format_errors"][0].get<std::string>().find('\x1b') == std::string::npos);
+}
+
+TEST_CASE("PrairieLearn: under the limit, pictures go first, then the texts are cut", "[platforms]") {
+    GradeReport r = report();
+    r.tests[0].attachments = {{"big.svg", std::string(30000, 'x')}, {"small.png", std::string(600, 'y')}};
+    r.tests[1].feedback = {std::string(5000, 'z')};
+    const std::string whole = prairieLearnJson(r);
+    CHECK(json::parse(whole)["tests"][0]["images"].size() == 2);
+
+    const std::string noBig = prairieLearnJson(r, 20000);
+    CHECK(noBig.size() <= 20000);
+    const json a = json::parse(noBig);
+    REQUIRE(a["tests"][0]["images"].size() == 1);  // the largest left out first
+    CHECK(a["tests"][0]["images"][0]["label"] == "small.png");
+    CHECK_THAT(a["message"].get<std::string>(), Catch::Contains("Pictures were left out"));
+    CHECK(a["tests"][1]["output"].get<std::string>().size() > 5000);  // the texts whole
+
+    const std::string cut = prairieLearnJson(r, 3000);
+    CHECK(cut.size() <= 3000);
+    const json b = json::parse(cut);
+    CHECK_FALSE(b["tests"][0].contains("images"));
+    CHECK_THAT(b["tests"][1]["output"].get<std::string>(), Catch::Contains("cut short"));
+    CHECK(b["score"].get<double>() == Approx(0.75));  // the score is never cut
+
+    // Multi-byte characters are cut whole.
+    r.tests[1].feedback = {std::string(3000, 'a') + std::string(2000, '\xc3') };
+    for (std::string& line : r.tests[1].feedback) line = validUtf8(line);
+    CHECK(isValidUtf8(prairieLearnJson(r, 3000)));
+}
+
+TEST_CASE("Classroom: the runner result the grading reporter reads", "[platforms]") {
+    const json doc = json::parse(classroomJson(report()));
+    CHECK(doc["version"] == 1);
+    CHECK(doc["status"] == "fail");
+    CHECK(doc["max_score"] == 20);
+    REQUIRE(doc["tests"].size() == 3);
+    CHECK(doc["tests"][0]["status"] == "pass");
+    CHECK(doc["tests"][0]["score"] == 10);
+    CHECK(doc["tests"][0]["line_no"] == 0);
+    CHECK(doc["tests"][0]["test_code"] == "build/bin/simlab check apple NewtonsApple.cpp --test \"the fall\"");
+    CHECK(doc["tests"][1]["status"] == "fail");
+    CHECK(doc["tests"][1]["message"].get<std::string>().find('\x1b') == std::string::npos);
+
+    GradeReport broken = report();
+    broken.build.ok = false;
+    for (TestResult& t : broken.tests) t.outcome = Outcome::DidNotCompile, t.score = 0;
+    const json error = json::parse(classroomJson(broken));
+    CHECK(error["status"] == "error");
+    CHECK(error["tests"][0]["status"] == "error");
+}
+
+TEST_CASE("CSV: quoted cells, doubled quotes, line breaks inside, CRLF, a byte order mark", "[platforms]") {
+    const auto rows = readCsv("\xEF\xBB\xBFStudent,ID\r\n\"Lovelace, Ada\",\"1\"\"2\"\r\n\"two\nlines\",3");
+    REQUIRE(rows.size() == 3);
+    CHECK(rows[0] == std::vector<std::string>{"Student", "ID"});
+    CHECK(rows[1] == std::vector<std::string>{"Lovelace, Ada", "1\"2"});
+    CHECK(rows[2] == std::vector<std::string>{"two\nlines", "3"});
+    CHECK_THROWS_AS(readCsv("a,\"b\nc"), UsageError);
+}
+
+TEST_CASE("Roster: Canvas's columns, the simlab id or the SIS login, one-line errors", "[platforms]") {
+    const auto roster = readRoster("Student,ID,SIS User ID,SIS Login ID,Section,simlab id,Lab 1\n"
+                                   "Points Possible,,,,,,10\n"
+                                   "\"Lovelace, Ada\",101,s1,ada,A,ada-folder,9\n\n"
+                                   "\"Babbage, Charles\",102,s2,cb,A,charles\n",
+                                   "r.csv");
+    REQUIRE(roster.size() == 2);
+    CHECK(roster[0].folder == "ada-folder");
+    CHECK(roster[0].student == "Lovelace, Ada");
+    CHECK(roster[1].canvasId == "102");
+    CHECK(readRoster("Student,SIS Login ID\nAda,ada\n", "r.csv")[0].folder == "ada");
+
+    auto error = [](const std::string& text) {
+        try {
+            readRoster(text, "r.csv");
+        } catch (const UsageError& e) {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    CHECK_THAT(error("Name,ID\nAda,1\n"), Catch::Contains("no Student column"));
+    CHECK_THAT(error("Student,Section\nAda,A\n"), Catch::Contains("none of the columns ID, SIS User ID"));
+    CHECK_THAT(error("Student,ID\nAda,1\n"), Catch::Contains("no 'simlab id' column"));
+    CHECK_THAT(error("Student,ID,simlab id\nAda,1,a\nBob,2,a\n"), Catch::Contains("row 3: the simlab id a is there twice"));
+    CHECK_THAT(error("Student,ID,simlab id\nAda,1,a,extra\n"), Catch::Contains("row 2 has 4 cells"));
+    CHECK_THAT(error("Student,ID,simlab id\nAda,1,\n"), Catch::Contains("has no simlab id"));
+    CHECK_THAT(error("Student,ID,simlab id\n\"Ada,1,a\n"), Catch::Contains("never closed"));
+    CHECK_THAT(error(""), Catch::Contains("is empty"));
+    for (const std::string& e : {error("Name\n"), error("Student,ID,simlab id\n\"Ada,1,a\n")}) {
+        CHECK(e.find('\n') == std::string::npos);
+    }
+}
+
+TEST_CASE("Canvas: one column, formula-safe cells, who is missing on either side", "[platforms]") {
+    const auto roster = readRoster("Student,ID,SIS User ID,SIS Login ID,Section,simlab id\n"
+                                   "\"Lovelace, Ada\",101,s1,ada,A,ada\n"
+                                   "=HYPERLINK(\"x\"),102,s2,eve,\"A,B\",eve\n"
+                                   "Carol,103,s3,carol,B,carol\n",
+                                   "r.csv");
+    StudentRecord ada, eve, zed, broken;
+    ada.id = "ada", ada.score = 87.5, ada.status = "graded";
+    eve.id = "eve", eve.score = 0, eve.status = "missing file";
+    zed.id = "=zed", zed.score = 50, zed.status = "graded";
+    broken.id = "carol", broken.status = "grader error";
+    const CanvasExport made = canvasCsv("Newton's apple (1234)", 100, roster, {ada, eve, zed, broken});
+    CHECK(made.csv == "Student,ID,SIS User ID,SIS Login ID,Section,Newton's apple (1234)\n"
+                      "Points Possible,,,,,100\n"
+                      "\"Lovelace, Ada\",101,s1,ada,A,87.5\n"
+                      "\"'=HYPERLINK(\"\"x\"\")\",102,s2,eve,\"A,B\",0\n"
+                      "Carol,103,s3,carol,B,\n");
+    CHECK(made.scored == 2);
+    CHECK(made.notGraded == std::vector<std::string>{"carol"});
+    CHECK(made.notOnRoster == std::vector<std::string>{"=zed"});
+}
