@@ -8,6 +8,7 @@
 #include "apple/NewtonsApple.h"
 #include "apple/exact.h"
 #include "apple/run_plot.h"
+#include "simlab/reproducible_math.h"
 #include "simlab/cli_checks.h"
 #include "simlab/digits.h"
 #include "simlab/driver.h"
@@ -115,6 +116,7 @@ int runTrade(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    simlab::useReproducibleMath(argv);
     Options o;
     o.program.run = apple::defaultRunSettings();
     o.program.output = "NewtonsAppleResults.txt";

@@ -13,6 +13,7 @@
 
 #include "biosim/course.h"
 #include "biosim/schematic.h"
+#include "simlab/reproducible_math.h"
 #include "simlab/digits.h"
 #include "simlab/plot.h"
 #include "simlab/program.h"
@@ -203,6 +204,7 @@ int runTrade(const Declaration& d, const Parameters& p, const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    simlab::useReproducibleMath(argv);
     std::string program = argc > 0 ? argv[0] : "project";
     if (const std::size_t slash = program.rfind('/'); slash != std::string::npos) program = program.substr(slash + 1);
     return simlab::runGuarded(program, [&] {

@@ -178,8 +178,7 @@ inline Reference integratedAngularVelocity(const Scene& scene, double t) {
         using namespace boost::numeric::odeint;
         W w = {scene.w_B0[0], scene.w_B0[1], scene.w_B0[2]};
         const long double step = rate > 0 ? 1e-3L / rate : 1e-3L;
-        integrate_adaptive(make_controlled(tolerance, tolerance, runge_kutta_fehlberg78<W, long double>()), euler, w,
-                           0.0L, static_cast<long double>(t), step);
+        integrate_adaptive(simlab::referenceStepper<W>(tolerance), euler, w, 0.0L, static_cast<long double>(t), step);
         return w;
     };
     const W tight = solve(1e-18L), loose = solve(1e-16L);

@@ -10,6 +10,7 @@
 #include "book/BookSpin.h"
 #include "book/exact.h"
 #include "book/run_plot.h"
+#include "simlab/reproducible_math.h"
 #include "simlab/cli_checks.h"
 #include "simlab/digits.h"
 #include "simlab/messages.h"
@@ -270,6 +271,7 @@ int runTrade(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    simlab::useReproducibleMath(argv);
     Options o;
     o.program.run = book::defaultRunSettings();
     o.program.output = "BookSpinResults-SPIN.txt";  // SPIN: the spin's name, so that each spin keeps its file

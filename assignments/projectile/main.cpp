@@ -11,6 +11,7 @@
 #include "projectile/exact.h"
 #include "projectile/landing.h"
 #include "projectile/run_plot.h"
+#include "simlab/reproducible_math.h"
 #include "simlab/cli_checks.h"
 #include "simlab/digits.h"
 #include "simlab/messages.h"
@@ -183,6 +184,7 @@ int runTrade(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    simlab::useReproducibleMath(argv);
     Options o;
     o.program.run = projectile::defaultRunSettings();
     o.program.output = "ProjectileMotionResults.txt";

@@ -5,9 +5,12 @@
 #include "commands.h"
 #include "simlab/engine/errors.h"
 #include "simlab/engine/text.h"
+#include "simlab/reproducible_math.h"
 #include "simlab/rubric.h"
 
 int main(int argc, char** argv) {
+    // Everything simlab starts inherits the mask (the judges and probes get it from childEnvironment).
+    simlab::useReproducibleMath(argv);
     CLI::App app{"simlab: Simbody labs and their autograder.\n"
                  "Students: `simlab check apple` grades your starter/apple/NewtonsApple.cpp on the visible tests.\n"
                  "Instructors: `simlab grade apple SUBMISSIONS` grades a class on every test.",

@@ -87,9 +87,12 @@ MeasuredRun measureRun(const SimTK::System& system, SimTK::Integrator& integrato
             out.message = "past the cap of " + std::to_string(static_cast<long long>(limits.maxEvaluations)) +
                           " evaluations" + at(out.reached, finalTime);
         } else if (!over && cpuSeconds() - began > limits.cpuSeconds) {
-            out.status = "too costly";
-            out.message = "past the net of " + std::to_string(static_cast<long long>(limits.cpuSeconds)) +
-                          " s of CPU time" + at(out.reached, finalTime);
+            // A net for a run that would never end, not a measure of cost: what it stops is a failure, named.
+            out.status = "failed";
+            out.message = "stopped by the net of " + std::to_string(static_cast<long long>(limits.cpuSeconds)) +
+                          " s of CPU time before the cap of " +
+                          std::to_string(static_cast<long long>(limits.maxEvaluations)) + " evaluations" +
+                          at(out.reached, finalTime);
         }
         const bool last = over || out.status != "ok";
         if (state.getTime() >= nextCheck || last) {

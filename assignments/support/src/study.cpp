@@ -16,6 +16,7 @@
 #include "simlab/measured_run.h"
 #include "simlab/messages.h"
 #include "simlab/model_info.h"
+#include "simlab/reproducible_math.h"
 
 namespace simlab::study {
 
@@ -28,9 +29,9 @@ struct Settings {
     /// The cost cap, in evaluations of the equations of motion: a count, so that which points pass it is the same
     /// on every machine, however busy.
     double maxEvaluations = 5e5;
-    /// s of CPU time: a net for one point's measured run (and again for its timed repeats). CPU time, not wall
-    /// time, so that a busy machine does not change which points pass.
-    double cap = 60;
+    /// s of CPU time: a net for one point's measured run, never a measure of cost (a point it stops is
+    /// "failed", and says so). Which points are too costly is decided by maxEvaluations alone.
+    double cap = 600;
     int repeats = 3;   ///< timed runs per point; the fastest is kept
     std::string subject;
 };
@@ -126,10 +127,14 @@ void measure(const Subject& subject, const Point& point, const Settings& setting
     out.evaluations = run.integrator.realizations;
 }
 
-/// The timed repeats: reporting only at the end; the fastest is kept. After two seconds of them, one is enough.
+/// Points dearer than this are timed once: their one run is long enough to time.
+constexpr int kOneRepeatEvaluations = 100000;
+
+/// The timed repeats: reporting only at the end; the fastest is kept. How many is decided by the point's
+/// evaluations, never by the clock, so that trade.csv's columns but the seconds are the same on every machine.
 void timeRepeats(const Subject& subject, const Point& point, const Settings& settings, Outcome& out) {
-    double spent = 0;
-    for (int r = 0; r < settings.repeats && spent <= std::min(2.0, settings.cap); ++r) {
+    const int repeats = out.evaluations > kOneRepeatEvaluations ? 1 : settings.repeats;
+    for (int r = 0; r < repeats; ++r) {
         std::unique_ptr<Instance> instance = subject.make();
         std::unique_ptr<SimTK::Integrator> integrator =
             simlab::integratorFor(choiceOf(point), instance->system(), subject.finalTime);
@@ -140,7 +145,6 @@ void timeRepeats(const Subject& subject, const Point& point, const Settings& set
             stepper.stepTo(subject.finalTime);
         }
         const double seconds = std::chrono::duration<double>(Clock::now() - began).count();
-        spent += seconds;
         out.seconds = std::isnan(out.seconds) ? seconds : std::min(out.seconds, seconds);
         out.repeats = r + 1;
     }
@@ -256,8 +260,10 @@ void runSubject(const std::string& lab, const Subject& subject, const Settings& 
             }
         }
         std::cout << toJson(subject, point, out).dump() << std::endl;
-        // Progress, for a person watching: on a terminal only, so that a log or a pipe holds only the results.
-        if (isatty(2) && (++done % 20 == 0 || done == static_cast<int>(points.size()))) {
+        // Progress, for a person watching: on a terminal, or where simlab asks for it (SIMLAB_PROGRESS=1: it shows
+        // what is not a JSON line), so that a log or a pipe holds only the results.
+        static const bool progress = isatty(2) || std::getenv("SIMLAB_PROGRESS") != nullptr;
+        if (progress && (++done % 20 == 0 || done == static_cast<int>(points.size()))) {
             std::cerr << "  " << subject.name << ": " << done << " of " << points.size() << " points\n";
         }
     }
@@ -266,6 +272,7 @@ void runSubject(const std::string& lab, const Subject& subject, const Settings& 
 }  // namespace
 
 int studyMain(int argc, char** argv, const std::string& lab, const std::vector<Subject>& subjects) {
+    simlab::useReproducibleMath(argv);
     Settings settings;
     bool list = false, minimal = false;
     CLI::App app{"The work-precision study of the " + lab + " lab's scenes, one JSON object per line (run it with "
@@ -274,7 +281,9 @@ int studyMain(int argc, char** argv, const std::string& lab, const std::vector<S
     app.add_option("--max-evaluations", settings.maxEvaluations, "the cost cap: evaluations one point may take")
         ->check(CLI::Range(100.0, 1e9))
         ->capture_default_str();
-    app.add_option("--cap", settings.cap, "seconds of CPU time a point may take (a net beside the cost cap)")
+    app.add_option("--cap", settings.cap,
+                   "seconds of CPU time a point may take: a net for a run that would not end (a point it stops is "
+                   "failed, and says so), never the cost cap")
         ->check(CLI::Range(0.01, 3600.0))
         ->capture_default_str();
     app.add_option("--repeats", settings.repeats, "timed runs per point; the fastest is kept")

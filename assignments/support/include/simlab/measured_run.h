@@ -16,7 +16,8 @@
 
 namespace simlab {
 
-/// How a measured run ended.
+/// How a measured run ended. "too costly" is decided by the count of evaluations alone, so that it is the same
+/// on every machine at any load; a run stopped by the CPU-time net is "failed", and says so.
 struct MeasuredRun {
     std::string status = "ok";  ///< "ok", "too costly", "blew up" or "failed"
     std::string message;        ///< one line, for any status but "ok"
@@ -27,7 +28,7 @@ struct MeasuredRun {
 /// Where a measured run stops short.
 struct MeasureLimits {
     double maxEvaluations = INFINITY;  ///< evaluations of the equations of motion
-    double cpuSeconds = INFINITY;      ///< CPU time of this process spent in the run
+    double cpuSeconds = INFINITY;      ///< a net: CPU time of this process spent in the run (never a cost)
     int checks = 1000;                 ///< about this many states are checked, spread evenly in time
 };
 
