@@ -39,6 +39,9 @@ void runCheck(const CheckOptions& o) {
         throw UsageError("--all needs the hidden tests, which this copy of simlab does not have");
     }
     const Rubric rubric = loadRubric(o.rubric.empty() ? assignment.rubric : o.rubric);
+    if (o.all) {
+        if (const std::string exposed = secretsExposed(manifest, assignment); !exposed.empty()) throw UsageError(exposed);
+    }
     GradeOptions options;
     options.includeHidden = o.all;
     options.onlyTests = o.tests;
@@ -96,7 +99,7 @@ void addCheck(CLI::App& app) {
         ->capture_default_str();
     check->add_flag("--all", options->all, "run the hidden tests too (instructors)");
     check->add_option("--timeout", options->timeout,
-                      "CPU seconds each test may use, 0.1 to 3600 (default: the rubric's)")
+                      "CPU seconds each test may use, its processes together, 0.1 to 3600 (default: the rubric's)")
         ->check(limitOption("cpu_seconds"));
     check->add_option("--test", options->tests, "run only the test of this name (repeatable)");
     check->add_option("--rubric", options->rubric, "another rubric file (default: the assignment's)")

@@ -14,6 +14,7 @@
 #include "simlab/engine/batch.h"
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
+#include "simlab/engine/grade.h"
 #include "simlab/engine/manifest.h"
 #include "simlab/engine/process.h"
 #include "simlab/engine/report.h"
@@ -93,6 +94,10 @@ void runGrade(const GradeCommandOptions& o) {
 
     const SandboxSupport& sandbox = sandboxSupport();
     if (!sandbox.warning.empty()) std::cerr << "simlab: warning: " << sandbox.warning << "\n";
+    // Hidden tests run only where no test's code can read them, nor the class's files.
+    if (const std::string exposed = secretsExposed(manifest, assignment, {root, out}); !exposed.empty()) {
+        throw UsageError(exposed);
+    }
     std::printf("Grading %s (%s) from %s into %s: %d jobs, sandbox: %s\n", assignment.id.c_str(),
                 assignment.title.c_str(), printable(root).c_str(), printable(out).c_str(), o.jobs,
                 sandbox.summary.c_str());
@@ -159,9 +164,10 @@ void addGrade(CLI::App& app) {
     grade->add_option("--only", options->only, "regrade only this student (repeatable); other rows are kept");
     grade->add_option("--junit", options->junit, "also write JUnit XML to this file");
     grade->add_option("--timeout", options->timeout,
-                      "CPU seconds each test may use, 0.1 to 3600 (default: the rubric's)")
+                      "CPU seconds each test may use, its processes together, 0.1 to 3600 (default: the rubric's)")
         ->check(limitOption("cpu_seconds"));
-    grade->add_option("--memory", options->memory, "MiB each test may use, 64 to 65536 (default: the rubric's)")
+    grade->add_option("--memory", options->memory,
+                      "MiB of memory each test may hold, its processes together, 64 to 65536 (default: the rubric's)")
         ->check(limitOption("memory_mib"));
     grade->add_option("--rubric", options->rubric, "another rubric file (default: the assignment's)")
         ->check(CLI::ExistingFile);

@@ -50,6 +50,7 @@ void runAutograde(const AutogradeOptions& o) {
         const Assignment& assignment = manifest.find(o.assignment);
         if (!fs::is_directory(o.submission)) throw UsageError("no submission folder " + o.submission);
         const Rubric rubric = loadRubric(assignment.rubric);
+        if (const std::string exposed = secretsExposed(manifest, assignment); !exposed.empty()) throw UsageError(exposed);
         GradeOptions options;
         options.includeHidden = true;
         const GradeReport report =

@@ -2,10 +2,6 @@
 // (simlab/study.h) measures every point and prints it as a JSON line; this command writes them to trade.csv, draws
 // digits against evaluations and against time with gnuplot, and prints the cheapest setting for each number of
 // digits and the Pareto front.
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
@@ -29,8 +25,6 @@
 #include "simlab/engine/text.h"
 #include <regex>
 #include <toml++/toml.h>
-
-extern char** environ;
 
 namespace simlab::cli {
 
@@ -63,42 +57,39 @@ const char* const kIntegrators[] = {"RungeKuttaMerson", "RungeKutta3", "RungeKut
                                     "ExplicitEuler",    "SemiExplicitEuler", "SemiExplicitEuler2", "Verlet",
                                     "CPodes"};
 
-/// Runs `argv` with its standard output read line by line into `onLine`; its standard error is ours (progress).
-int runReading(const std::vector<std::string>& argv, const std::function<void(const std::string&)>& onLine) {
-    int out[2];
-    if (pipe(out) != 0) throw std::runtime_error("cannot make a pipe");
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_adddup2(&actions, out[1], 1);
-    posix_spawn_file_actions_addclose(&actions, out[0]);
-    posix_spawn_file_actions_addclose(&actions, out[1]);
-    std::vector<char*> args;
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    close(out[1]);
-    if (spawned != 0) {
-        close(out[0]);
-        throw std::runtime_error("cannot run " + argv[0] + ": " + std::strerror(spawned));
+/// Runs a study program, handing each line it prints to `onLine` as it comes; what is not a JSON line (a progress
+/// line, an error) goes to our standard error. A student's study program runs in the sandbox, as a probe does
+/// (its folder lent read-only, a scratch working directory, no network); the course's runs as a tool. Returns its
+/// exit status (128 + N for signal N).
+int runStudyProgram(const std::vector<std::string>& argv, bool sandboxed,
+                    const std::function<void(const json&)>& onLine) {
+    engine::TempDir scratch("simlab-study-run-");
+    engine::ProcessRequest request;
+    request.argv = argv;
+    request.env = engine::childEnvironment({"LC_ALL=C", "SIMLAB_PROGRESS=1"});
+    request.workDir = scratch.path();
+    request.limits.cpuSeconds = 4 * 3600;  // a net: the points' evaluation caps bound the work
+    request.limits.wallSeconds = 12 * 3600;
+    request.limits.memoryMiB = 8192;
+    request.limits.outputKiB = 1 << 20;
+    request.limits.fileMiB = 64;
+    request.limits.processes = 16;
+    request.keepOutput = 0;
+    request.onOutputLine = [&](const std::string& line) {
+        const json j = json::parse(line, nullptr, false);
+        if (!j.is_discarded() && j.is_object()) onLine(j);
+        else if (!line.empty()) std::cerr << engine::printable(line) << '\n';
+    };
+    if (sandboxed) {
+        request.isolate = true;
+        request.scratchWorkDir = true;
+        request.readOnlyPaths = {fs::path(argv.front()).parent_path().string()};
     }
-    std::unique_ptr<FILE, int (*)(FILE*)> in(fdopen(out[0], "r"), fclose);
-    std::string line;
-    int c = 0;
-    while ((c = std::fgetc(in.get())) != EOF) {
-        if (c == '\n') {
-            onLine(line);
-            line.clear();
-        } else if (line.size() < (1u << 20)) {
-            line += static_cast<char>(c);
-        }
-    }
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    if (WIFEXITED(status)) return WEXITSTATUS(status);
-    return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+    const engine::ProcessResult result = engine::runProcess(request);
+    if (!result.started) throw std::runtime_error("cannot run " + argv.front() + ": " + result.error);
+    if (result.cpuTimeout || result.wallTimeout) throw std::runtime_error(argv.front() + " ran past its time net");
+    if (result.signal != 0) return 128 + result.signal;
+    return result.exitCode;
 }
 
 std::string number(const json& value, const char* format = "%.6g") {
@@ -177,16 +168,18 @@ std::vector<std::string> plot(const fs::path& dir, const std::string& subject) {
 void printTable(std::ostream& out, const SubjectRun& run) {
     const json& s = run.subject;
     const double referenceDigits = s["reference_digits"].is_number() ? s["reference_digits"].get<double>() : 0;
+    // The reference's accuracy, floored to a tenth: a bound, never rounded up past what was measured.
     out << '\n'
         << text(s["subject"]) << ": " << text(s["figure"]) << "\n  reference: " << text(s["reference"]) << ", good to "
-        << number(s["reference_digits"], "%.1f") << " digits at t = " << number(s["final_time"]) << " s\n";
-    std::vector<const json*> ok;
-    int costly = 0, failed = 0;
+        << number(json(std::floor(referenceDigits * 10) / 10), "%.1f") << " digits at t = "
+        << number(s["final_time"]) << " s\n";
+    std::vector<const json*> ok, failed;
+    int costly = 0;
     for (const json& p : run.points) {
         const std::string status = text(p["status"]);
         if (status == "ok") ok.push_back(&p);
         else if (status == "too costly") ++costly;
-        else if (status != "no error control") ++failed;
+        else if (status != "no error control") failed.push_back(&p);
     }
     // By evaluations, a count the same on every machine; ties keep the study's order (the loosest setting first),
     // never the clock's.
@@ -228,7 +221,12 @@ void printTable(std::ostream& out, const SubjectRun& run) {
             << number((*p)["worst_digits"], "%.1f") << ", " << text((*p)["integrator"]) << " " << setting(*p);
     }
     out << "\n  " << run.points.size() << " points: " << ok.size() << " ok, " << costly << " too costly (past "
-        << number(s["max_evaluations"], "%.0f") << " evaluations), " << failed << " failed or blew up\n";
+        << number(s["max_evaluations"], "%.0f") << " evaluations), " << failed.size() << " failed or blew up"
+        << (failed.empty() ? "" : ":") << '\n';
+    for (const json* p : failed) {
+        out << "    " << text((*p)["integrator"]) << ", " << setting(*p) << ": " << text((*p)["status"]) << ", "
+            << engine::printable(text((*p)["message"])) << '\n';
+    }
 }
 
 /// `study minimal`: the scene with its minimal mobilizers and over-modelled, side by side, at each accuracy.
@@ -300,8 +298,8 @@ void runTrade(const StudyOptions& o) {
     }
     if (labs.empty()) throw engine::UsageError("no lab here has a study (their reference solutions are not in this tree)");
 
-    // A student's file: its own study program, built as `simlab build` builds its lab program. Its code runs here,
-    // outside the grader's sandbox: a study is for one's own file.
+    // A student's file: its own study program, built as `simlab build` builds its lab program, with grading's object
+    // check, and run in grading's sandbox.
     std::unique_ptr<engine::TempDir> built;
     std::string studyProgram;
     if (!o.file.empty()) {
@@ -318,9 +316,12 @@ void runTrade(const StudyOptions& o) {
         const engine::BuildResult result = engine::Builder(manifest).buildStudy(a, files.name, files.text, studyProgram);
         if (!result.ok) {
             std::cerr << engine::printable(engine::firstLines(result.log, 30), true);
-            throw engine::UsageError(engine::printable(o.file) +
-                                     (result.stage == "link" ? " did not link" : " did not compile"));
+            throw engine::UsageError(engine::printable(o.file) + (result.stage == "link"    ? " did not link"
+                                                                  : result.stage == "check" ? " is refused (forbidden code)"
+                                                                                            : " did not compile"));
         }
+        // Grading's sandbox, where the program can read nothing but the system and its own folder.
+        fs::permissions(built->path(), fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
     }
     const fs::path dir = fs::absolute(o.output);
     fs::create_directories(dir);
@@ -344,9 +345,7 @@ void runTrade(const StudyOptions& o) {
             if (o.maxEvaluations > 0) argv.insert(argv.end(), {"--max-evaluations", std::to_string(o.maxEvaluations)});
             if (o.repeats > 0) argv.insert(argv.end(), {"--repeats", std::to_string(o.repeats)});
             LabRun& r = results[i];
-            r.status = runReading(argv, [&r](const std::string& line) {
-                json j = json::parse(line, nullptr, false);
-                if (j.is_discarded() || !j.is_object()) return;
+            r.status = runStudyProgram(argv, !studyProgram.empty(), [&r](const json& j) {
                 if (text(j["type"]) == "subject") r.runs.push_back({j, {}, {}});
                 else if (text(j["type"]) == "point" && !r.runs.empty()) r.runs.back().points.push_back(j);
                 else if (text(j["type"]) == "minimal") r.minimal.push_back(j);
@@ -611,7 +610,9 @@ void addStudy(CLI::App& app) {
     trade->add_option("--max-evaluations", options->maxEvaluations,
                       "the cost cap: evaluations one point may take (default 5e5; 2e5 with --quick)")
         ->check(CLI::Range(100.0, 1e9));
-    trade->add_option("--cap", options->cap, "seconds of CPU time one point may take, a net (default 60)")
+    trade->add_option("--cap", options->cap,
+                      "seconds of CPU time one point may take (default 600): a net for a run that would not end, "
+                      "never the cost cap (a point it stops is failed, and says so)")
         ->check(CLI::Range(0.01, 3600.0));
     trade->add_option("--repeats", options->repeats, "timed runs per point, the fastest kept (default 3)")
         ->check(CLI::Range(1, 100));
@@ -620,8 +621,8 @@ void addStudy(CLI::App& app) {
         ->check(CLI::Range(1, 64))
         ->capture_default_str();
     trade->add_option("--file", options->file,
-                      "study this student file instead of the reference solution (its code runs on this machine, "
-                      "outside the sandbox: for one's own file)");
+                      "study this student file instead of the reference solution: it is built with grading's object "
+                      "check and run in grading's sandbox");
     trade->callback([options] { runTrade(*options); });
 
     CLI::App* minimal = study->add_subcommand(
@@ -631,7 +632,9 @@ void addStudy(CLI::App& app) {
     minimal->add_option("--output,-o", options->output, "folder for minimal.csv")->capture_default_str();
     minimal->add_option("--repeats", options->repeats, "timed runs per row, the fastest kept (default 3)")
         ->check(CLI::Range(1, 100));
-    minimal->add_option("--file", options->file, "study this student file's minimal model instead of the solution's");
+    minimal->add_option("--file", options->file,
+                        "study this student file's minimal model instead of the solution's (built with grading's "
+                        "object check, run in grading's sandbox)");
     minimal->callback([options] {
         options->minimal = true;
         runTrade(*options);

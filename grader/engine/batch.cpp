@@ -48,6 +48,7 @@ StudentRecord recordOf(const std::string& id, const std::string& key, const Grad
     r.maxScore = report.maxScore();
     r.seconds = report.seconds;
     r.compiler = firstLines(report.build.ok ? report.build.warnings : report.build.log, 20);
+    r.sandbox = report.sandbox;
     r.tests = report.tests;
     return r;
 }
@@ -275,11 +276,10 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
         progress.lastReused = false;
         if (onProgress) onProgress(progress);
     };
-    auto worker = [&](int slot) {
+    auto worker = [&] {
         for (std::size_t i = next++; i < pending.size() && !stop; i = next++) {
             const Pending& p = pending[i];
-            GradeOptions grade = options.grade;
-            grade.slot = slot;
+            const GradeOptions& grade = options.grade;
             try {
                 GradeReport report;
                 if (p.gathered.files) {
@@ -315,7 +315,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     };
     std::vector<std::thread> workers;
     const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(pending.size())));
-    for (int slot = 0; slot < jobs; ++slot) workers.emplace_back(worker, slot);
+    for (int k = 0; k < jobs; ++k) workers.emplace_back(worker);
     for (std::thread& w : workers) w.join();
 
     for (const std::string& id : ids) {

@@ -20,17 +20,42 @@ namespace simlab::engine {
 
 namespace {
 
-// Compilers and linkers are trusted, but what they read is not: limits stop an #include of /dev/zero. Their CPU
-// time decides; the wall clock is a net for a machine under load.
+// Compilers and linkers are trusted, but what they read is not: limits stop an #include of /dev/zero or a
+// constexpr evaluation that never ends. A lab's one file compiles in about 2 s of CPU time against the precompiled
+// header and links in under 1 s: the limits leave ten times that and more. Their CPU time decides; the wall clock
+// is a net for a machine under load.
 Limits toolLimits() {
     Limits l;
-    l.wallSeconds = 300;
-    l.cpuSeconds = 120;
+    l.wallSeconds = 180;
+    l.cpuSeconds = 30;
     l.memoryMiB = 4096;
     l.outputKiB = 1024;
     l.fileMiB = 64;  // an object is a few MiB: a .fill of 500 MiB in inline assembly stops here
     l.processes = 16;
     return l;
+}
+
+// Why a tool was stopped by one of the course's limits, in one line; empty when no limit stopped it. A stopped
+// tool says nothing about the file's correctness: its outcome is not kept in the cache.
+std::string stoppedByLimit(const char* tool, const ProcessResult& run, const Limits& limits) {
+    char line[256];
+    if (run.cpuTimeout) {
+        std::snprintf(line, sizeof line, "the %s was stopped after %.0f s of CPU time, the course's limit for one "
+                      "file (something evaluated at compile time that does not end: constexpr, templates?)",
+                      tool, limits.cpuSeconds);
+    } else if (run.wallTimeout) {
+        std::snprintf(line, sizeof line, "the %s was stopped after %.0f s of wall-clock time", tool, limits.wallSeconds);
+    } else if (run.memoryLimit || run.output.find("out of memory") != std::string::npos ||
+               run.output.find("virtual memory exhausted") != std::string::npos) {
+        std::snprintf(line, sizeof line, "the %s was stopped: it needed more than the %ld MiB of memory the course "
+                      "allows", tool, static_cast<long>(limits.memoryMiB));
+    } else if (run.outputLimit) {
+        std::snprintf(line, sizeof line, "the %s was stopped: it printed more than %ld KiB", tool,
+                      static_cast<long>(limits.outputKiB));
+    } else {
+        return "";
+    }
+    return line;
 }
 
 // Tools run in the C locale, so messages quote with plain ASCII; part of the cache key, as it shapes the log.
@@ -209,6 +234,8 @@ Builder::Builder(const Manifest& manifest) : manifest_(manifest), cacheDir_(mani
     if (const char* dir = std::getenv("SIMLAB_CACHE"); dir && *dir) cacheDir_ = dir;
     std::error_code ignored;
     fs::create_directories(cacheDir_, ignored);
+    // Every student's source and object is kept here: simlab's alone (the linker gets a copy of the one it needs).
+    fs::permissions(cacheDir_, fs::perms::owner_all, ignored);
 }
 
 std::string Builder::objectKey(const Assignment& assignment, const std::string& sourceText) const {
@@ -304,7 +331,7 @@ const CourseSymbols& Builder::courseSymbols(const Assignment& assignment) const 
 }
 
 BuildResult Builder::compile(const Assignment& assignment, const std::string& name, const std::string& text,
-                             const std::string& workDir, int slot, std::string* object) const {
+                             const std::string& workDir, std::string* object) const {
     BuildResult result;
     result.stage = "compile";
     const std::string key = objectKey(assignment, text);
@@ -337,7 +364,6 @@ BuildResult Builder::compile(const Assignment& assignment, const std::string& na
     // report: it runs as the sandbox user and sees the system, the contract's headers and the precompiled header -
     // nothing of the course's tests, rubrics or solutions, of other students', or of simlab's build tree.
     request.isolate = true;
-    request.slot = slot;
     request.readOnlyPaths = includeFolders(manifest_.compile);
     request.readOnlyPaths.push_back(assignment.contractInclude);
     request.maskedPaths = {manifest_.sourceDir, manifest_.buildDir};
@@ -347,15 +373,20 @@ BuildResult Builder::compile(const Assignment& assignment, const std::string& na
         result.interrupted = true;
         return result;
     }
-    result.ok = run.exitedCleanly() && fs::exists(output);
+    const std::string limit = stoppedByLimit("compiler", run, request.limits);
+    result.ok = limit.empty() && run.exitedCleanly() && fs::exists(output);
     std::string log = run.started ? run.output : run.error;
-    if (run.wallTimeout || run.cpuTimeout) log = "the compiler was stopped after " + std::to_string(static_cast<int>(run.cpuTimeout ? request.limits.cpuSeconds : request.limits.wallSeconds)) + " s\n" + log;
-    else if (!result.ok && run.signal) log = "the compiler crashed (" + signalName(run.signal) + ")\n" + log;
+    if (!limit.empty()) {
+        log = limit + "\n" + log;
+        result.stoppedByLimit = true;
+    } else if (!result.ok && run.signal) {
+        log = "the compiler crashed (" + signalName(run.signal) + ")\n" + log;
+    }
 
     // Keep the outcome in the cache, then publish the object (a copy simlab owns, not the sandbox user's file). A
-    // compile error is kept too (the same file fails the same way); a compiler stopped by a limit is not, since
-    // a quieter machine may finish it.
-    const bool genuineError = run.started && run.signal == 0 && run.exitCode > 0 && !run.wallTimeout && !run.cpuTimeout;
+    // compile error is kept too (the same file fails the same way); a compiler stopped by a limit is not: that
+    // says nothing of the file, and a quieter machine may finish it.
+    const bool genuineError = run.started && run.signal == 0 && run.exitCode > 0 && limit.empty();
     if (result.ok || genuineError) {
         writeFileAtomically(cachedLog, log);
         writeFileAtomically(cachedSource, text);
@@ -371,21 +402,30 @@ BuildResult Builder::compile(const Assignment& assignment, const std::string& na
 }
 
 void Builder::link(const std::vector<std::string>& inputs, const std::vector<std::string>& flags,
-                   const std::string& output, int slot, BuildResult& result) const {
+                   const std::string& output, BuildResult& result) const {
+    // The linker works in a folder of its own, which its sandbox user owns for the link: it reads the student's
+    // object from there (the cache is simlab's alone), and what it made is copied out by simlab.
+    TempDir work("simlab-link-");
+    const std::string student = work.path() + "/student.o", made = work.path() + "/program";
+    std::vector<std::string> linked;
+    for (const std::string& input : inputs) {
+        const bool cached = input.rfind(cacheDir_ + "/", 0) == 0;
+        if (cached) writeFileAtomically(student, readFile(input));
+        linked.push_back(cached ? student : input);
+    }
     ProcessRequest request;
     request.argv = manifest_.link;
-    request.argv.insert(request.argv.end(), {"-o", output});
-    request.argv.insert(request.argv.end(), inputs.begin(), inputs.end());
+    request.argv.insert(request.argv.end(), {"-o", made});
+    request.argv.insert(request.argv.end(), linked.begin(), linked.end());
     request.argv.insert(request.argv.end(), flags.begin(), flags.end());
     request.env = {"PATH=/usr/bin:/bin", "TMPDIR=/tmp", kToolLocale};
-    request.workDir = fs::path(output).parent_path().string();
+    request.workDir = work.path();
     request.limits = toolLimits();
     // The linker reads the student's object too: it runs in the sandbox as well, lent its inputs one by one, and
     // with no plugin (the link compiles nothing: see the manifest's link command).
     request.isolate = true;
-    request.slot = slot;
-    for (const std::string& input : inputs) {
-        if (input.rfind("/usr/", 0) != 0) request.readOnlyPaths.push_back(input);
+    for (const std::string& input : linked) {
+        if (input.rfind("/usr/", 0) != 0 && input != student) request.readOnlyPaths.push_back(input);
     }
     for (const std::string& flag : flags) {
         const std::size_t file = flag.find("--version-script=");
@@ -399,65 +439,68 @@ void Builder::link(const std::vector<std::string>& inputs, const std::vector<std
         result.interrupted = true;
         return;
     }
-    result.ok = run.exitedCleanly() && fs::exists(output);
+    const std::string limit = stoppedByLimit("linker", run, request.limits);
+    result.ok = limit.empty() && run.exitedCleanly() && fs::exists(made);
     if (!result.ok) {
         result.stage = "link";
-        result.log = linkSummary(run.started ? run.output : run.error);
-    } else {
-        result.binary = output;
-        // What it made is simlab's, not the sandbox user's.
-        std::error_code ignored;
-        if (::geteuid() == 0) {
-            (void)!::chown(output.c_str(), 0, 0);
-            (void)!::chown(request.workDir.c_str(), 0, 0);
-        }
+        result.stoppedByLimit = !limit.empty();
+        result.log = limit.empty() ? linkSummary(run.started ? run.output : run.error) : limit + "\n";
+        return;
     }
+    // A copy simlab owns, not the sandbox user's file.
+    writeFileAtomically(output, readFile(made));
+    fs::permissions(output, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                fs::perms::others_read | fs::perms::others_exec);
+    result.binary = output;
+}
+
+bool Builder::refusedObject(const Assignment& assignment, const std::string& object, const std::string& name,
+                            BuildResult& result) const {
+    const std::vector<std::string> problems = forbiddenCode(object, name, courseSymbols(assignment));
+    if (problems.empty()) return false;
+    result.ok = false;
+    result.stage = "check";
+    for (const std::string& p : problems) result.log += p + "\n";
+    return true;
 }
 
 BuildResult Builder::buildProbe(const Assignment& assignment, const std::string& name, const std::string& text,
-                                const std::string& workDir, const std::string& binary, int slot) const {
+                                const std::string& workDir, const std::string& binary) const {
     std::string object;
-    BuildResult result = compile(assignment, name, text, workDir, slot, &object);
-    if (!result.ok) return result;
-    const std::vector<std::string> problems = forbiddenCode(object, name, courseSymbols(assignment));
-    if (!problems.empty()) {
-        result.ok = false;
-        result.stage = "check";
-        for (const std::string& p : problems) result.log += p + "\n";
-        return result;
-    }
+    BuildResult result = compile(assignment, name, text, workDir, &object);
+    if (!result.ok || refusedObject(assignment, object, name, result)) return result;
     // The course's objects first and whole: an inline function both define keeps the course's copy, and a
     // definition of anything the course defines is an error rather than a replacement.
     std::vector<std::string> inputs = assignment.probeObjects;
     inputs.push_back(object);
     inputs.insert(inputs.end(), manifest_.probeLibraries.begin(), manifest_.probeLibraries.end());
-    link(inputs, manifest_.probeLink, binary, slot, result);
+    link(inputs, manifest_.probeLink, binary, result);
     return result;
 }
 
 BuildResult Builder::buildLinked(const Assignment& assignment, const std::string& name, const std::string& text,
                                  const std::string& output, const std::vector<std::string>& objects,
-                                 const std::vector<std::string>& libraries) const {
+                                 const std::vector<std::string>& libraries, bool checkObject) const {
     const fs::path target = fs::absolute(output);
     TempDir work("simlab-build-");
     std::string object;
-    BuildResult result = compile(assignment, name, text, work.path(), 0, &object);
-    if (!result.ok) return result;
+    BuildResult result = compile(assignment, name, text, work.path(), &object);
+    if (!result.ok || (checkObject && refusedObject(assignment, object, name, result))) return result;
     std::vector<std::string> inputs = {object};
     inputs.insert(inputs.end(), objects.begin(), objects.end());
     inputs.insert(inputs.end(), libraries.begin(), libraries.end());
-    link(inputs, {}, target.string(), 0, result);
+    link(inputs, {}, target.string(), result);
     return result;
 }
 
 BuildResult Builder::buildProgram(const Assignment& assignment, const std::string& name, const std::string& text,
                                   const std::string& output) const {
-    return buildLinked(assignment, name, text, output, assignment.programObjects, manifest_.programLibraries);
+    return buildLinked(assignment, name, text, output, assignment.programObjects, manifest_.programLibraries, false);
 }
 
 BuildResult Builder::buildStudy(const Assignment& assignment, const std::string& name, const std::string& text,
                                 const std::string& output) const {
-    return buildLinked(assignment, name, text, output, assignment.studyObjects, manifest_.studyLibraries);
+    return buildLinked(assignment, name, text, output, assignment.studyObjects, manifest_.studyLibraries, true);
 }
 
 }  // namespace simlab::engine

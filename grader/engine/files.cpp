@@ -54,10 +54,23 @@ std::string readFile(const std::string& path) {
 void writeFileAtomically(const std::string& path, const std::string& text) {
     const std::string temporary = path + ".tmp." + std::to_string(::getpid());
     {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.flush();
-        if (!out) throw std::runtime_error("cannot write " + temporary + ": " + std::strerror(errno));
+        // Close-on-exec: a process another thread starts meanwhile must not keep the file open for writing (a
+        // program being written would be busy, ETXTBSY, when it is run).
+        const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+        if (fd < 0) throw std::runtime_error("cannot write " + temporary + ": " + std::strerror(errno));
+        std::size_t done = 0;
+        while (done < text.size()) {
+            const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) {
+                const int error = errno;
+                ::close(fd);
+                std::remove(temporary.c_str());
+                throw std::runtime_error("cannot write " + temporary + ": " + std::strerror(error));
+            }
+            done += static_cast<std::size_t>(n);
+        }
+        ::close(fd);
     }
     if (std::rename(temporary.c_str(), path.c_str()) != 0) {
         const int error = errno;

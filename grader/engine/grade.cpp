@@ -128,6 +128,10 @@ TestResult interpret(const RubricTest& test, const ProcessResult& probe, const P
         t.reason = "the grader's judge stopped (" +
                    std::string(judge.signal ? signalName(judge.signal) : judge.cpuTimeout ? "its CPU time ran out" : "its time ran out") +
                    ") before this test: a fault in simlab, not in the submission";
+    } else if (probe.memoryLimit) {
+        t.outcome = Outcome::OutOfMemory;
+        t.reason = "killed for memory: its processes together held more than " + std::to_string(limits.memoryMiB) +
+                   " MiB";
     } else if (events.memory && (probe.exitCode == 137 || probe.signal != 0)) {
         t.outcome = Outcome::OutOfMemory;
         t.reason = "killed for memory: it needed more than " + std::to_string(limits.memoryMiB) + " MiB";
@@ -198,19 +202,17 @@ struct Workspace {
     std::string root, build, probe, judgeFiles, submission;
 };
 
-void makeReadable(const std::string& path) {
+// A folder every sandbox user may pass through to what it is handed, without seeing what else is there.
+void makePassable(const std::string& path) {
     std::error_code ignored;
-    fs::permissions(path,
-                    fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec | fs::perms::others_read |
-                        fs::perms::others_exec,
-                    ignored);
+    fs::permissions(path, fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec, ignored);
 }
 
 // The tests of one submission: one judge runs them all, in turn, and at each test's first question asks for a
 // probe of that test's own on the socket at its descriptor 6. The server below starts the probe with two new pipes
 // - requests to its descriptor 4, answers from its descriptor 5 - and hands the judge their other ends.
 std::vector<TestResult> runTests(const Assignment& assignment, const std::vector<const RubricTest*>& tests,
-                                 const Workspace& w, const Limits& limits, int slot, std::string* graderOutput) {
+                                 const Workspace& w, const Limits& limits, std::string* graderOutput) {
     int socket[2];
     if (::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, socket) != 0) {
         throw std::runtime_error(std::string("cannot create a socket: ") + std::strerror(errno));
@@ -237,17 +239,23 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
             }
             const std::string dir = w.root + "/test" + std::to_string(++started);
             fs::create_directory(dir);
+            // Each test's probe runs as a user of its own, from a copy of the program that user owns while it runs
+            // (a test's user never touches another's files, even as one test ends and the next begins).
+            const std::string program = w.root + "/program" + std::to_string(started);
+            fs::create_directory(program);
+            writeFileAtomically(program + "/probe", readFile(w.probe + "/probe"));
+            fs::permissions(program + "/probe", fs::perms::owner_all);
             ProcessRequest probe;
-            probe.argv = {w.probe + "/probe"};
+            probe.argv = {program + "/probe"};
             probe.env = {"PATH=/usr/bin:/bin", "HOME=" + dir, "TMPDIR=/tmp", "LC_ALL=C"};
             probe.workDir = dir;
             probe.limits = limits;
             probe.reportChannel = true;
             probe.passFds = {{4, requests[0]}, {5, answers[1]}};
             probe.isolate = true;
-            probe.readOnlyPaths = {w.probe};
+            probe.readOnlyPaths = {program};
+            probe.handOver = {program};
             probe.scratchWorkDir = true;
-            probe.slot = slot;
             running.emplace_back([&, probe, test] {
                 ProcessResult result = runProcess(probe);
                 std::lock_guard<std::mutex> guard(lock);
@@ -275,14 +283,11 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
         }
     });
 
-    // Without bubblewrap the judge runs as its throwaway user straight from the disk: from a copy of its own here,
-    // since the build tree may lie below a folder that user cannot enter.
-    std::string judgeProgram = assignment.judge;
-    if (!sandboxSupport().bubblewrap) {
-        judgeProgram = w.judgeFiles + "/judge";
-        fs::copy_file(assignment.judge, judgeProgram, fs::copy_options::overwrite_existing);
-        makeReadable(judgeProgram);
-    }
+    // The judge runs from a copy of its own, in the folder its user owns for the run: the course's judge may be
+    // (and, graded without bubblewrap or Landlock, must be) unreadable to every other user.
+    const std::string judgeProgram = w.judgeFiles + "/judge";
+    writeFileAtomically(judgeProgram, readFile(assignment.judge));
+    fs::permissions(judgeProgram, fs::perms::owner_all);
     ProcessRequest judge;
     // One test spec naming every test: Catch2 reads commas as "or" (a rubric's names hold none).
     std::string names;
@@ -298,9 +303,8 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     judge.passFds = {{6, socket[1]}};
     judge.isolate = true;
     judge.readOnlyPaths = {judgeProgram, w.judgeFiles};
+    judge.handOver = {w.judgeFiles};  // its user's alone: no probe can read the judge, the rubric or the files
     judge.scratchWorkDir = true;
-    judge.judgeUser = true;
-    judge.slot = slot;
     const ProcessResult judged = runProcess(judge);
     ::shutdown(socket[0], SHUT_RDWR);  // ends the server's wait, should the judge have left a copy behind
     server.join();
@@ -377,6 +381,30 @@ GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, 
     return report;
 }
 
+std::string secretsExposed(const Manifest& manifest, const Assignment& assignment,
+                           const std::vector<std::string>& more) {
+    std::vector<std::string> secrets = assignment.hiddenTests;
+    const char* cache = std::getenv("SIMLAB_CACHE");
+    for (const std::string& path : {assignment.solution, assignment.judge, manifest.sampleClass,
+                                    manifest.sourceDir + "/tests/corpus",
+                                    cache && *cache ? std::string(cache) : manifest.buildDir + "/cache/objects"}) {
+        if (!path.empty()) secrets.push_back(path);
+    }
+    secrets.insert(secrets.end(), more.begin(), more.end());
+    for (std::string& path : secrets) {
+        std::error_code ignored;
+        if (!path.empty()) path = fs::absolute(path, ignored).lexically_normal().string();
+    }
+    const std::vector<std::string> readable = readableInSandbox(secrets);
+    if (readable.empty()) return "";
+    std::string paths;
+    for (const std::string& path : readable) paths += " " + path;
+    return "in this sandbox (" + sandboxSupport().mode + ") a test's code could read " + readable.front() +
+           (readable.size() > 1 ? " and " + std::to_string(readable.size() - 1) + " more" : "") +
+           ", so hidden tests are not run: make them unreadable to other users (chmod -R go-rwx" + paths +
+           "), or install bubblewrap";
+}
+
 double roundScore(double points) { return std::round(points * 100.0) / 100.0; }
 
 double GradeReport::score() const {
@@ -399,6 +427,7 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
     report.title = assignment.title;
     report.manual = rubric.manual;
     report.source = files.shown;
+    report.sandbox = sandboxSupport().summary;
     for (const HandedIn& extra : files.extras) {
         if (!extra.ok) report.note += (report.note.empty() ? "" : "; ") + extra.refusal;
     }
@@ -428,8 +457,9 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
     Workspace w{work.path(), work.path() + "/build", work.path() + "/probe", work.path() + "/judge",
                 work.path() + "/judge/submission"};
     for (const std::string& dir : {w.build, w.probe, w.judgeFiles, w.submission}) fs::create_directory(dir);
-    for (const std::string& dir : {w.root, w.probe, w.judgeFiles, w.submission}) makeReadable(dir);
-    report.build = builder.buildProbe(assignment, files.name, files.text, w.build, w.probe + "/probe", options.slot);
+    // Each folder below is handed to the sandbox user of the process that works in it, for that run (0700).
+    makePassable(w.root);
+    report.build = builder.buildProbe(assignment, files.name, files.text, w.build, w.probe + "/probe");
     if (report.build.interrupted) throw Interrupted();
     const Limits limits = options.limits.value_or(rubric.limits);
 
@@ -439,13 +469,7 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
             if (extra.ok) writeFileAtomically(w.submission + "/" + extra.name, extra.text);
             else writeFileAtomically(w.submission + "/" + extra.name + ".refused", extra.refusal);
         }
-        for (const auto& entry : fs::directory_iterator(w.judgeFiles)) makeReadable(entry.path().string());
-        for (const auto& entry : fs::directory_iterator(w.submission)) {
-            std::error_code ignored;
-            fs::permissions(entry.path(), fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
-                                              fs::perms::others_read, ignored);
-        }
-        if (!selected.empty()) report.tests = runTests(assignment, selected, w, limits, options.slot, &report.graderOutput);
+        if (!selected.empty()) report.tests = runTests(assignment, selected, w, limits, &report.graderOutput);
     } else {
         const std::string& stage = report.build.stage;
         report.status = stage == "check" ? "forbidden code" : stage == "link" ? "did not link" : "did not compile";
@@ -456,7 +480,7 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
             t.visibility = test->visibility;
             t.maxScore = test->points;
             t.outcome = stage == "check" ? Outcome::Refused : Outcome::DidNotCompile;
-            t.reason = stage == "check" ? firstReason : report.status;
+            t.reason = stage == "check" || report.build.stoppedByLimit ? firstReason : report.status;
             report.tests.push_back(t);
         }
     }

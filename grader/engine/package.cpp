@@ -266,7 +266,9 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
         "# base image: simlab needs CMake 3.25 and libtomlplusplus-dev.\n"
         "set -euo pipefail\n"
         "source_dir=$(cd \"$(dirname \"${BASH_SOURCE[0]}\")\" && pwd)\n"
-        "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" \"$source_dir/scripts/setup\"\n");
+        "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" \"$source_dir/scripts/setup\"\n"
+        "# The hidden tests, solutions and judges readable by root alone, should neither bubblewrap nor Landlock run.\n"
+        "\"$source_dir/scripts/lock-course\"\n");
     writeFileAtomically(staging.path() + "/run_autograder",
         "#!/usr/bin/env bash\n"
         "# Gradescope runs this for every submission: it grades /autograder/submission on every test of the\n"
@@ -309,7 +311,8 @@ PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignm
         "#     docker build -t " + options.image + " . && docker push " + options.image + "\n"
         "FROM ubuntu:24.04\n"
         "COPY simlab /simlab\n"
-        "RUN SIMLAB_CMAKE_ARGS=-DBUILD_TESTING=OFF /simlab/scripts/setup && rm -rf /var/lib/apt/lists/*\n");
+        "RUN SIMLAB_CMAKE_ARGS=-DBUILD_TESTING=OFF /simlab/scripts/setup && rm -rf /var/lib/apt/lists/* && \\\n"
+        "    /simlab/scripts/lock-course\n");
 
     // The entry point: PrairieLearn copies the question's tests/ to /grade/tests and runs it there.
     const std::string results = "$root/results/results.json";

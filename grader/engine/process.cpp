@@ -1,5 +1,8 @@
 #include "simlab/engine/process.h"
 
+#include "sandbox.h"
+#include "simlab/reproducible_math.h"
+
 #include <dirent.h>
 #include <fcntl.h>
 #include <grp.h>
@@ -9,10 +12,6 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
-#include <linux/audit.h>
-#include <linux/filter.h>
-#include <linux/seccomp.h>
-#include <sched.h>
 #include <cstddef>
 #include <cstdint>
 #include <sys/time.h>
@@ -29,6 +28,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <mutex>
 #include <set>
@@ -67,73 +67,25 @@ void reapOrphans() {
 struct Launch {
     std::vector<std::string> argv;  // with bubblewrap's arguments in front when sandboxed
     bool dropUser = false;          // become `uid` (we are root)
-    uid_t uid = 0;
+    uid_t uid = 0;                  // the child's throwaway user, when it has one (0: none)
     bool newNetwork = false;        // unshare the network ourselves (sandboxed without bubblewrap)
+    int ruleset = -1;               // a Landlock ruleset to restrict the child to (sandboxed without bubblewrap)
+    const std::string* filter = nullptr;  // the system-call filter to load (sandboxed without bubblewrap)
     rlim_t tasks = 0;               // RLIMIT_NPROC; 0 leaves it alone
     pid_t parent = 0;
 };
 
-// Throwaway users for sandboxed children: two per concurrent grading of this simlab process (a probe's and its
-// judge's), 64 gradings at most.
-uid_t sandboxUid(int slot, bool judge) {
-    const char* base = std::getenv("SIMLAB_SANDBOX_UID_BASE");
-    const uid_t first = base ? static_cast<uid_t>(std::strtoul(base, nullptr, 10)) : 2000000;
-    return first + static_cast<uid_t>(::getpid() % 4096) * 128 + (judge ? 64 : 0) + static_cast<uid_t>(slot % 64);
-}
-
 const char* const kSetpriv = "/usr/bin/setpriv";
 constexpr int kSeccompFd = 10;  // where bubblewrap reads the sandbox's system-call filter
 
-// The system calls a sandboxed process may not make, as a classic BPF program for seccomp: the kernel keyrings
-// (which outlive a process and would let one student's code leave a note for the next, who runs as the same
-// throwaway user), other processes' memory, new namespaces, and interfaces no simulation needs. Refused calls fail
-// with EPERM (clone3 with ENOSYS, so that threads fall back to clone); calls of another architecture are refused
-// outright. Empty where simlab does not know the architecture.
-std::string seccompProgram() {
-#if defined(__x86_64__)
-    const std::uint32_t arch = AUDIT_ARCH_X86_64;
-#elif defined(__aarch64__)
-    const std::uint32_t arch = AUDIT_ARCH_AARCH64;
-#else
-    return "";
-#endif
-    const std::vector<long> denied = {
-        SYS_add_key, SYS_request_key, SYS_keyctl, SYS_ptrace, SYS_process_vm_readv, SYS_process_vm_writev,
-        SYS_perf_event_open, SYS_bpf, SYS_userfaultfd, SYS_io_uring_setup, SYS_io_uring_enter,
-        SYS_io_uring_register, SYS_unshare, SYS_setns, SYS_mount, SYS_umount2, SYS_pivot_root, SYS_chroot,
-        SYS_kexec_load, SYS_init_module, SYS_finit_module, SYS_delete_module, SYS_swapon, SYS_swapoff, SYS_reboot};
-    const std::uint32_t namespaces = CLONE_NEWUSER | CLONE_NEWNS | CLONE_NEWPID | CLONE_NEWNET | CLONE_NEWIPC |
-                                     CLONE_NEWUTS | CLONE_NEWCGROUP;
-    // The program, by index (n denied calls): 0 load arch; 1 known arch?; 2 kill; 3 load nr; 4 x32 call?;
-    // 5 .. 4+n denied?; 5+n clone3?; 6+n clone?; 7+n load flags; 8+n namespace flag?; 9+n and 10+n allow;
-    // 11+n EPERM; 12+n ENOSYS. A jump's offset counts from the instruction after it.
-    const std::size_t n = denied.size();
-    const std::size_t eperm = 11 + n, enosys = 12 + n;
-    auto to = [](std::size_t from, std::size_t target) { return static_cast<std::uint8_t>(target - from - 1); };
-    std::vector<struct sock_filter> f;
-    f.push_back(BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, arch)));
-    f.push_back(BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, arch, 1, 0));
-    f.push_back(BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_KILL_PROCESS));
-    f.push_back(BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, nr)));
-#if defined(__x86_64__)
-    f.push_back(BPF_JUMP(BPF_JMP | BPF_JGE | BPF_K, 0x40000000, to(4, eperm), 0));  // the x32 calls
-#else
-    f.push_back(BPF_JUMP(BPF_JMP | BPF_JA, 0, 0, 0));  // (no x32 here: the same layout)
-#endif
-    for (std::size_t i = 0; i < n; ++i) {
-        f.push_back(BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, static_cast<std::uint32_t>(denied[i]), to(5 + i, eperm), 0));
-    }
-    f.push_back(BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_clone3, to(5 + n, enosys), 0));
-    // clone with a namespace flag (the flags are clone's first argument on both architectures).
-    f.push_back(BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_clone, 0, to(6 + n, 10 + n)));
-    f.push_back(BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, args[0])));
-    f.push_back(BPF_JUMP(BPF_JMP | BPF_JSET | BPF_K, namespaces, to(8 + n, eperm), 0));
-    f.push_back(BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_ALLOW));
-    f.push_back(BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_ALLOW));
-    f.push_back(BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_ERRNO | (EPERM & SECCOMP_RET_DATA)));
-    f.push_back(BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_ERRNO | (ENOSYS & SECCOMP_RET_DATA)));
-    return std::string(reinterpret_cast<const char*>(f.data()), f.size() * sizeof(struct sock_filter));
+// What a sandboxed child may always read (and run): the system's programs and libraries, the loader's cache,
+// Debian's alternatives (BLAS and LAPACK, which Simbody loads, are chosen there), fonts (gnuplot, in the judge).
+const std::vector<std::string>& systemFolders() {
+    static const std::vector<std::string> folders = {"/usr", "/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32"};
+    return folders;
 }
+const char* const kSystemFiles[] = {"/etc/ld.so.cache", "/etc/alternatives", "/etc/fonts", "/etc/localtime"};
+const char* const kDevices[] = {"/dev/null", "/dev/zero", "/dev/urandom", "/dev/random"};
 
 bool isUnder(const std::string& path, const std::string& folder) {
     return path.size() > folder.size() && path.compare(0, folder.size(), folder) == 0 && path[folder.size()] == '/';
@@ -147,14 +99,15 @@ bool isUnder(const std::string& path, const std::string& folder) {
 std::vector<std::string> bubblewrapArguments(const std::string& bwrap, const ProcessRequest& r, uid_t dropTo,
                                              bool seccomp) {
     namespace fs = std::filesystem;
-    const std::vector<std::string> system = {"/usr", "/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32"};
+    const std::vector<std::string>& system = systemFolders();
     std::vector<std::string> a = {bwrap};
     if (dropTo) {
         a.insert(a.end(), {"--unshare-pid", "--unshare-net", "--unshare-ipc", "--unshare-uts", "--unshare-cgroup-try"});
     } else {
         a.push_back("--unshare-all");
     }
-    a.push_back("--die-with-parent");
+    // A session of its own, with no terminal (simlab's child has one already; this holds whatever bubblewrap does).
+    a.insert(a.end(), {"--die-with-parent", "--new-session"});
     for (const std::string& dir : system) {
         std::error_code error;
         if (fs::is_symlink(dir, error)) a.insert(a.end(), {"--symlink", fs::read_symlink(dir, error).string(), dir});
@@ -209,7 +162,9 @@ void setLimit(int resource, rlim_t value) {
 // The child between fork and exec: only async-signal-safe calls, no allocation.
 [[noreturn]] void becomeChild(const ProcessRequest& r, const Launch& launch, char* const* argv, char* const* envp,
                               int outWrite, int reportWrite) {
-    ::setpgid(0, 0);
+    // A session of its own: a process group simlab ends as a whole, and no controlling terminal, so that nothing
+    // it runs can open /dev/tty or type into the terminal simlab was started from.
+    ::setsid();
     // Die with simlab, even under kill -9: a sleeping child must not outlive the batch.
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (::getppid() != launch.parent) ::_exit(127);
@@ -223,6 +178,8 @@ void setLimit(int resource, rlim_t value) {
     int moved[16];
     const std::size_t passed = std::min<std::size_t>(r.passFds.size(), 15);
     for (std::size_t i = 0; i < passed; ++i) moved[i] = ::fcntl(r.passFds[i].second, F_DUPFD, 64);
+    // The Landlock ruleset too, whatever its number: a target below could be it.
+    const int ruleset = launch.ruleset >= 0 ? ::fcntl(launch.ruleset, F_DUPFD_CLOEXEC, 64) : -1;
     if (reportWrite >= 0) {
         ::dup2(reportWrite, 3);
         highest = 3;
@@ -230,6 +187,12 @@ void setLimit(int resource, rlim_t value) {
     for (std::size_t i = 0; i < passed; ++i) {
         ::dup2(moved[i], r.passFds[i].first);
         highest = std::max(highest, r.passFds[i].first);
+    }
+    // Landlock's rules, while the ruleset's descriptor is still open (what is already open stays usable).
+    if (launch.ruleset >= 0 && !sandbox::restrictSelf(ruleset)) {
+        const char message[] = "simlab: cannot restrict the sandbox's files (Landlock)\n";
+        (void)!::write(2, message, sizeof message - 1);
+        ::_exit(127);
     }
     // Nothing else simlab holds, or inherited from whoever started it (a terminal, a CI runner's pipes), may
     // reach the child.
@@ -240,7 +203,9 @@ void setLimit(int resource, rlim_t value) {
         ::_exit(127);
     }
     const Limits& l = r.limits;
-    const rlim_t cpu = static_cast<rlim_t>(std::ceil(l.cpuSeconds));
+    // The test's CPU time is its processes' together, which the poll loop adds up and stops at the limit; each
+    // process's own limit is a backstop two seconds later, so that the loop, which names the outcome, comes first.
+    const rlim_t cpu = static_cast<rlim_t>(std::ceil(l.cpuSeconds)) + 2;
     const struct rlimit cpuLimit = {cpu, cpu + 1};  // SIGXCPU at the soft limit, SIGKILL a second later
     ::setrlimit(RLIMIT_CPU, &cpuLimit);
     setLimit(RLIMIT_AS, static_cast<rlim_t>(l.memoryMiB) << 20);
@@ -259,9 +224,23 @@ void setLimit(int resource, rlim_t value) {
             ::_exit(127);
         }
     }
-    ::execve(argv[0], argv, envp);
-    const char message[] = "simlab: cannot execute the program\n";
+    if (launch.filter && !sandbox::installFilter(*launch.filter)) {
+        const char message[] = "simlab: cannot load the sandbox's system-call filter\n";
+        (void)!::write(2, message, sizeof message - 1);
+        ::_exit(127);
+    }
+    // A program simlab has just written can be busy for a moment: a process another thread forked while it was
+    // open for writing holds it until that process execs or exits (microseconds). Try again, briefly.
+    for (int attempt = 0; attempt < 50; ++attempt) {
+        ::execve(argv[0], argv, envp);
+        if (errno != ETXTBSY) break;
+        ::usleep(10000);
+    }
+    const char* why = ::strerrordesc_np(errno);  // a table's entry: safe here, unlike strerror
+    const char message[] = "simlab: cannot execute the program: ";
     (void)!::write(2, message, sizeof message - 1);
+    if (why) (void)!::write(2, why, std::strlen(why));
+    (void)!::write(2, "\n", 1);
     ::_exit(127);
 }
 
@@ -289,49 +268,26 @@ rlim_t taskLimitFor(long processes) {
     return tasks + static_cast<rlim_t>(processes);
 }
 
-// The CPU time of the process tree under `root`: each live process's own time and that of the children it has
-// reaped. RLIMIT_CPU holds each process to the limit; this holds the test as a whole, so that a fork bomb's
-// spinning processes, each under the limit, still time out together.
-double treeCpuSeconds(pid_t root) {
-    static const double ticksPerSecond = static_cast<double>(::sysconf(_SC_CLK_TCK));
-    double total = 0;
-    std::vector<pid_t> pending = {root};
-    std::set<pid_t> seen;
-    while (!pending.empty() && seen.size() < 8192) {
-        const pid_t pid = pending.back();
-        pending.pop_back();
-        if (!seen.insert(pid).second) continue;
-        const std::string dir = "/proc/" + std::to_string(pid);
-        std::ifstream stat(dir + "/stat");
-        std::string line;
-        if (!std::getline(stat, line)) continue;
-        // The fields after the command's closing parenthesis: state is field 3, utime 14 ... cstime 17.
-        std::istringstream fields(line.substr(line.rfind(')') + 2));
-        std::string field;
-        double ticks = 0;
-        for (int index = 3; index <= 17 && fields >> field; ++index) {
-            if (index >= 14) ticks += std::strtod(field.c_str(), nullptr);
-        }
-        total += ticks / ticksPerSecond;
-        if (DIR* tasks = ::opendir((dir + "/task").c_str())) {
-            while (const struct dirent* task = ::readdir(tasks)) {
-                if (task->d_name[0] == '.') continue;
-                std::ifstream children(dir + "/task/" + task->d_name + "/children");
-                for (pid_t child; children >> child;) pending.push_back(child);
-            }
-            ::closedir(tasks);
-        }
-    }
-    return total;
-}
-
-void drain(int& fd, std::string* keep, std::size_t keepLimit, std::size_t* counted) {
+// Reads what `fd` holds now into `keep` (up to keepLimit), counting it; with `lines`, also hands each complete
+// line to it (`partial` holds the start of the next).
+void drain(int& fd, std::string* keep, std::size_t keepLimit, std::size_t* counted,
+           const std::function<void(const std::string&)>* lines = nullptr, std::string* partial = nullptr) {
     char buffer[65536];
     for (;;) {
         const ssize_t n = ::read(fd, buffer, sizeof buffer);
         if (n > 0) {
             if (counted) *counted += static_cast<std::size_t>(n);
             if (keep->size() < keepLimit) keep->append(buffer, std::min<std::size_t>(n, keepLimit - keep->size()));
+            if (lines && *lines) {
+                for (ssize_t i = 0; i < n; ++i) {
+                    if (buffer[i] != '\n') {
+                        if (partial->size() < (1u << 20)) partial->push_back(buffer[i]);
+                        continue;
+                    }
+                    (*lines)(*partial);
+                    partial->clear();
+                }
+            }
             continue;
         }
         if (n < 0 && errno == EINTR) continue;
@@ -354,6 +310,8 @@ std::vector<std::string> childEnvironment(const std::vector<std::string>& extra)
     for (const char* name : {"PATH", "HOME", "LANG", "TMPDIR"}) {
         if (const char* value = std::getenv(name)) env.push_back(std::string(name) + "=" + value);
     }
+    // libm's reproducible versions, in every child (simlab/reproducible_math.h).
+    env.push_back("GLIBC_TUNABLES=" + reproducibleMathTunables(std::getenv("GLIBC_TUNABLES")));
     env.insert(env.end(), extra.begin(), extra.end());
     return env;
 }
@@ -366,11 +324,66 @@ namespace {
 ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch);
 }
 
+namespace {
+
+// The system-call filter for a child started without bubblewrap (bubblewrap loads it itself).
+const std::string* filterFor() {
+    const std::string& program = sandbox::filterProgram();
+    return program.empty() ? nullptr : &program;
+}
+
+// The Landlock rules of a child started without bubblewrap: the system and what it is lent, readable; its working
+// directory, writable; the harmless devices.
+sandbox::FileRules fileRulesFor(const ProcessRequest& r) {
+    sandbox::FileRules rules;
+    rules.readable = systemFolders();
+    rules.readable.insert(rules.readable.end(), std::begin(kSystemFiles), std::end(kSystemFiles));
+    rules.readable.insert(rules.readable.end(), r.readOnlyPaths.begin(), r.readOnlyPaths.end());
+    rules.writable = {r.workDir};
+    rules.devices.assign(std::begin(kDevices), std::end(kDevices));
+    return rules;
+}
+
+// Hands `path` (and what is in it) to `uid`, shut to everyone else: the sandbox user owns its working directory
+// and what it is lent for the run, and no other sandbox user can enter them. Handed back to root (uid 0) after.
+bool handTo(const std::string& path, uid_t uid) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    auto give = [&](const fs::path& p) {
+        struct stat info {};
+        if (::lstat(p.c_str(), &info) != 0 || S_ISLNK(info.st_mode)) return true;
+        return ::lchown(p.c_str(), uid, uid) == 0 && ::chmod(p.c_str(), info.st_mode & 0700) == 0;
+    };
+    if (!give(path)) return false;
+    if (!fs::is_directory(path, error)) return true;
+    for (auto it = fs::recursive_directory_iterator(path, error); !error && it != fs::recursive_directory_iterator();
+         it.increment(error)) {
+        if (!give(it->path())) return false;
+    }
+    return !error;
+}
+
+// Without bubblewrap or Landlock a sandbox user could write to the machine's shared temporary folders: what it
+// left there goes with it.
+void removeFilesOf(uid_t uid) {
+    namespace fs = std::filesystem;
+    for (const char* dir : {"/tmp", "/var/tmp", "/dev/shm"}) {
+        std::error_code error;
+        for (auto it = fs::directory_iterator(dir, error); !error && it != fs::directory_iterator(); it.increment(error)) {
+            struct stat info {};
+            if (::lstat(it->path().c_str(), &info) == 0 && info.st_uid == uid) fs::remove_all(it->path(), error);
+        }
+    }
+}
+
+}  // namespace
+
 const SandboxSupport& sandboxSupport() {
     static SandboxSupport support;
     static std::once_flag probed;
     std::call_once(probed, [] {
         support.ownUser = ::geteuid() == 0;
+        support.filter = filterFor() != nullptr;
         const char* candidates[] = {"/usr/bin/bwrap", "/bin/bwrap", "/usr/local/bin/bwrap"};
         std::string bwrap;
         // SIMLAB_NO_BUBBLEWRAP=1 tries the fallback on a machine that has bubblewrap.
@@ -382,36 +395,68 @@ const SandboxSupport& sandboxSupport() {
             }
         }
         support.rootBubblewrap = support.ownUser && ::access(kSetpriv, X_OK) == 0;
-        if (!bwrap.empty()) {
-            // Try it the way tests will use it: as root handing over to a throwaway user (or, without setpriv,
-            // as that user from the start) when we are root; as ourselves otherwise.
+        // Each way is tried as tests will use it: as a throwaway user when we are root, in a folder of its own.
+        auto works = [](Launch launch, const std::function<std::vector<std::string>(const ProcessRequest&)>& argvFor) {
             char dir[] = "/tmp/simlab-probe-XXXXXX";
-            if (::mkdtemp(dir)) {
-                ProcessRequest probe;
-                probe.workDir = dir;
-                probe.env = childEnvironment();
-                probe.limits.fileMiB = 1;
-                Launch launch;
-                launch.uid = sandboxUid(63, true);
-                launch.argv = bubblewrapArguments(bwrap, probe, support.rootBubblewrap ? launch.uid : 0, false);
-                launch.argv.push_back("/bin/true");
-                launch.dropUser = support.ownUser && !support.rootBubblewrap;
-                launch.parent = ::getpid();
-                if (support.ownUser && ::chown(dir, launch.uid, launch.uid) != 0) launch.dropUser = false;
-                support.bubblewrap = launchProcess(probe, launch).exitedCleanly();
-                ::rmdir(dir);
-            }
+            if (!::mkdtemp(dir)) return false;
+            ProcessRequest probe;
+            probe.workDir = dir;
+            probe.env = childEnvironment();
+            probe.limits.fileMiB = 1;
+            launch.argv = argvFor(probe);
+            launch.parent = ::getpid();
+            if (launch.uid != 0 && ::chown(dir, launch.uid, launch.uid) != 0) launch.dropUser = false;
+            const bool ok = launchProcess(probe, launch).exitedCleanly();
+            ::rmdir(dir);
+            if (launch.uid != 0) sandbox::endProcessesOf(launch.uid);
+            return ok;
+        };
+        if (!bwrap.empty()) {
+            // As root, bubblewrap hands over to the user itself (or, without setpriv, runs as that user from the
+            // start); as ourselves otherwise.
+            Launch launch;
+            launch.uid = support.ownUser ? sandbox::freshUser() : 0;
+            launch.dropUser = support.ownUser && !support.rootBubblewrap;
+            const uid_t handOver = support.rootBubblewrap ? launch.uid : 0;
+            support.bubblewrap = works(launch, [&](const ProcessRequest& probe) {
+                std::vector<std::string> argv = bubblewrapArguments(bwrap, probe, handOver, false);
+                argv.push_back("/bin/true");
+                return argv;
+            });
         }
+        // SIMLAB_NO_LANDLOCK=1 tries the last fallback on a machine that has Landlock.
+        const char* noLandlock = std::getenv("SIMLAB_NO_LANDLOCK");
+        if (!support.bubblewrap && sandbox::landlockAbi() > 0 && !(noLandlock && std::string(noLandlock) == "1")) {
+            Launch launch;
+            launch.uid = support.ownUser ? sandbox::freshUser() : 0;
+            launch.dropUser = support.ownUser;
+            launch.filter = filterFor();
+            ProcessRequest rules;
+            rules.workDir = "/tmp";
+            launch.ruleset = sandbox::makeRuleset(fileRulesFor(rules), nullptr);
+            support.landlock = launch.ruleset >= 0 && works(launch, [](const ProcessRequest&) {
+                return std::vector<std::string>{"/bin/true"};
+            });
+            if (launch.ruleset >= 0) ::close(launch.ruleset);
+        }
+        const std::string user = support.ownUser ? "a user of its own for each process" : "running as you";
+        const std::string calls = support.filter ? ", system calls filtered" : "";
         if (support.bubblewrap) {
             support.bwrap = bwrap;
-            support.summary = support.ownUser ? "bubblewrap, a user of its own for each test" : "bubblewrap";
+            support.mode = "bubblewrap";
+            support.summary = "bubblewrap: a filesystem of its own, no network, its own processes; " + user + calls;
+        } else if (support.landlock) {
+            support.mode = "Landlock";
+            support.summary = "Landlock: only the system and what the test is lent can be read, no network; " + user +
+                              calls;
         } else {
-            support.summary = support.ownUser ? "limits, a user of its own for each test" : "limits only";
-            support.warning = bwrap.empty()
-                ? "bubblewrap is not installed (apt-get install bubblewrap): student code runs with limits but can "
-                  "read files readable by all users"
-                : "bubblewrap cannot create namespaces here: student code runs with limits but can read files "
-                  "readable by all users";
+            support.mode = "limits only";
+            support.summary = "limits only: CPU, memory, processes, output and files capped; " + user + calls;
+            const std::string why = bwrap.empty() ? "bubblewrap is not installed" : "bubblewrap cannot create namespaces here";
+            support.warning = why + " and this kernel offers no Landlock: student code " +
+                              (support.ownUser ? "can read every file other users can"
+                                               : "runs as you and can read your files") +
+                              " (install bubblewrap, or grade as root with the course's files unreadable to others)";
         }
     });
     return support;
@@ -425,33 +470,40 @@ ProcessResult runProcess(const ProcessRequest& r) {
         refused.error = "interrupted";
         return refused;
     }
-    ProcessRequest withFilter = r;  // the request, with the system-call filter's pipe when there is one
+    ProcessRequest request = r;  // with the system-call filter's pipe and the sandbox's environment
     Launch launch;
     launch.argv = r.argv;
     launch.parent = ::getpid();
     launch.tasks = taskLimitFor(r.limits.processes);
+    auto refuse = [&](const std::string& why) {
+        for (const auto& fd : r.passFds) ::close(fd.second);
+        ProcessResult failed;
+        failed.error = why;
+        return failed;
+    };
     if (r.isolate) {
         const SandboxSupport& support = sandboxSupport();
         if (support.ownUser && r.ownUser) {
-            // bubblewrap run as root hands over to the user itself (setpriv); otherwise we switch before it.
+            // A user never used before and never again: nothing another test left can reach this one. bubblewrap
+            // run as root hands over to it itself (setpriv); otherwise we switch before the program starts.
             launch.dropUser = !(support.bubblewrap && support.rootBubblewrap);
-            launch.uid = sandboxUid(r.slot, r.judgeUser);
+            launch.uid = sandbox::freshUser();
             launch.tasks = static_cast<rlim_t>(r.limits.processes);  // the user is ours alone
-            if (::chown(r.workDir.c_str(), launch.uid, launch.uid) != 0) {
-                ProcessResult failed;
-                failed.error = "cannot hand the test's directory to the sandbox user: " + std::string(std::strerror(errno));
-                for (const auto& fd : r.passFds) ::close(fd.second);
-                return failed;
+            if (!handTo(r.workDir, launch.uid)) {
+                return refuse("cannot hand the test's directory to the sandbox user: " + std::string(std::strerror(errno)));
+            }
+            for (const std::string& path : r.handOver) {
+                if (!handTo(path, launch.uid)) return refuse("cannot hand " + path + " to the sandbox user");
             }
         }
         if (support.bubblewrap) {
             const bool handOver = support.rootBubblewrap && support.ownUser && r.ownUser;
             // The system-call filter travels on a pipe that bubblewrap reads whole.
-            static const std::string program = seccompProgram();
+            const std::string& program = sandbox::filterProgram();
             int filter[2] = {-1, -1};
             if (!program.empty() && ::pipe2(filter, O_CLOEXEC) == 0) {
                 if (::write(filter[1], program.data(), program.size()) == static_cast<ssize_t>(program.size())) {
-                    withFilter.passFds.push_back({kSeccompFd, filter[0]});
+                    request.passFds.push_back({kSeccompFd, filter[0]});
                 } else {
                     ::close(filter[0]);
                     filter[0] = -1;
@@ -462,9 +514,31 @@ ProcessResult runProcess(const ProcessRequest& r) {
             launch.argv.insert(launch.argv.end(), r.argv.begin(), r.argv.end());
         } else {
             launch.newNetwork = true;
+            launch.filter = filterFor();
+            if (support.landlock) {
+                std::string error;
+                launch.ruleset = sandbox::makeRuleset(fileRulesFor(r), &error);
+                if (launch.ruleset < 0) {
+                    if (launch.uid != 0) sandbox::endProcessesOf(launch.uid);
+                    return refuse(error);
+                }
+            }
+            // Temporary files go to the working directory: /tmp is every user's.
+            for (std::string& e : request.env) {
+                if (e.rfind("TMPDIR=", 0) == 0) e = "TMPDIR=" + r.workDir;
+            }
         }
     }
-    ProcessResult result = launchProcess(withFilter, launch);
+    ProcessResult result = launchProcess(request, launch);
+    if (launch.ruleset >= 0) ::close(launch.ruleset);
+    if (launch.uid != 0) {
+        // Every process of the user ends with the run, also one that left the process group or the tree; what
+        // it was handed is simlab's again, and what it left in the shared temporary folders goes.
+        result.leftBehind = sandbox::endProcessesOf(launch.uid);
+        handTo(r.workDir, 0);
+        for (const std::string& path : r.handOver) handTo(path, 0);
+        if (!sandboxSupport().bubblewrap && !sandboxSupport().landlock) removeFilesOf(launch.uid);
+    }
     // bubblewrap reports a child's death by signal N as exit status 128 + N.
     if (r.isolate && sandboxSupport().bubblewrap && result.signal == 0 && result.exitCode > 128 &&
         result.exitCode < 128 + 65) {
@@ -522,7 +596,6 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
         return result;
     }
 
-    ::setpgid(pid, pid);  // also done by the child; whichever runs first wins the race harmlessly
     result.started = true;
     ::close(out[1]);
     if (report[1] >= 0) ::close(report[1]);
@@ -536,17 +609,21 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
     const auto deadline = start + std::chrono::duration_cast<Clock::duration>(
                                       std::chrono::duration<double>(std::min(r.limits.wallSeconds, 86400.0)));
     const std::size_t outputLimit = static_cast<std::size_t>(r.limits.outputKiB) * 1024;
-    std::string reportBuffer;
+    std::string reportBuffer, partialLine;
     bool reaped = false, killed = false;
     int status = 0;
     struct rusage usage {};
     auto killGroup = [&] {
         ::kill(-pid, SIGKILL);
+        ::kill(pid, SIGKILL);  // should it not have made its session yet
+        if (launch.uid != 0) sandbox::endProcessesOf(launch.uid);
         killed = true;
     };
     Clock::time_point reapedAt;
     Clock::time_point nextCpuCheck = start;
     double treeCpu = 0;
+    long peakResidentKiB = 0, ownPeakKiB = 0;
+    const long memoryKiB = static_cast<long>(r.limits.memoryMiB) * 1024;
 
     // The child's exit wakes the loop at once through a pidfd, where the kernel has them.
     int pidfd = static_cast<int>(::syscall(SYS_pidfd_open, pid, 0));
@@ -559,7 +636,7 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
         if (n > 0) ::poll(fds, n, 50);
         else if (!reaped) ::usleep(20000);
 
-        if (outRead >= 0) drain(outRead, &result.output, r.keepOutput, &result.outputBytes);
+        if (outRead >= 0) drain(outRead, &result.output, r.keepOutput, &result.outputBytes, &r.onOutputLine, &partialLine);
         if (reportRead >= 0) drain(reportRead, &reportBuffer, 1 << 20, nullptr);
 
         if (!killed && result.outputBytes > outputLimit) {
@@ -580,11 +657,19 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
                 ::kill(-pid, SIGKILL);  // whatever it left behind in its group
             }
         }
+        // The test's processes together: its tree and, with a user of its own, every process of that user
+        // wherever it went. Their CPU time and their memory are the test's.
         if (!reaped && !killed && Clock::now() >= nextCpuCheck) {
-            nextCpuCheck = Clock::now() + std::chrono::milliseconds(100);
-            treeCpu = std::max(treeCpu, treeCpuSeconds(pid));
+            nextCpuCheck = Clock::now() + std::chrono::milliseconds(50);
+            const sandbox::Usage usage = sandbox::usageOf(pid, launch.uid);
+            ownPeakKiB = std::max(ownPeakKiB, sandbox::peakResidentOf(pid));
+            treeCpu = std::max(treeCpu, usage.cpuSeconds);
+            peakResidentKiB = std::max(peakResidentKiB, usage.residentKiB);
             if (treeCpu > r.limits.cpuSeconds) {
                 result.cpuTimeout = true;
+                killGroup();
+            } else if (usage.residentKiB > memoryKiB) {
+                result.memoryLimit = true;
                 killGroup();
             }
         }
@@ -605,16 +690,18 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
     for (int fd : {outRead, reportRead, pidfd}) {
         if (fd >= 0) ::close(fd);
     }
+    if (r.onOutputLine && !partialLine.empty()) r.onOutputLine(partialLine);
     reapOrphans();
 
     result.cpuSeconds = usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
                         1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
     result.cpuSeconds = std::max(result.cpuSeconds, treeCpu);
-    result.maxRssKiB = usage.ru_maxrss;
+    result.maxRssKiB = std::max(usage.ru_maxrss, peakResidentKiB);
+    result.ownPeakKiB = ownPeakKiB;
     if (WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
     if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
-    if (result.signal == SIGXCPU ||
-        (result.signal == SIGKILL && !killed && result.cpuSeconds >= std::ceil(r.limits.cpuSeconds))) {
+    if (!result.memoryLimit && (result.signal == SIGXCPU ||
+                                (result.signal == SIGKILL && !killed && result.cpuSeconds >= std::ceil(r.limits.cpuSeconds)))) {
         result.cpuTimeout = true;
     }
     if (result.exitCode == 127 && result.output.rfind("simlab: cannot", 0) == 0) {
@@ -633,5 +720,40 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
 }
 
 }  // namespace
+
+std::vector<std::string> readableInSandbox(const std::vector<std::string>& paths) {
+    namespace fs = std::filesystem;
+    std::vector<std::string> existing;
+    for (const std::string& path : paths) {
+        std::error_code error;
+        if (!path.empty() && fs::exists(path, error)) existing.push_back(path);
+    }
+    if (existing.empty()) return {};
+    char dir[] = "/tmp/simlab-audit-XXXXXX";
+    if (!::mkdtemp(dir)) return {};
+    // Opened, not merely looked at: access(2) would answer by the permissions alone, past Landlock.
+    ProcessRequest request;
+    request.argv = {"/bin/sh", "-c",
+                    "for f; do if [ -d \"$f\" ]; then ls -- \"$f\" >/dev/null 2>&1 && echo \"$f\"; "
+                    "else head -c 1 -- \"$f\" >/dev/null 2>&1 && echo \"$f\"; fi; done",
+                    "simlab-audit"};
+    request.argv.insert(request.argv.end(), existing.begin(), existing.end());
+    request.env = childEnvironment({"LC_ALL=C"});
+    request.workDir = dir;
+    request.isolate = true;
+    request.scratchWorkDir = true;
+    request.limits.cpuSeconds = 10;
+    request.limits.wallSeconds = 60;
+    request.keepOutput = 1 << 20;
+    const ProcessResult result = runProcess(request);
+    std::error_code ignored;
+    fs::remove_all(dir, ignored);
+    std::vector<std::string> readable;
+    std::istringstream lines(result.output);
+    for (std::string line; std::getline(lines, line);) {
+        if (std::find(existing.begin(), existing.end(), line) != existing.end()) readable.push_back(line);
+    }
+    return readable;
+}
 
 }  // namespace simlab::engine

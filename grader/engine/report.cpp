@@ -85,6 +85,7 @@ std::string renderText(const GradeReport& r) {
     out << r.title << " (" << r.assignment << "): " << (r.source.empty() ? "no file" : printable(r.source)) << "\n";
     if (!r.note.empty()) out << "  " << printable(r.note) << "\n";
     out << "  " << buildLine(r.build) << "\n";
+    if (!r.sandbox.empty() && r.build.ok) out << "  sandbox: " << r.sandbox << "\n";
     if (!r.build.ok) out << indent(firstLines(printable(r.build.log, true), 12), "    | ");
     out << indent(warningLines(r.build, 12), "    | ");
     const std::string* previous = nullptr;
@@ -132,6 +133,7 @@ nlohmann::json toGradescope(const GradeReport& r) {
     }
     std::string output = r.note.empty() ? "" : printable(r.note) + "\n";
     output += buildLine(r.build) + "\n";
+    if (!r.sandbox.empty()) output += "sandbox: " + r.sandbox + "\n";
     if (!r.build.ok) output += firstLines(printable(r.build.log, true), 20);
     output += warningLines(r.build, 20);
     const std::string left = notRunLine(r);
@@ -156,6 +158,7 @@ nlohmann::json toGradescope(const GradeReport& r) {
             {"extra_data",
              {{"assignment", r.assignment},
               {"status", r.status},
+              {"sandbox", r.sandbox},
               {"max_score", r.maxScore()},
               {"hidden_tests_not_run", r.notRunCount},
               {"hidden_points_not_run", r.notRunPoints},

@@ -32,6 +32,22 @@ check "--file studies a student's file: the solution's copy gives the reference'
 run_capture starter "$SIMLAB" study trade apple --quick --no-plots --file "$SOURCE_DIR/starter/apple/NewtonsApple.cpp" -o fs2
 check "and an unfinished file stops the study, naming its first TODO" \
   bash -c "test $(status_of starter) -ne 0 && grep -q 'not done yet (NewtonsApple.cpp:' starter.err"
+# A student's file is built with grading's object check and run in grading's sandbox: a constructor that would run
+# before the course's code is refused, and code that reads what grading keeps from it finds nothing.
+sed 's|^namespace apple {|static volatile int early;\n__attribute__((constructor(101))) static void first() { early = 1; }\nnamespace apple {|' \
+  "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" >Prioritized.cpp
+run_capture prioritized "$SIMLAB" study trade apple --quick --no-plots --file Prioritized.cpp -o fs3
+check "--file refuses what grading refuses (a prioritized constructor), exit 2" \
+  bash -c "test $(status_of prioritized) -eq 2 && grep -q 'is refused (forbidden code)' prioritized.err && \
+           grep -q 'constructor with a priority' prioritized.err"
+{ cat "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp"
+  printf '%s\n' '#include <fstream>' \
+    'static const bool readIt = [] { std::ifstream in("'"$SOURCE_DIR"'/assignments/apple/tests/hidden.cpp");' \
+    '  if (in) throw std::runtime_error("read the hidden tests"); return true; }();'
+} >Reader.cpp
+run_capture reader "$SIMLAB" study trade apple --quick --no-plots --file Reader.cpp -o fs4
+check "and runs it in the sandbox, where the hidden tests cannot be read: the study completes" \
+  bash -c "test $(status_of reader) -eq 0 && grep -q 'cheapest setting' reader.out"
 
 run_capture boot "$SIMLAB" study trade biosim --quick --max-evaluations 3e4 --no-plots -o boot
 check "the baby boot's study runs against its long-double reference, itself good to 13 digits or more, past the table's 12" \

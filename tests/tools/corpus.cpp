@@ -33,7 +33,9 @@
 //   simlab-corpus materialize <assignment> <case.toml>... --out DIR   write DIR/<case>/<files>
 //   simlab-corpus check <assignment> <case.toml>                      grade it and compare; exit 1 on a mismatch
 //   simlab-corpus class <assignment> <case.toml>... --simlab PATH     grade them all as one class with
-//       `simlab grade`, while listening on 127.0.0.1:47810, and compare every student; also check that each
+//       `simlab grade` (--env NAME=VALUE for it, --docker-capabilities to run it with Docker's default capabilities),
+//       while listening on 127.0.0.1:47810, and compare every student; also check that no process a submission
+//       started outlived the grading, that each
 //       student has one gradebook row, that nobody connected to the listener, that no student's report holds
 //       another student's file, a line of the hidden tests, of the rubric or of /etc/shadow, that no terminal
 //       line or feedback holds a control character, that no spreadsheet cell starts a formula, that every
@@ -424,8 +426,28 @@ std::vector<std::vector<std::string>> csvRows(const std::string& text) {
     return rows;
 }
 
+// Processes named `name` (their comm) on this machine, zombies aside.
+int processesNamed(const std::string& name) {
+    int count = 0;
+    std::error_code error;
+    for (auto it = fs::directory_iterator("/proc", error); !error && it != fs::directory_iterator(); it.increment(error)) {
+        std::ifstream comm(it->path() / "comm"), stat(it->path() / "stat");
+        std::string line, all;
+        if (!std::getline(comm, line) || line != name || !std::getline(stat, all)) continue;
+        const std::size_t close = all.rfind(')');
+        if (close != std::string::npos && close + 2 < all.size() && all[close + 2] != 'Z') ++count;
+    }
+    return count;
+}
+
+// Docker's default capabilities (no CAP_SYS_ADMIN), as in Gradescope's and PrairieLearn's containers.
+const char* const kDockerCapabilities =
+    "-all,+chown,+dac_override,+fowner,+fsetid,+kill,+setgid,+setuid,+setpcap,+net_bind_service,+net_raw,"
+    "+sys_chroot,+mknod,+audit_write,+setfcap";
+
 int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, const std::vector<std::string>& paths,
-                 const std::string& simlab, int jobs) {
+                 const std::string& simlab, int jobs, const std::vector<std::string>& environment,
+                 bool dockerCapabilities) {
     std::vector<Case> cases;
     for (const std::string& path : paths) cases.push_back(loadCase(assignment, rubric, path));
     TempDir dir("simlab-class-");
@@ -444,7 +466,11 @@ int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, con
     Listener listener(47810);
     ProcessRequest request;
     request.argv = {simlab, "grade", assignment.id, submissions, "--out", out, "--jobs", std::to_string(jobs)};
-    request.env = childEnvironment();
+    if (dockerCapabilities) {
+        request.argv.insert(request.argv.begin(),
+                            {"/usr/bin/setpriv", std::string("--bounding-set=") + kDockerCapabilities, "--inh-caps=-all"});
+    }
+    request.env = childEnvironment(environment);
     request.workDir = dir.path();
     request.limits.wallSeconds = request.limits.cpuSeconds = 3000;
     request.limits.memoryMiB = 1 << 20;
@@ -457,14 +483,19 @@ int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, con
 
     std::vector<std::string> problems;
     if (!batch.exitedCleanly()) problems.push_back("simlab grade did not complete (status " + std::to_string(batch.exitCode) + ")");
+    // What a submission started must end with its test (tests/corpus/apple/hostile/daemon-and-reader.toml).
+    if (const int left = processesNamed("simlab-daemon"); left > 0) {
+        problems.push_back(std::to_string(left) + " process(es) a submission left behind outlived the grading");
+    }
     if (listener.connections() > 0) {
         problems.push_back(std::to_string(listener.connections()) + " connection(s) reached 127.0.0.1:47810");
     }
     if (const std::string control = firstControl(batch.output); !control.empty()) {
         problems.push_back("simlab's terminal output holds a control character: " + control);
     }
-    std::printf("simlab grade: %.1f s, peak memory %ld MiB\n", batch.wallSeconds, batch.maxRssKiB / 1024);
-    if (batch.maxRssKiB > 512 * 1024) problems.push_back("simlab used " + std::to_string(batch.maxRssKiB / 1024) + " MiB");
+    // simlab's own memory, not its tests' (a test may hold gigabytes: memory-tree.toml).
+    std::printf("simlab grade: %.1f s, peak memory %ld MiB\n", batch.wallSeconds, batch.ownPeakKiB / 1024);
+    if (batch.ownPeakKiB > 512 * 1024) problems.push_back("simlab used " + std::to_string(batch.ownPeakKiB / 1024) + " MiB");
 
     // One gradebook row per student, none twice, no cell a spreadsheet would run; skipped folders listed.
     const std::vector<std::vector<std::string>> gradebook = csvRows(fs::exists(out + "/gradebook.csv") ? readFile(out + "/gradebook.csv") : "");
@@ -569,6 +600,11 @@ int main(int argc, char** argv) {
     classCommand->add_option("cases", cases)->required()->check(CLI::ExistingFile);
     classCommand->add_option("--simlab", simlab)->required()->check(CLI::ExistingFile);
     classCommand->add_option("--jobs", jobs);
+    std::vector<std::string> environment;
+    bool dockerCapabilities = false;
+    classCommand->add_option("--env", environment, "NAME=VALUE for simlab grade (SIMLAB_NO_BUBBLEWRAP=1, say)");
+    classCommand->add_flag("--docker-capabilities", dockerCapabilities,
+                           "run simlab grade as root with Docker's default capabilities only (setpriv)");
     CLI11_PARSE(app, argc, argv);
     try {
         const Manifest manifest = loadManifest();
@@ -577,7 +613,9 @@ int main(int argc, char** argv) {
         const Assignment& assignment = manifest.find(assignmentId);
         const simlab::Rubric rubric = simlab::loadRubric(assignment.rubric);
         if (materializeCommand->parsed()) return materialize(assignment, rubric, cases, out);
-        if (classCommand->parsed()) return gradeAsClass(assignment, rubric, cases, simlab, jobs);
+        if (classCommand->parsed()) {
+            return gradeAsClass(assignment, rubric, cases, simlab, jobs, environment, dockerCapabilities);
+        }
         return check(manifest, assignment, rubric, cases.front());
     } catch (const std::exception& e) {
         std::cerr << "simlab-corpus: error: " << e.what() << '\n';

@@ -41,7 +41,7 @@ TEST_CASE("a cached object is used only for the file it was compiled from", "[bu
     fs::create_directory(work.path() + "/build");
     fs::create_directory(work.path() + "/probe");
     const BuildResult built = builder.buildProbe(apple, "NewtonsApple.cpp", text, work.path() + "/build",
-                                                 work.path() + "/probe/probe", 0);
+                                                 work.path() + "/probe/probe");
     CHECK_FALSE(built.cached);
     CHECK(built.ok);
     CHECK(readFile(cache.path() + "/" + key + ".cpp") == text);

@@ -115,5 +115,5 @@ TEST_CASE("a program that cannot be executed is reported, not run", "[process]")
     r.workDir = ".";
     const ProcessResult result = runProcess(r);
     CHECK_FALSE(result.started);
-    CHECK(result.error == "simlab: cannot execute the program");
+    CHECK(result.error == "simlab: cannot execute the program: No such file or directory");
 }

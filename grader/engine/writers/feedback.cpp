@@ -16,6 +16,7 @@ Feedback feedbackOf(const Assignment& assignment, const StudentRecord& r, const 
     f.score = points(r.score) + "/" + points(r.maxScore);
     if (r.status != "graded") f.status = r.status;
     f.note = r.note;
+    f.sandbox = r.sandbox;
     if (!r.compiler.empty()) {
         f.compilerTitle = r.status == "did not compile" ? "The compiler's message:"
                           : r.status == "did not link"  ? "The linker's message:"

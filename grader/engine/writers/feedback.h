@@ -31,6 +31,7 @@ struct Feedback {
     std::vector<std::string> attached;  ///< files beside the feedback that the tests drew
     std::vector<ManualItem> manual;     ///< graded by hand, pending
     double manualPoints = 0;
+    std::string sandbox;        ///< the sandbox the code ran in, one line; empty when nothing ran
     std::string check;          ///< the self-check command for the student's file
     bool plainCommand = false;  ///< the file's name is plain enough to show the commands as code
 };

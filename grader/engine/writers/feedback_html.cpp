@@ -98,7 +98,9 @@ std::string feedbackHtml(const Assignment& assignment, const StudentRecord& reco
         }
         out << "</ul>\n";
     }
-    out << "<footer>Check your file on the visible tests with <code>" << htmlText(f.check) << "</code>.</footer>\n";
+    out << "<footer>";
+    if (!f.sandbox.empty()) out << "Your code ran in simlab's sandbox: " << htmlText(f.sandbox) << ".<br>\n";
+    out << "Check your file on the visible tests with <code>" << htmlText(f.check) << "</code>.</footer>\n";
     out << writers::pageEnd();
     return out.str();
 }

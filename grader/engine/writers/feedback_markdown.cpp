@@ -53,6 +53,7 @@ std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& 
         for (const ManualItem& m : f.manual) out << "- " << markdownText(m.name) << " (" << points(m.points) << ")\n";
         out << "\n";
     }
+    if (!f.sandbox.empty()) out << "Your code ran in simlab's sandbox: " << markdownText(f.sandbox) << ".\n\n";
     out << "Check your file on the visible tests with " << command(f.check) << ".\n";
     return out.str();
 }

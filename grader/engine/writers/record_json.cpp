@@ -16,7 +16,7 @@ std::string recordJson(const StudentRecord& r) {
     const nlohmann::json record = {{"id", r.id},       {"key", r.key},           {"status", r.status},
                                    {"note", r.note},   {"file", r.file},         {"score", r.score},
                                    {"max_score", r.maxScore}, {"seconds", r.seconds}, {"compiler", r.compiler},
-                                   {"tests", tests}};
+                                   {"sandbox", r.sandbox},    {"tests", tests}};
     return writers::jsonText(record);
 }
 
@@ -33,6 +33,7 @@ std::optional<StudentRecord> readRecordJson(const std::string& text) {
         r.maxScore = j.at("max_score");
         r.seconds = j.at("seconds");
         r.compiler = j.at("compiler");
+        r.sandbox = j.value("sandbox", "");
         for (const nlohmann::json& t : j.at("tests")) {
             TestResult x;
             x.name = t.at("name");

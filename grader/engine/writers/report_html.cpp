@@ -314,6 +314,15 @@ std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, 
     out << htmlText(counted) << (result.skipped.empty() ? "" : "; " + plural(result.skipped.size(), "entry", "entries") +
                                                                    " of the folder skipped")
         << ".</p>\n";
+    // The sandboxes the students' code ran in (one, unless the class was graded in parts on other machines).
+    std::map<std::string, std::size_t> sandboxes;
+    for (const StudentRecord& r : records) {
+        if (!r.sandbox.empty()) ++sandboxes[r.sandbox];
+    }
+    for (const auto& [sandbox, count] : sandboxes) {
+        out << "<p class=\"muted\">Sandbox" << (sandboxes.size() > 1 ? " of " + plural(count, "student", "students") : "")
+            << ": " << htmlText(sandbox) << ".</p>\n";
+    }
     out << "<nav><a href=\"#scores\">Scores</a><a href=\"#tests\">Tests</a><a href=\"#attention\">Needs a look</a>"
         << "<a href=\"#slowest\">Slowest</a>" << (result.skipped.empty() ? "" : "<a href=\"#skipped\">Skipped</a>")
         << "</nav>\n</header>\n";

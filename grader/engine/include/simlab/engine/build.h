@@ -18,6 +18,7 @@ struct BuildResult {
     std::string log;           ///< the first lines of the compiler's or linker's message, or the check's reasons
     std::string warnings;      ///< compiler warnings when it succeeded
     bool cached = false;       ///< the object came from the cache
+    bool stoppedByLimit = false;  ///< a course limit stopped the compiler or linker (log's first line says which)
     double compileSeconds = 0;
     double linkSeconds = 0;
     std::string binary;
@@ -51,15 +52,15 @@ public:
     /// Objects are cached in <build>/cache/objects, or in $SIMLAB_CACHE.
     explicit Builder(const Manifest& manifest);
 
-    /// Compile the student's file (`name`, its bytes `text`) in `workDir` as the sandbox user of `slot`, check the
-    /// object, and link it after the course's probe objects into the program `binary`.
+    /// Compile the student's file (`name`, its bytes `text`) in `workDir` in the sandbox, check the object, and link
+    /// it after the course's probe objects into the program `binary`.
     BuildResult buildProbe(const Assignment& assignment, const std::string& name, const std::string& text,
-                           const std::string& workDir, const std::string& binary, int slot) const;
+                           const std::string& workDir, const std::string& binary) const;
     /// Compile the student's file and link it with the course's main into the lab program at `output`.
     BuildResult buildProgram(const Assignment& assignment, const std::string& name, const std::string& text,
                              const std::string& output) const;
     /// The assignment's work-precision study program (simlab/study.h) built from a student file, as buildProgram
-    /// builds the lab program.
+    /// builds the lab program, and with the object check grading makes (simlab runs it, in its sandbox).
     BuildResult buildStudy(const Assignment& assignment, const std::string& name, const std::string& text,
                            const std::string& output) const;
     /// Key of a source file's object in the cache: its content, the compile command, the contract's headers and
@@ -75,11 +76,14 @@ private:
     /// The student's file compiled and linked first, before `objects` and `libraries`, into `output`.
     BuildResult buildLinked(const Assignment& assignment, const std::string& name, const std::string& text,
                             const std::string& output, const std::vector<std::string>& objects,
-                            const std::vector<std::string>& libraries) const;
+                            const std::vector<std::string>& libraries, bool checkObject) const;
     BuildResult compile(const Assignment& assignment, const std::string& name, const std::string& text,
-                        const std::string& workDir, int slot, std::string* object) const;
+                        const std::string& workDir, std::string* object) const;
     void link(const std::vector<std::string>& inputs, const std::vector<std::string>& flags, const std::string& output,
-              int slot, BuildResult& result) const;
+              BuildResult& result) const;
+    /// The object check (forbiddenCode) of a compiled student file: true, with `result` saying why, if it is refused.
+    bool refusedObject(const Assignment& assignment, const std::string& object, const std::string& name,
+                       BuildResult& result) const;
 
     const Manifest& manifest_;
     std::string cacheDir_;

@@ -58,6 +58,7 @@ struct GradeReport {
                                     ///< "did not compile", "forbidden code", "did not link"
     std::string note;               ///< about the files: "graded apple.cpp; expected NewtonsApple.cpp"
     std::string graderOutput;       ///< what the judge printed (Catch2's account of the tests), for instructors
+    std::string sandbox;            ///< the sandbox it ran in, one line (SandboxSupport::summary)
 
     double score() const;
     double maxScore() const;
@@ -67,7 +68,6 @@ struct GradeOptions {
     bool includeHidden = false;          ///< run every test (instructors), not only the visible ones
     std::optional<Limits> limits;        ///< instead of the rubric's
     std::string workRoot;                ///< parent of the temporary directories; $TMPDIR when empty
-    int slot = 0;                        ///< which sandbox users run it (one pair per concurrent grading)
     std::vector<std::string> onlyTests;  ///< run just these tests (by name); all selected ones when empty
 };
 
@@ -83,6 +83,13 @@ struct SubmissionFiles {
 /// UsageError for a test name the rubric does not have, Interrupted if interruptChildren() cut it short.
 GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
                             const SubmissionFiles& files, const GradeOptions& options);
+
+/// What hidden tests must be kept from: the hidden tests' sources, the solution, the judge (which holds the hidden
+/// tests), the object cache (every student's source), the sample class and the corpus, and `more` (the class's
+/// folder, the grades). Tried as a test's probe is run (readableInSandbox): where any of them can be read, one line
+/// saying which and how to close it, for the caller to refuse hidden tests with; empty where none can.
+std::string secretsExposed(const Manifest& manifest, const Assignment& assignment,
+                           const std::vector<std::string>& more = {});
 
 /// Round a score to hundredths, as reports show it.
 double roundScore(double points);

@@ -10,6 +10,7 @@
 // limit. Without bubblewrap it gets a private network namespace where the kernel allows one, and the limits.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,14 +27,16 @@ struct ProcessRequest {
     std::vector<std::pair<int, int>> passFds;  ///< {descriptor in the child, simlab's descriptor}: handed to the
                                                ///< child and closed in simlab once the child has started
     std::size_t keepOutput = 16 * 1024;  ///< bytes of output kept for the report (all of it is counted)
+    std::function<void(const std::string&)> onOutputLine;  ///< called with each line of output as it comes
+                                                            ///< (stdout and stderr together), all of them
     bool isolate = false;           ///< run in the sandbox (see above)
     std::vector<std::string> readOnlyPaths;  ///< with isolate: what the child may read, at the same paths
-    std::vector<std::string> maskedPaths;    ///< with isolate: never visible, even inside a system folder
+    std::vector<std::string> maskedPaths;    ///< with bubblewrap: never visible, even inside a system folder
+    std::vector<std::string> handOver;       ///< with isolate as root: paths the throwaway user owns for the run
+                                             ///< (with what is in them), shut to every other user
     bool scratchWorkDir = false;    ///< with bubblewrap: the working directory is an empty memory file system
                                     ///< (nothing the child writes there comes back) instead of workDir itself
-    bool ownUser = true;            ///< with isolate as root: run as a throwaway user
-    bool judgeUser = false;         ///< with ownUser: the slot's second user, so a judge never shares its probe's
-    int slot = 0;                   ///< with isolate as root: which throwaway users (one per concurrent grading)
+    bool ownUser = true;            ///< with isolate as root: run as a throwaway user, new for this run
 };
 
 struct ProcessResult {
@@ -44,10 +47,13 @@ struct ProcessResult {
     bool wallTimeout = false;    ///< killed at the wall-clock deadline
     bool cpuTimeout = false;     ///< stopped by the CPU-time limit
     bool outputLimit = false;    ///< killed for printing more than the output limit
+    bool memoryLimit = false;    ///< killed when its processes together held more than the memory limit
     bool interrupted = false;    ///< killed, or never started, because interruptChildren() was called
     double wallSeconds = 0;
     double cpuSeconds = 0;
-    long maxRssKiB = 0;          ///< the child's peak resident memory
+    long maxRssKiB = 0;          ///< the peak resident memory of its processes together (as often as it looked)
+    long ownPeakKiB = 0;         ///< the child's own peak resident memory, without what it started
+    int leftBehind = 0;          ///< processes of its throwaway user that could not be ended (0: none)
     std::size_t outputBytes = 0; ///< everything it printed, counted
     std::string output;          ///< the first keepOutput bytes of stdout and stderr, interleaved
     std::vector<std::string> reports;  ///< complete lines from the report channel (at most 1 MiB of them)
@@ -58,23 +64,40 @@ struct ProcessResult {
 /// Run the request to completion. Never throws for anything the child does.
 ProcessResult runProcess(const ProcessRequest& request);
 
-/// What the sandbox can do on this machine, found once by trying bubblewrap.
+/// What the sandbox can do on this machine, found once by trying it. Three modes, the first that works:
+///  - bubblewrap: namespaces (its own filesystem of the system and what it is lent, no network, its own
+///    processes), the system-call filter;
+///  - Landlock (where bubblewrap cannot make namespaces, as in Docker's default profile): the kernel lets the child
+///    read only the system and what it is lent and write only its working directory, whatever the files'
+///    permissions; no network (sockets are filtered); the system-call filter;
+///  - limits only: the filter and the limits; files are kept apart by permissions alone.
+/// In every mode, as root, each sandboxed process runs as a user of its own, never used before or again in this
+/// simlab, and when it ends every process of that user is ended; each runs in a session of its own with no
+/// terminal; its CPU time and memory are those of all its processes together.
 struct SandboxSupport {
+    std::string mode;         ///< "bubblewrap", "Landlock" or "limits only"
     bool bubblewrap = false;  ///< namespaces and a private filesystem
+    bool landlock = false;    ///< without bubblewrap: Landlock's file rules
+    bool filter = false;      ///< the system-call filter is loaded
     std::string bwrap;        ///< bubblewrap's path
     bool ownUser = false;     ///< each child runs as a throwaway user (we are root)
     bool rootBubblewrap = false;  ///< as root, bubblewrap runs as root and setpriv hands over to that user, so that
                                   ///< it can lend paths below folders only root may enter
-    std::string summary;      ///< one line, e.g. "bubblewrap, one user per test"
+    std::string summary;      ///< one line: the mode and what it guarantees
     std::string warning;      ///< why isolation is partial; empty when it is complete
 };
 const SandboxSupport& sandboxSupport();
+
+/// Of `paths` (files or folders), those a sandboxed process can read here: each is tried as a test's probe would
+/// be run (its own user, its rules, its filter). Empty when nothing leaks.
+std::vector<std::string> readableInSandbox(const std::vector<std::string>& paths);
 
 /// Stop every running child, start no other, and make runProcess return; safe to call from a signal handler.
 void interruptChildren();
 bool childrenInterrupted();
 
-/// The environment for children: PATH, HOME, LANG and TMPDIR from this process, plus `extra`.
+/// The environment for children: PATH, HOME, LANG and TMPDIR from this process, GLIBC_TUNABLES with libm's
+/// reproducible versions (simlab/reproducible_math.h), plus `extra`.
 std::vector<std::string> childEnvironment(const std::vector<std::string>& extra = {});
 
 /// "SIGSEGV" for SIGSEGV, "signal 42" for what has no name.

@@ -21,6 +21,7 @@ struct StudentRecord {
     double maxScore = 0;
     double seconds = 0;
     std::string compiler;  ///< the compiler's message: why it failed, or its warnings (first lines)
+    std::string sandbox;   ///< the sandbox its code ran in, one line (empty when nothing ran)
     std::vector<TestResult> tests;
 };
 

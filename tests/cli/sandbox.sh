@@ -1,0 +1,55 @@
+# The sandbox in each of its modes (bubblewrap; Landlock; limits only), and without bubblewrap also as root with
+# Docker's default capabilities only (no CAP_SYS_ADMIN: the situation inside Gradescope's and PrairieLearn's
+# containers). sandbox-check runs sandbox-try in the sandbox as a probe is run and checks every rule; then simlab
+# itself refuses hidden tests where a test could read them, and says how to fix that in one line.
+source "$(dirname "$0")/../smoke/lib.sh"
+
+docker_caps=-all,+chown,+dac_override,+fowner,+fsetid,+kill,+setgid,+setuid,+setpcap,+net_bind_service,+net_raw,+sys_chroot,+mknod,+audit_write,+setfcap
+as_docker=()
+if [[ $(id -u) -eq 0 ]] && command -v setpriv >/dev/null; then
+  as_docker=(setpriv --bounding-set "$docker_caps" --inh-caps=-all)
+fi
+
+run_mode() {  # run_mode NAME [NAME=VALUE...] -- [PREFIX...]: sandbox-check in that mode
+  local name=$1; shift
+  local settings=()
+  while [[ $# -gt 0 && $1 != -- ]]; do settings+=("$1"); shift; done
+  shift
+  run_capture "$name" env "${settings[@]}" "$@" "$SANDBOX_CHECK" "$SANDBOX_TRY"
+  sed 's/^/    /' "$name.out"
+}
+
+run_mode bwrap --
+check "bubblewrap: every rule holds" test "$(status_of bwrap)" -eq 0
+check "bubblewrap: the mode is bubblewrap here" grep -q '^sandbox: bubblewrap' bwrap.out
+
+run_mode landlock SIMLAB_NO_BUBBLEWRAP=1 --
+if grep -q '^sandbox: Landlock' landlock.out; then
+  check "Landlock: every rule holds" test "$(status_of landlock)" -eq 0
+  if [[ ${#as_docker[@]} -gt 0 ]]; then
+    run_mode landlock-docker SIMLAB_NO_BUBBLEWRAP=1 -- "${as_docker[@]}"
+    check "Landlock with Docker's capabilities: every rule holds" test "$(status_of landlock-docker)" -eq 0
+  fi
+else
+  echo "skipped: Landlock (this kernel has none, or it is blocked here)"
+fi
+
+run_mode limits SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1 --
+check "limits only: every rule holds, and the audit names what a test could read" test "$(status_of limits)" -eq 0
+if [[ ${#as_docker[@]} -gt 0 ]]; then
+  run_mode limits-docker SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1 -- "${as_docker[@]}"
+  check "limits only with Docker's capabilities: every rule holds" test "$(status_of limits-docker)" -eq 0
+
+  # simlab refuses to run hidden tests where a test could read them, in one line that says how to fix it.
+  mkdir -p class/alice
+  cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" class/alice/
+  run_capture refused env SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1 "${as_docker[@]}" "$SIMLAB" grade apple class --out grades
+  check "limits only, files readable by all: simlab grade refuses (exit 2), grading nothing" \
+    bash -c "test $(status_of refused) -eq 2 && test ! -e grades/gradebook.csv"
+  check "in one line naming the hidden tests and the fix" \
+    bash -c "test \$(wc -l <refused.err) -le 2 && grep -q 'could read .*hidden.*chmod -R go-rwx' refused.err"
+  run_capture visible env SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1 "${as_docker[@]}" "$SIMLAB" check apple \
+    class/alice/NewtonsApple.cpp
+  check "the visible tests still run there (a self-check holds no secret): 80/80" grep -q 'Score: 80/80' visible.out
+fi
+finish
