@@ -32,6 +32,8 @@
 
 namespace biosim {
 
+class Parameters;
+
 /// One quantity the model is built from, settable on the command line as --set name=value.
 struct Parameter {
     std::string name;     ///< a letter, then letters, digits or _ (e.g. "mA")
@@ -42,11 +44,22 @@ struct Parameter {
     std::string meaning;  ///< one line, e.g. "mass of the rod A"
 };
 
-/// One sampled quantity: a column of the results file (after `time`, which the course adds).
+/// One sampled quantity: a column of the results file (after `time`, which the course adds). sample() reads it
+/// from the state: the grader checks that it moves when the state does (and is the same for the same state), or,
+/// for a column declared constant (a total mass, a parameter shown beside the motion), that it never moves.
 struct Column {
     std::string name;  ///< e.g. "qA"
     std::string unit;  ///< e.g. "deg"
     std::string meaning;
+    bool constant = false;  ///< true for a column that does not depend on the state
+};
+
+/// A condition the parameters must meet together, beyond each one's range: a rigid body's central moments obey
+/// the triangle inequality, say, so its three moments cannot be chosen one by one. --set and the grader respect
+/// it: a combination that breaks it is refused, naming it, and the grader tries each range as far as it allows.
+struct Rule {
+    std::string meaning;  ///< one line, e.g. "B's moments: each at most the sum of the other two"
+    std::function<bool(const Parameters&)> holds;
 };
 
 /// A column that keeps its value at t = 0 for the whole run, when the parameters take the values in `when`
@@ -72,6 +85,7 @@ struct Declaration {
     std::string program;                ///< the lab program's name, e.g. "babyboot"
     std::string title;                  ///< one line
     std::vector<Parameter> parameters;
+    std::vector<Rule> rules;            ///< conditions on several parameters at once (may be empty)
     std::vector<Column> columns;        ///< what sample() returns, in this order
     Claims claims;
     simlab::RunSettings run;            ///< the defaults: integrator, accuracy, dt, final time
@@ -119,6 +133,7 @@ struct Experiment {
     std::map<std::string, double> set;     ///< parameter values for this run; the others keep their defaults
     double finalTime = 0;                  ///< s; 0 for the declaration's final time
     double tolerance = 1e-6;               ///< allowed error, relative to the column's largest magnitude
+    double scale = 0;                      ///< what errors are measured against instead (0: that magnitude)
     double period = 0;                     ///< s, for "periodic": the column repeats after this time
     std::map<std::string, double> mirror;  ///< for "symmetric": the mirrored run's values ...
     double sign = -1;                      ///< ... whose column is `sign` times this one's at every sample
@@ -134,6 +149,12 @@ struct Experiment {
     }
     Experiment& within(double relativeError) {
         tolerance = relativeError;
+        return *this;
+    }
+    /// Errors relative to `columnScale` (in the column's unit), for a column that starts at or passes near zero,
+    /// where its own magnitude is no scale: a momentum that starts at zero, say, against m times a typical speed.
+    Experiment& against(double columnScale) {
+        scale = columnScale;
         return *this;
     }
 };

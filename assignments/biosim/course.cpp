@@ -41,6 +41,110 @@ double builtInPotentialEnergy(const Model& model, const SimTK::State& state) {
 
 int simulationCount() { return simulations; }
 
+namespace {
+
+/// Damping in proportion to the mass matrix: the generalized forces -rate M u, which take kinetic energy away at
+/// twice `rate` whatever the model's masses and units.
+class MassProportionalDamping : public SimTK::Force::Custom::Implementation {
+public:
+    MassProportionalDamping(const SimTK::SimbodyMatterSubsystem& matter, double rate) : matter_(matter), rate_(rate) {}
+    void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>&, SimTK::Vector_<SimTK::Vec3>&,
+                   SimTK::Vector& mobilityForces) const override {
+        SimTK::Vector Mu;
+        matter_.multiplyByM(state, state.getU(), Mu);
+        mobilityForces -= rate_ * Mu;
+    }
+    SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0; }
+
+private:
+    const SimTK::SimbodyMatterSubsystem& matter_;
+    double rate_;
+};
+
+/// Whether two values of a column differ by more than round-off.
+bool differs(double a, double b) {
+    if (std::isnan(a) || std::isnan(b)) return std::isnan(a) != std::isnan(b);
+    return std::abs(a - b) > 1e-14 * std::max(std::abs(a), std::abs(b));
+}
+
+}  // namespace
+
+void mutate(Model& model, const Mutation& mutation) {
+    using namespace SimTK;
+    if (mutation.gravityScale != 1) {
+        for (int i = 0; i < model.forces.getNumForces(); ++i) {
+            Force& force = model.forces.updForce(ForceIndex(i));
+            if (Force::UniformGravity::isInstanceOf(force)) {
+                Force::UniformGravity& g = Force::UniformGravity::updDowncast(force);
+                g.setGravity(g.getGravity() * mutation.gravityScale);
+            } else if (Force::Gravity::isInstanceOf(force)) {
+                Force::Gravity& g = Force::Gravity::updDowncast(force);
+                g.setDefaultMagnitude(g.getDefaultMagnitude() * mutation.gravityScale);
+            }
+        }
+    }
+    if (mutation.damping > 0) Force::Custom(model.forces, new MassProportionalDamping(model.matter, mutation.damping));
+}
+
+std::vector<ColumnTraits> columnTraits(const Declaration& declaration, const Parameters& parameters,
+                                       const simlab::RunSettings& settings) {
+    using namespace SimTK;
+    simlab::validate(settings);
+    Model model;
+    buildModel(parameters, model);
+    State state = initialState(parameters, model);
+    std::unique_ptr<Integrator> integrator = simlab::integratorNamed(settings.integrator, model.system, settings.dt);
+    integrator->setAccuracy(settings.accuracy);
+    TimeStepper stepper(model.system, *integrator);
+    stepper.initialize(state);
+
+    const std::size_t columns = declaration.columns.size();
+    std::vector<ColumnTraits> traits(columns);
+    auto read = [&](const Parameters& p, const State& s) {
+        model.system.realize(s, Stage::Dynamics);
+        std::vector<double> row = sample(p, model, s);
+        if (row.size() != columns) {
+            throw std::runtime_error("sample() returned " + std::to_string(row.size()) + " values; the declaration has " +
+                                     std::to_string(columns) + " columns");
+        }
+        return row;
+    };
+    auto compare = [&](const std::vector<double>& a, const std::vector<double>& b, bool ColumnTraits::*trait) {
+        for (std::size_t c = 0; c < columns; ++c) {
+            if (differs(a[c], b[c])) traits[c].*trait = true;
+        }
+    };
+    // At t = 0 and a tenth of the way through the run: a column may be still at the start (a speed from rest).
+    for (const double at : {0.0, settings.finalTime / 10}) {
+        if (at > 0) stepper.stepTo(at);
+        const State here = stepper.getState();
+        const std::vector<double> row = read(parameters, here);
+        const std::vector<double> again = read(parameters, here);
+        for (std::size_t c = 0; c < columns; ++c) {
+            if (differs(row[c], again[c])) traits[c].repeatable = false;
+        }
+        for (int i = 0; i < here.getNQ(); ++i) {
+            State moved = here;
+            moved.updQ()[i] += 1e-4 * std::max(1.0, std::abs(here.getQ()[i]));
+            compare(row, read(parameters, moved), &ColumnTraits::state);
+        }
+        for (int i = 0; i < here.getNU(); ++i) {
+            State moved = here;
+            moved.updU()[i] += 1e-4 * std::max(1.0, std::abs(here.getU()[i]));
+            compare(row, read(parameters, moved), &ColumnTraits::state);
+        }
+        State later = here;
+        later.setTime(here.getTime() + std::max(1e-3, settings.finalTime / 100));
+        compare(row, read(parameters, later), &ColumnTraits::time);
+        for (const Parameter& p : declaration.parameters) {
+            std::map<std::string, double> values = parameters.values();
+            values[p.name] = p.value == parameters[p.name] ? movedValue(declaration, p) : p.value;
+            compare(row, read(Parameters(values), here), &ColumnTraits::parameters);
+        }
+    }
+    return traits;
+}
+
 NoSimulation::NoSimulation() { simulationRefused = true; }
 NoSimulation::~NoSimulation() { simulationRefused = false; }
 
@@ -70,6 +174,11 @@ Observed observe(const Declaration& declaration, const Parameters& parameters, c
     Model model;
     const int courseSubsystems = model.system.getNumSubsystems();
     buildModel(parameters, model);
+    // The student's own Force::Custom elements, before a hook adds the course's (a mutant's damper).
+    int studentCustomForces = 0;
+    for (int i = 0; i < model.forces.getNumForces(); ++i) {
+        if (Force::Custom::isInstanceOf(model.forces.getForce(ForceIndex(i)))) ++studentCustomForces;
+    }
     if (hooks.afterBuild) hooks.afterBuild(model);
     State initial = initialState(parameters, model);
     if (hooks.initial) hooks.initial(initial);
@@ -78,9 +187,7 @@ Observed observe(const Declaration& declaration, const Parameters& parameters, c
     observed.model = simlab::describeModel(model.matter, initial);
     observed.auxiliaryStates = initial.getNZ();
     observed.addedSubsystems = model.system.getNumSubsystems() - courseSubsystems;
-    for (int i = 0; i < model.forces.getNumForces(); ++i) {
-        if (Force::Custom::isInstanceOf(model.forces.getForce(ForceIndex(i)))) ++observed.customForces;
-    }
+    observed.customForces = studentCustomForces;
     std::unique_ptr<Integrator> integrator = simlab::integratorNamed(settings.integrator, model.system, settings.dt);
     integrator->setAccuracy(settings.accuracy);
     if (settings.fixedStep) integrator->setFixedStepSize(settings.dt);

@@ -22,8 +22,12 @@ namespace biosim {
 void checkDeclaration(const Declaration& declaration);
 
 /// The declared defaults, changed by `changes`. A name that was not declared, a non-finite value or one outside
-/// its range is std::invalid_argument in one line naming it and the range.
+/// its range, or values that together break one of the declaration's rules, is std::invalid_argument in one line
+/// naming it.
 Parameters resolve(const Declaration& declaration, const std::map<std::string, double>& changes = {});
+
+/// The meanings of the declaration's rules that `parameters` break (empty: they meet them all).
+std::vector<std::string> brokenRules(const Declaration& declaration, const Parameters& parameters);
 
 /// "NAME=VALUE" read as a change; anything else is std::invalid_argument in one line.
 std::pair<std::string, double> parseSetting(const std::string& text);
@@ -73,6 +77,44 @@ inline EnergyBalance energyBalance(const Observed& run) {
     }
     return b;
 }
+
+/// A change the grader makes to a student's model to see whether an experiment can fail on it (a mutant): its
+/// motion damped, its gravity scaled, its start moved. An experiment that holds on the model and on every mutant
+/// cannot fail, and so shows nothing.
+struct Mutation {
+    double damping = 0;       ///< 1/s: every generalized speed damped at this rate, in proportion to the mass matrix
+    double gravityScale = 1;  ///< Simbody's own gravity elements (UniformGravity, Gravity) scaled by this
+    double nudge = 0;         ///< every generalized coordinate moved by this much at t = 0 (rad or m)
+};
+
+/// Applies the damping and the gravity of `mutation` to a model just built (before its topology is realized).
+void mutate(Model& model, const Mutation& mutation);
+
+/// What a column of sample() depends on, found by sampling states the course changes one thing at a time: each
+/// generalized coordinate, each speed, the time alone, each parameter alone (sample() given other values for the
+/// same state), and the same state twice.
+struct ColumnTraits {
+    bool repeatable = true;   ///< the same state gives the same value
+    bool state = false;       ///< moves when a coordinate or a speed does
+    bool time = false;        ///< moves when only the time does
+    bool parameters = false;  ///< moves when only the parameters given to sample() do
+};
+
+/// The traits of every declared column, at t = 0 and a tenth of the way through the run `settings` describes.
+std::vector<ColumnTraits> columnTraits(const Declaration& declaration, const Parameters& parameters,
+                                       const simlab::RunSettings& settings);
+
+/// The value of `p` as far from its default toward `target` as `allowed` lets it go: `target` itself if allowed,
+/// else the boundary between them, found by halving the way back (the default is taken to be allowed).
+double reachable(const Parameter& p, double target, const std::function<bool(double)>& allowed);
+
+/// The value the grader moves `p` to, to see whether it changes anything: halfway from its default to the far
+/// end of its range; where the declaration's rules stop it short of that (a moment of a thin plate sits on the
+/// triangle inequality's edge), halfway to the near end if that goes farther.
+double movedValue(const Parameter& p, const std::function<bool(double)>& allowed);
+
+/// movedValue with the declaration's own rules (the other parameters at `others`, else at their defaults).
+double movedValue(const Declaration& declaration, const Parameter& p, const std::map<std::string, double>& others = {});
 
 /// Hooks for the lab program between the course's steps; each may be empty.
 struct ObserveHooks {

@@ -83,6 +83,10 @@ void checkDeclaration(const Declaration& d) {
         if (!columns.insert(c.name).second) fail("column '" + c.name + "' is declared twice");
         if (c.unit.empty()) fail("column '" + c.name + "' has no unit (use \"1\" for a pure number)");
     }
+    for (const Rule& rule : d.rules) {
+        if (rule.meaning.empty()) fail("a rule of the declaration says nothing of what it requires (its meaning)");
+        if (!rule.holds) fail("the rule '" + rule.meaning + "' has no test (holds)");
+    }
     if (d.claims.degreesOfFreedom < 0) fail("the claimed degrees of freedom are negative");
     checkSettingsNamed(d, d.claims.energyWhen, "the energy claim");
     checkSettingsNamed(d, d.claims.atRest, "the at-rest claim");
@@ -90,7 +94,51 @@ void checkDeclaration(const Declaration& d) {
         if (!columns.count(c.column)) fail("the claim that '" + c.column + "' is conserved names no declared column");
         checkSettingsNamed(d, c.when, "the claim that " + c.column + " is conserved");
     }
+    // The defaults and every claim's settings meet the rules (resolve names the one they break).
+    resolve(d);
+    resolve(d, d.claims.energyWhen);
+    resolve(d, d.claims.atRest);
     simlab::validate(d.run);
+}
+
+double reachable(const Parameter& p, double target, const std::function<bool(double)>& allowed) {
+    if (allowed(target)) return target;
+    double good = p.value, bad = target;
+    for (int i = 0; i < 40; ++i) {
+        const double middle = (good + bad) / 2;
+        (allowed(middle) ? good : bad) = middle;
+    }
+    return good;
+}
+
+double movedValue(const Parameter& p, const std::function<bool(double)>& allowed) {
+    const double up = p.value + (p.max - p.value) / 2, down = p.value - (p.value - p.min) / 2;
+    const double farTarget = up - p.value >= p.value - down ? up : down;
+    const double far = reachable(p, farTarget, allowed);
+    if (far == farTarget) return far;
+    const double near = reachable(p, farTarget == up ? down : up, allowed);
+    return std::abs(near - p.value) > std::abs(far - p.value) ? near : far;
+}
+
+double movedValue(const Declaration& declaration, const Parameter& p, const std::map<std::string, double>& others) {
+    return movedValue(p, [&](double value) {
+        std::map<std::string, double> set = others;
+        set[p.name] = value;
+        try {
+            resolve(declaration, set);
+            return true;
+        } catch (const std::invalid_argument&) {
+            return false;
+        }
+    });
+}
+
+std::vector<std::string> brokenRules(const Declaration& declaration, const Parameters& parameters) {
+    std::vector<std::string> broken;
+    for (const Rule& rule : declaration.rules) {
+        if (!rule.holds || !rule.holds(parameters)) broken.push_back(rule.meaning);
+    }
+    return broken;
 }
 
 Parameters resolve(const Declaration& declaration, const std::map<std::string, double>& changes) {
@@ -106,7 +154,20 @@ Parameters resolve(const Declaration& declaration, const std::map<std::string, d
         }
         values[name] = value;
     }
-    return Parameters(std::move(values));
+    Parameters resolved(std::move(values));
+    const std::vector<std::string> broken = brokenRules(declaration, resolved);
+    if (!broken.empty()) {
+        std::string set;
+        std::size_t k = 0;
+        for (const auto& [name, value] : changes) {
+            set += std::string(k == 0 ? "" : k + 1 == changes.size() ? " and " : ", ") + name + " = " + show(value);
+            ++k;
+        }
+        const std::string who = changes.empty() ? "the defaults break" : changes.size() == 1 ? set + " breaks"
+                                                                                          : set + " together break";
+        fail(who + " a rule of the declaration: " + broken.front());
+    }
+    return resolved;
 }
 
 std::pair<std::string, double> parseSetting(const std::string& text) {

@@ -55,8 +55,14 @@ int listParameters(const Declaration& d) {
         std::printf("%-10s %-8s %12.6g %12.6g %12.6g  %s\n", p.name.c_str(), p.unit.c_str(), p.value, p.min, p.max,
                     p.meaning.c_str());
     }
+    if (!d.rules.empty()) {
+        std::printf("\nrules\n");
+        for (const biosim::Rule& r : d.rules) std::printf("  %s\n", r.meaning.c_str());
+    }
     std::printf("\n%-10s %-8s  %s\n", "column", "unit", "meaning");
-    for (const biosim::Column& c : d.columns) std::printf("%-10s %-8s  %s\n", c.name.c_str(), c.unit.c_str(), c.meaning.c_str());
+    for (const biosim::Column& c : d.columns) {
+        std::printf("%-10s %-8s  %s%s\n", c.name.c_str(), c.unit.c_str(), c.meaning.c_str(), c.constant ? " (constant)" : "");
+    }
     return 0;
 }
 

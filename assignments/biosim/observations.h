@@ -10,12 +10,14 @@
 namespace biosim {
 
 SIMLAB_WIRE(Parameter, name, unit, value, min, max, meaning)
-SIMLAB_WIRE(Column, name, unit, meaning)
+SIMLAB_WIRE(Column, name, unit, meaning, constant)
 SIMLAB_WIRE(Conserved, column, when)
 SIMLAB_WIRE(Claims, degreesOfFreedom, energyConserved, energyWhen, conserved, atRest)
 SIMLAB_WIRE(Declaration, program, title, parameters, columns, claims, run)
 SIMLAB_WIRE(Observed, time, rows, q, u, kinetic, potential, model, integrator, auxiliaryStates, customForces,
             addedSubsystems)
+SIMLAB_WIRE(ColumnTraits, repeatable, state, time, parameters)
+SIMLAB_WIRE(Mutation, damping, gravityScale, nudge)
 SIMLAB_WIRE(SchematicBody, name, index, parent, mass, com, moments, products, joint, dof, axes, jointLocation, origin,
             massCenter)
 SIMLAB_WIRE(Schematic, title, bodies, degreesOfFreedom, constraints)
@@ -32,12 +34,13 @@ struct ExperimentInfo {
     std::map<std::string, double> mirror;
     double sign = -1;
     bool hasFormula = false;
+    double scale = 0;
 };
-SIMLAB_WIRE(ExperimentInfo, name, kind, column, set, finalTime, tolerance, period, mirror, sign, hasFormula)
+SIMLAB_WIRE(ExperimentInfo, name, kind, column, set, finalTime, tolerance, period, mirror, sign, hasFormula, scale)
 
 inline ExperimentInfo infoOf(const Experiment& e) {
     return {e.name, e.kind, e.column, e.set, e.finalTime, e.tolerance, e.period, e.mirror, e.sign,
-            static_cast<bool>(e.formula)};
+            static_cast<bool>(e.formula), e.scale};
 }
 
 /// The answer to the project's question, as the program computes it.

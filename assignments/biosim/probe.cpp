@@ -29,17 +29,34 @@ SIMLAB_PROBE(projectObservations) {
     simlab::probe::add("run", [](const nlohmann::json& arguments) {
         const Declaration declaration = declare();
         const Parameters parameters = resolve(declaration, argument<Settings>(arguments, "set"));
-        // "nudge" moves every generalized coordinate by that much at t = 0 (the integrator's initialization
-        // projects the state back onto any constraints and normalizes quaternions).
-        const double nudge = argument<double>(arguments, "nudge");
+        // A mutant of the model, or the model itself: its nudge moves every generalized coordinate at t = 0 (the
+        // integrator's initialization projects the state back onto any constraints and normalizes quaternions).
+        const Mutation mutation = argument<Mutation>(arguments, "mutation");
         ObserveHooks hooks;
-        if (nudge != 0) {
-            hooks.initial = [nudge](SimTK::State& state) {
+        hooks.afterBuild = [mutation](Model& model) { mutate(model, mutation); };
+        if (mutation.nudge != 0) {
+            hooks.initial = [nudge = mutation.nudge](SimTK::State& state) {
                 for (int i = 0; i < state.getNQ(); ++i) state.updQ()[i] += nudge;
             };
         }
         return simlab::wire::toJson(
             observe(declaration, parameters, argument<simlab::RunSettings>(arguments, "settings"), hooks));
+    });
+    simlab::probe::add("columns", [](const nlohmann::json& arguments) {
+        const Declaration declaration = declare();
+        return simlab::wire::toJson(columnTraits(declaration, resolve(declaration, argument<Settings>(arguments, "set")),
+                                                 argument<simlab::RunSettings>(arguments, "settings")));
+    });
+    simlab::probe::add("allowed", [](const nlohmann::json& arguments) {
+        // The rules these values would break, as --set would refuse them (empty: allowed). A value outside its
+        // range is the range's own refusal, one line.
+        const Declaration declaration = declare();
+        try {
+            resolve(declaration, argument<Settings>(arguments, "set"));
+            return simlab::wire::toJson(std::vector<std::string>{});
+        } catch (const std::invalid_argument& e) {
+            return simlab::wire::toJson(std::vector<std::string>{e.what()});
+        }
     });
     simlab::probe::add("schematic", [](const nlohmann::json& arguments) {
         const Declaration declaration = declare();
@@ -57,9 +74,11 @@ SIMLAB_PROBE(projectObservations) {
         for (const double t : argument<std::vector<double>>(arguments, "times")) values.push_back(e.formula(parameters, t));
         return simlab::wire::toJson(values);
     });
-    simlab::probe::add("answer", [](const nlohmann::json&) {
+    simlab::probe::add("answer", [](const nlohmann::json& arguments) {
+        const Declaration declaration = declare();
+        const Parameters parameters = resolve(declaration, argument<Settings>(arguments, "set"));
         const int before = simulationCount();
-        const double value = answer(resolve(declare()));
+        const double value = answer(parameters);
         return simlab::wire::toJson(Answer{value, simulationCount() - before});
     });
 }

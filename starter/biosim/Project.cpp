@@ -29,11 +29,14 @@ Declaration declare() {
     d.title = "PROJECT_TITLE";
     // One Parameter per physical quantity: {name, unit, default, min, max, meaning}. Every value in a range
     // must simulate: the grader runs each parameter at both ends of its range (declare the range the model is
-    // meant for, wider than a tenth of the default).
+    // meant for, wider than a tenth of the default). Parameters bound together (a body's three moments) get a
+    // rule in d.rules instead of narrow ranges: {"what it requires", [](const Parameters& p) { return ...; }}.
     d.parameters = {
         {"g", "m/s^2", 9.81, 0, 20, "gravity, along -y of Ground"},
     };
-    // The quantities sample() returns, in order: {name, unit, meaning}. The course adds the time column.
+    // The quantities sample() returns, in order: {name, unit, meaning}, each read from the state (the grader
+    // checks that it moves when the state does), or {name, unit, meaning, true} for one that is constant. The
+    // course adds the time column.
     d.columns = {};
     // The degrees of freedom the scene requires, whether anything dissipates energy, and the settings with no
     // gravity, no other force and no initial motion (the model must then stay at rest, even when the grader moves

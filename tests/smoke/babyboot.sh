@@ -21,7 +21,13 @@ check "a misspelt parameter is a one-line error" \
   bash -c "test $(status_of typo) -eq 2 && test \$(wc -l <typo.err) -eq 1 && grep -q \"no parameter named 'qa'\" typo.err"
 run_capture range "$boot" --set IBz=1
 check "an out-of-range value is a one-line error naming the range" \
-  bash -c "test $(status_of range) -eq 2 && grep -q 'IBz = 1 is outside its range \[0.0002, 0.0003\]' range.err"
+  bash -c "test $(status_of range) -eq 2 && grep -q 'IBz = 1 is outside its range \[1e-06, 0.01\]' range.err"
+run_capture rule "$boot" --set IBx=4e-4
+check "moments that break the triangle inequality together are a one-line error naming the rule" \
+  bash -c "test $(status_of rule) -eq 2 && test \$(wc -l <rule.err) -eq 1 && grep -q 'IBx = 0.0004 breaks a rule of the declaration: B.s central moments obey the triangle inequality' rule.err"
+run_capture uniform "$boot" --set IBx=4.16667e-4 --set IBy=3.33333e-4 --set IBz=8.33333e-5 --quiet --output uniform.txt
+check "a uniform plate of the boot's own mass and size runs and conserves its energy to 7 digits or more" \
+  bash -c "test $(status_of uniform) -eq 0 && grep -qE 'Energy conserved to ([7-9]|1[0-9])\.[0-9] accurate digits' uniform.out"
 run_capture notnumber "$boot" --set g=heavy
 check "a value that is not a number is refused" grep -q "'heavy' is not a number" notnumber.err
 

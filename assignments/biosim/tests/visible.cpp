@@ -110,22 +110,67 @@ Part experimentsPart(const toml::table& t, const std::vector<ExperimentInfo>& in
     return {"experiments", ""};
 }
 
-/// Relative departure of `column` from its value at t = 0, against the column's largest magnitude.
-double relativeDrift(const std::vector<double>& column) {
-    double drift = 0;
-    for (const double v : column) drift = std::max(drift, std::abs(v - column.front()));
-    return drift / scaleOf(column);
-}
-
-/// The outcome of one of the student's own experiments: the figure it measured and whether it holds.
+/// The outcome of one of the student's own experiments on one run: the figure it measured and whether it holds;
+/// and what the run showed of the column, for the words of a verdict that no mutant changed.
 struct Verdict {
     bool holds = false;
     std::string line;
+    bool columnMoved = true;     ///< the column changed in the run
+    bool columnMirrored = true;  ///< (symmetric) the mirrored run's column differs from the first's
 };
 
-Verdict judgeExperiment(const Declaration& d, const ExperimentInfo& e) {
+/// Whether a list of values changes at all.
+bool moves(const std::vector<double>& c) {
+    return std::any_of(c.begin(), c.end(), [&](double v) { return v != c.front(); });
+}
+
+/// The column an experiment is about, in one run: the course's own reading where the column is one (a coordinate,
+/// a speed, the energy), else the student's values; with the scale errors are measured against and its words.
+/// Near a zero a column's own magnitude is no scale: a column of the student's that starts at zero is measured
+/// against the scale its experiment states (.against), and without one it has none (`unscaled`).
+struct Series {
+    std::vector<double> values;
+    double scale = 1;
+    std::string scaleWords;  ///< e.g. "against the energy the motion exchanges, 0.83 J"
+    bool unscaled = false;   ///< it starts at zero and nothing gives it a scale
+};
+
+Series seriesOf(const Observed& run, int column, const std::string& name, double stated) {
+    Series s;
+    const std::vector<double> c = columnOf(run, static_cast<std::size_t>(column));
+    const Reading reading = readingOf(run, c);
+    s.values = reading.what.empty() ? c : reading.values;
+    double largest = 0;
+    for (const double v : s.values) largest = std::max(largest, std::abs(v));
+    if (reading.what == "the mechanical energy") {
+        s.scale = reading.scale;
+        const bool zero = std::abs(s.values.front()) <= 1e-9 * s.scale;
+        s.scaleWords = std::string(zero ? "it starts at zero: " : "") + "against the energy the motion exchanges, " +
+                       show(s.scale) + " J";
+    } else if (!reading.what.empty()) {
+        s.scale = std::max(reading.scale, largest);
+        s.scaleWords = "against " + std::string(s.scale == largest ? "its largest magnitude, " : "one radian or unit, ") +
+                       show(s.scale);
+    } else if (stated > 0) {
+        s.scale = stated;
+        s.scaleWords = "against the stated scale, " + show(stated);
+    } else {
+        s.scale = largest > 0 ? largest : 1.0;
+        s.unscaled = !(std::abs(s.values.front()) > 1e-9 * largest) || !(largest > 0);
+        s.scaleWords = std::string(s.unscaled ? name + " starts at zero: " : "") + "against its largest magnitude, " +
+                       show(s.scale);
+    }
+    if (!reading.what.empty()) s.scaleWords += "; judged on the course's reading of " + reading.what;
+    return s;
+}
+
+/// One of the student's own experiments judged on the model, or on a mutant of it.
+Verdict judgeExperiment(const Declaration& d, const ExperimentInfo& e, const Mutation& mutation = {}) {
     if (!(e.tolerance >= 1e-15 && e.tolerance <= 1e-2)) {
         return {false, "tolerance " + show(e.tolerance) + " is outside [1e-15, 1e-2]: too loose to test anything"};
+    }
+    if (!(e.scale >= 0 && std::isfinite(e.scale))) {
+        return {false, "its stated scale " + show(e.scale) + " is not a positive number"};
     }
     const bool needsColumn = e.kind != "at rest";
     int column = -1;
@@ -148,45 +193,117 @@ Verdict judgeExperiment(const Declaration& d, const ExperimentInfo& e) {
                            show(grading::param("minimum_samples")) + " samples)"};
     }
     if (e.kind == "periodic") {
-        const Observed run = runWith(e.set, settingsFor(d, e.period));
-        const std::vector<double> c = columnOf(run, static_cast<std::size_t>(column));
-        const auto [low, high] = std::minmax_element(c.begin(), c.end());
-        if (!((*high - *low) / scaleOf(c) >= grading::param("least_variation"))) {
+        const Observed run = runWith(e.set, settingsFor(d, e.period), mutation);
+        const Series c = seriesOf(run, column, e.column, e.scale);
+        const auto [low, high] = std::minmax_element(c.values.begin(), c.values.end());
+        if (!((*high - *low) / c.scale >= grading::param("least_variation"))) {
             return {false, e.column + " hardly changes over the period (a constant repeats with any period)"};
         }
-        return within(std::abs(c.back() - c.front()) / scaleOf(c), e.column + "(T) - " + e.column + "(0), relative,");
+        Verdict v = within(std::abs(c.values.back() - c.values.front()) / c.scale,
+                           e.column + "(T) - " + e.column + "(0), " + c.scaleWords + ",");
+        return v;
     }
-    const Observed run = runWith(e.set, settingsFor(d, e.finalTime));
+    const Observed run = runWith(e.set, settingsFor(d, e.finalTime), mutation);
     if (e.kind == "at rest") {
         return within(std::max(largestDrift(run.q), largestDrift(run.u)), "largest change of q or u");
     }
-    const std::vector<double> c = columnOf(run, static_cast<std::size_t>(column));
-    if (e.kind == "conserved") return within(relativeDrift(c), "relative drift of " + e.column);
+    const Series c = seriesOf(run, column, e.column, e.scale);
+    if (e.kind == "conserved") {
+        if (c.unscaled && moves(c.values)) {
+            return {false, e.column + " starts at zero, and a drift measured against the drift itself is always 1: "
+                           "state the scale it is small against with .against(value)"};
+        }
+        double drift = 0;
+        for (const double v : c.values) drift = std::max(drift, std::abs(v - c.values.front()));
+        Verdict v = within(drift / c.scale, "relative drift of " + e.column + " (" + c.scaleWords + "),");
+        v.columnMoved = moves(c.values);
+        return v;
+    }
     if (e.kind == "symmetric") {
-        const Observed mirrored = runWith(merged(e.set, e.mirror), settingsFor(d, e.finalTime));
+        const Observed mirrored = runWith(merged(e.set, e.mirror), settingsFor(d, e.finalTime), mutation);
         if (!(largestDifference(run.q, mirrored.q) >= grading::param("least_variation") * largestMagnitude(run.q))) {
             return {false, "the mirror changes nothing: the mirrored run moves as the first one does"};
         }
-        const std::vector<double> m = columnOf(mirrored, static_cast<std::size_t>(column));
+        const Series m = seriesOf(mirrored, column, e.column, e.scale);
         double worst = 0;
-        for (std::size_t k = 0; k < std::min(c.size(), m.size()); ++k) worst = std::max(worst, std::abs(m[k] - e.sign * c[k]));
-        return within(worst / scaleOf(c), "largest mirror mismatch, relative,");
+        bool differ = false;
+        for (std::size_t k = 0; k < std::min(c.values.size(), m.values.size()); ++k) {
+            worst = std::max(worst, std::abs(m.values[k] - e.sign * c.values[k]));
+            differ = differ || m.values[k] != c.values[k];
+        }
+        Verdict v = within(worst / c.scale, "largest mirror mismatch, relative,");
+        v.columnMirrored = differ;
+        return v;
     }
     if (e.kind == "formula") {
         if (!e.hasFormula) return {false, "has no formula"};
         const std::vector<double> f = observe::decode<std::vector<double>>(
             observe::ask("formula", {{"name", e.name}, {"times", simlab::wire::toJson(run.time)}}), "formula");
-        if (f.size() != c.size()) return {false, "its formula gave " + std::to_string(f.size()) + " values for " + std::to_string(c.size()) + " samples"};
+        if (f.size() != c.values.size()) {
+            return {false, "its formula gave " + std::to_string(f.size()) + " values for " +
+                               std::to_string(c.values.size()) + " samples"};
+        }
         double worst = 0;
-        for (std::size_t k = 0; k < c.size(); ++k) worst = std::max(worst, std::abs(c[k] - f[k]));
-        return within(worst / scaleOf(c), "largest departure from the formula, relative,");
+        for (std::size_t k = 0; k < c.values.size(); ++k) worst = std::max(worst, std::abs(c.values[k] - f[k]));
+        return within(worst / c.scale, "largest departure from the formula (" + c.scaleWords + "),");
     }
     return {false, "unknown kind '" + e.kind + "'"};
 }
 
-/// The value of parameter `p` that the "changes the motion" test tries: halfway to the far end of its range.
-double otherValue(const Parameter& p) {
-    return p.max - p.value >= p.value - p.min ? p.value + (p.max - p.value) / 2 : p.value - (p.value - p.min) / 2;
+/// An experiment that holds on the model must fail on some mutant of it, or it shows nothing: the course damps the
+/// motion (at a rate that takes most of its energy over the run), scales gravity, moves the start, and moves each
+/// parameter the experiment does not set, stopping at the first mutant on which the experiment fails.
+Verdict judgeWithMutants(const Declaration& d, const ExperimentInfo& e) {
+    const Verdict model = judgeExperiment(d, e);
+    if (!model.holds) return model;
+    const double span = e.kind == "periodic" ? e.period : (e.finalTime > 0 ? e.finalTime : d.run.finalTime);
+    std::vector<std::pair<std::string, Mutation>> mutants;
+    Mutation damped;
+    damped.damping = 2 / span;
+    mutants.push_back({"damped", damped});
+    Mutation heavier;
+    heavier.gravityScale = 1.25;
+    mutants.push_back({"gravity x1.25", heavier});
+    Mutation nudged;
+    nudged.nudge = grading::param("nudge");
+    mutants.push_back({"start moved by " + show(nudged.nudge), nudged});
+    std::string tried;
+    bool moved = model.columnMoved, mirrored = model.columnMirrored;
+    auto failsOn = [&](const ExperimentInfo& variant, const Mutation& mutation) {
+        try {
+            const Verdict v = judgeExperiment(d, variant, mutation);
+            moved = moved || v.columnMoved;
+            mirrored = mirrored || v.columnMirrored;
+            return !v.holds;
+        } catch (const observe::StudentError&) {
+            return true;  // the mutant did not even run: the experiment's scene depends on what changed
+        } catch (const observe::NonFinite&) {
+            return true;
+        }
+    };
+    for (const auto& [name, mutation] : mutants) {
+        tried += (tried.empty() ? "" : ", ") + name;
+        if (failsOn(e, mutation)) return {true, model.line + "; it fails on a mutant (" + name + "), so it can fail"};
+    }
+    for (const Parameter& p : d.parameters) {
+        if (e.set.count(p.name)) continue;
+        ExperimentInfo variant = e;
+        variant.set[p.name] = movedValueOf(p, e.set);
+        if (variant.set[p.name] == p.value) continue;
+        tried += ", " + p.name + " = " + show(variant.set[p.name]);
+        if (failsOn(variant, {})) {
+            return {true, model.line + "; it fails on a mutant (" + p.name + " moved), so it can fail"};
+        }
+    }
+    std::string why = "it holds on every mutant the course made (" + tried + "): it cannot fail, so it shows nothing";
+    if (e.kind == "at rest") why = "nothing could move: it stays at rest when its start is moved too, so no force acts in that scene";
+    else if (e.kind == "conserved" && !moved) why = e.column + " never moves, in the model or in any mutant: a constant is conserved by anything";
+    else if (e.kind == "symmetric" && !mirrored) why = e.column + " is the same in both runs though the mirror changes the motion: it ignores what the mirror changes";
+    const ColumnVerdict columns = columnVerdict(d);
+    if (const auto found = columns.byColumn.find(e.column); found != columns.byColumn.end()) {
+        why += " (" + e.column + " " + found->second + ")";
+    }
+    return {false, model.line + "; but " + why};
 }
 
 }  // namespace
@@ -216,26 +333,41 @@ TEST_CASE("the description has all five parts", "[biosim][description]") {
     CHECK(complete == 5);
 }
 
-TEST_CASE("the default scene runs from t = 0 to the final time", "[biosim][run]") {
+TEST_CASE("the default scene runs to the final time and every column reads the state", "[biosim][run]") {
     const Declaration d = declared();
     const Observed run = runWith({}, d.run);
     const std::size_t expected = static_cast<std::size_t>(d.run.sampleCount()) + 1;
-    grading::measured(static_cast<double>(run.time.size()), "samples",
+    REQUIRE(run.time.size() == expected);
+    REQUIRE(run.time.back() == Approx(d.run.finalTime).margin(1e-9));
+    // Each column is an observation of the state: the same state gives the same value, and a change of a
+    // coordinate or a speed moves it (unless it is declared constant). The course samples states it changes one
+    // thing at a time (course.h's columnTraits); a column that follows the time or the parameters alone says
+    // nothing of the model.
+    const ColumnVerdict columns = columnVerdict(d);
+    const int n = static_cast<int>(d.columns.size());
+    grading::measured(columns.good, "columns",
                       std::to_string(run.time.size()) + " samples to t = " + show(run.time.back()) + " s (" +
-                          run.integrator.method + ", " + std::to_string(run.integrator.stepsTaken) + " steps)");
-    CHECK(run.time.size() == expected);
-    CHECK(run.time.back() == Approx(d.run.finalTime).margin(1e-9));
+                          run.integrator.method + ", " + std::to_string(run.integrator.stepsTaken) + " steps); " +
+                          std::to_string(columns.good) + " of " + std::to_string(n) + " columns read from the state" +
+                          (columns.problems.empty() ? "" : ": " + columns.problems));
+    if (!columns.problems.empty()) {
+        grading::feedback("sample() returns what the state shows: read each column from `state` (a coordinate, a "
+                          "speed, a position, an energy), or declare it constant = true if it is one");
+    }
+    grading::partialCredit(n > 0 ? static_cast<double>(columns.good) / n : 0);
+    CHECK(columns.good == n);
 }
 
 TEST_CASE("with no gravity and no motion the model stays at rest", "[biosim][rest]") {
     const Declaration d = declared();
+    requireReportedModel(d);
     if (d.claims.atRest.empty()) {
         FAIL("the declaration's claims.atRest gives no settings for a scene at rest (no gravity, no initial motion)");
     }
     // From the declared configuration, and from one nearby with every q moved: a model that stays put only because
     // it starts in an equilibrium (a force left on, gravity hard-wired) moves when nudged.
     const Observed run = runWith(d.claims.atRest, d.run);
-    const Observed nudged = runWith(d.claims.atRest, d.run, grading::param("nudge"));
+    const Observed nudged = nudgedRun(d.claims.atRest, d.run, grading::param("nudge"));
     const double fromDeclared = std::max(largestDrift(run.q), largestDrift(run.u));
     const double fromNudged = std::max(largestDrift(nudged.q), largestDrift(nudged.u));
     if (fromNudged > fromDeclared) {
@@ -248,6 +380,7 @@ TEST_CASE("with no gravity and no motion the model stays at rest", "[biosim][res
 
 TEST_CASE("the mechanical energy is conserved when nothing is claimed to dissipate", "[biosim][energy]") {
     const Declaration d = declared();
+    requireReportedModel(d);
     // At the declared accuracy, but never looser than the rubric's loosest: a loose accuracy asked for must not
     // make any drift acceptable.
     simlab::RunSettings s = d.run;
@@ -277,6 +410,7 @@ TEST_CASE("the mechanical energy is conserved when nothing is claimed to dissipa
 
 TEST_CASE("a tenfold tighter accuracy gains digits until double precision runs out", "[biosim][convergence]") {
     const Declaration d = declared();
+    requireReportedModel(d);
     // Runs at accuracy 1e-3 ... 1e-10 with RungeKuttaMerson, sampled only ten times so that the sampling never
     // caps the steps. Each is compared with the next, ten times tighter, in every generalized coordinate and speed
     // at the final time (read from the state).
@@ -310,6 +444,7 @@ TEST_CASE("a tenfold tighter accuracy gains digits until double precision runs o
 
 TEST_CASE("the model has exactly the degrees of freedom claimed", "[biosim][model]") {
     const Declaration d = declared();
+    requireReportedModel(d);
     // The schematic, drawn from the model the student built, goes to their feedback.
     const Schematic schematic = schematicWith({});
     grading::attach("schematic-t0.svg", pictureSvg(schematic));
@@ -346,6 +481,7 @@ TEST_CASE("the model has exactly the degrees of freedom claimed", "[biosim][mode
 
 TEST_CASE("every parameter changes the motion", "[biosim][parameters]") {
     const Declaration d = declared();
+    requireReportedModel(d);
     REQUIRE_FALSE(d.parameters.empty());
     const simlab::RunSettings s = settingsFor(d, std::min(d.run.finalTime, grading::param("seconds")));
     const Observed base = runWith({}, s);
@@ -353,7 +489,7 @@ TEST_CASE("every parameter changes the motion", "[biosim][parameters]") {
     std::string inert, least;
     double leastChange = INFINITY;
     for (const Parameter& p : d.parameters) {
-        const Observed other = runWith({{p.name, otherValue(p)}}, s);
+        const Observed other = runWith({{p.name, movedValueOf(p)}}, s);
         // The motion (q, u) or, for a parameter the motion does not depend on (a pendulum's mass, say), the
         // kinetic energy Simbody computes from the model: read from the state, never from the student's columns.
         // (Not the potential energy: a body welded in place could make that follow any parameter.) Each change is
@@ -379,9 +515,10 @@ TEST_CASE("every parameter changes the motion", "[biosim][parameters]") {
                                                    " parameters change the motion" +
                                                    (inert.empty() ? " (least: " + least + ")" : "; not: " + inert));
     if (!inert.empty()) {
-        grading::feedback("is a number hard-wired where " + inert + " belongs? Read it with p[\"name\"] (a change "
+        grading::feedback("is a number hard-wired where " + inert + " belongs? Read it with p[\"name\"]: a change "
                           "halfway to the far end of its range must change the motion by " +
-                          show(grading::param("relative_change")) + " of its size or more)");
+                          show(grading::param("relative_change")) + " of its size or more (declare the range the "
+                          "parameter is meant for, wide enough for its effect to show)");
     }
     grading::partialCredit(static_cast<double>(changing) / n);
     CHECK(changing == n);
@@ -389,8 +526,9 @@ TEST_CASE("every parameter changes the motion", "[biosim][parameters]") {
 
 TEST_CASE("no NaN or Inf or integrator failure across the parameter ranges", "[biosim][ranges]") {
     const Declaration d = declared();
+    requireReportedModel(d);
     int tried = 0, ran = 0;
-    std::string first, narrow;
+    std::string first, narrow, ruled;
     const double narrowest = grading::param("narrowest");
     for (const Parameter& p : d.parameters) {
         // A range that holds little more than its default claims little: it counts as two runs that failed.
@@ -399,8 +537,15 @@ TEST_CASE("no NaN or Inf or integrator failure across the parameter ranges", "[b
             narrow += (narrow.empty() ? "" : ", ") + p.name + " [" + exact(p.min) + ", " + exact(p.max) + "]";
             continue;
         }
-        for (const double value : {p.min, p.max}) {
+        for (double value : {p.min, p.max}) {
             ++tried;
+            // Where a rule of the declaration refuses the end of the range (the others at their defaults), the
+            // run goes as far toward it as the rules allow.
+            const double reached = reachable(p, value, [&](double v) { return refusal({{p.name, v}}).empty(); });
+            if (reached != value) {
+                if (ruled.size() < 300) ruled += (ruled.empty() ? "" : ", ") + p.name + " to " + show(reached);
+                value = reached;
+            }
             try {
                 runWith({{p.name, value}}, d.run);
                 ++ran;
@@ -417,6 +562,7 @@ TEST_CASE("no NaN or Inf or integrator failure across the parameter ranges", "[b
         grading::feedback("ranges narrower than " + show(narrowest) + " of their default, not tried: " + narrow +
                           "; declare the range the model is meant for");
     }
+    if (!ruled.empty()) grading::feedback("as far as the declaration's rules allow: " + ruled);
     grading::partialCredit(tried ? static_cast<double>(ran) / tried : 0);
     CHECK(tried > 0);
     CHECK(ran == tried);
@@ -430,7 +576,7 @@ TEST_CASE("the project's own experiments pass", "[biosim][experiments]") {
     for (const ExperimentInfo& e : list) {
         Verdict v;
         try {
-            v = judgeExperiment(d, e);
+            v = judgeWithMutants(d, e);
         } catch (const observe::StudentError& error) {
             v = {false, error.what()};
         } catch (const observe::NonFinite& error) {
@@ -450,7 +596,10 @@ TEST_CASE("the question is answered with the number the program computes", "[bio
     const toml::table t = description();
     const auto written = t["question"]["answer"].value<double>();
     if (!written) FAIL("project.toml's [question] has no answer = <number>");
-    const Answer answer = observe::decode<Answer>(observe::ask("answer", nlohmann::json::object()), "answer");
+    auto answerWith = [](const Settings& set) {
+        return observe::decode<Answer>(observe::ask("answer", {{"set", simlab::wire::toJson(set)}}), "answer");
+    };
+    const Answer answer = answerWith({});
     const double computed = answer.value;
     const double difference = std::abs(*written - computed) / std::max(std::abs(computed), 1e-300);
     grading::measured(computed, t["question"]["unit"].value_or(std::string()),
@@ -459,6 +608,30 @@ TEST_CASE("the question is answered with the number the program computes", "[bio
     if (answer.simulations < 1) grading::feedback("answer() must compute its number by calling simulate()");
     CHECK(answer.simulations >= 1);
     CHECK(difference <= grading::param("tolerance"));
+    // The answer comes from the simulation: with a parameter moved (one at a time, until one does) the motion
+    // changes, and so must the answer. One that stays put whatever the model is typed in, not computed.
+    const Declaration d = declared();
+    const int most = static_cast<int>(grading::param("parameters_tried"));
+    std::string tried;
+    bool follows = false;
+    int count = 0;
+    for (const Parameter& p : d.parameters) {
+        if (count >= most) break;
+        const double value = movedValueOf(p);
+        if (value == p.value) continue;
+        ++count;
+        const double other = answerWith({{p.name, value}}).value;
+        tried += (tried.empty() ? "" : ", ") + p.name + " = " + show(value) + ": " + show(other);
+        if (std::abs(other - computed) > 1e-9 * std::max(std::abs(computed), std::abs(other))) {
+            follows = true;
+            break;
+        }
+    }
+    if (!follows) {
+        grading::feedback("the answer stays " + show(computed) + " when the model changes (" + tried + "): it must "
+                          "come from what simulate() returns");
+    }
+    CHECK(follows);
 }
 
 }  // namespace biosim::testing
