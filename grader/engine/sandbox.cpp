@@ -197,7 +197,8 @@ std::vector<std::pair<pid_t, char>> processesOf(uid_t uid) {
     return found;
 }
 
-// A process's CPU time (its own and its reaped children's, in s), its resident memory (KiB), and its children.
+// A process's CPU time (its own and its reaped children's, in s) and its resident anonymous memory (KiB): what it
+// allocated, not the shared libraries every process maps, which would count once per process of a test.
 struct ProcessStat {
     bool alive = false;
     double cpuSeconds = 0;
@@ -206,23 +207,32 @@ struct ProcessStat {
 
 ProcessStat statOf(pid_t pid) {
     static const double ticksPerSecond = static_cast<double>(::sysconf(_SC_CLK_TCK));
-    static const long pageKiB = ::sysconf(_SC_PAGESIZE) / 1024;
     ProcessStat s;
-    std::ifstream file("/proc/" + std::to_string(pid) + "/stat");
+    const std::string dir = "/proc/" + std::to_string(pid);
+    std::ifstream file(dir + "/stat");
     std::string line;
     if (!std::getline(file, line)) return s;
     const std::size_t close = line.rfind(')');
     if (close == std::string::npos) return s;
-    // The fields after the command's closing parenthesis: state is field 3, utime 14 ... cstime 17, rss 24.
+    // The fields after the command's closing parenthesis: state is field 3, utime 14 ... cstime 17.
     std::istringstream fields(line.substr(close + 2));
     std::string field;
     double ticks = 0;
-    for (int index = 3; index <= 24 && fields >> field; ++index) {
-        if (index >= 14 && index <= 17) ticks += std::strtod(field.c_str(), nullptr);
-        if (index == 24) s.residentKiB = std::strtol(field.c_str(), nullptr, 10) * pageKiB;
+    for (int index = 3; index <= 17 && fields >> field; ++index) {
+        if (index >= 14) ticks += std::strtod(field.c_str(), nullptr);
     }
     s.alive = true;
     s.cpuSeconds = ticks / ticksPerSecond;
+    std::ifstream status(dir + "/status");
+    std::string key;
+    while (status >> key) {
+        if (key == "RssAnon:" || key == "RssShmem:") {
+            long kib = 0;
+            status >> kib;
+            s.residentKiB += kib;
+        }
+        std::getline(status, key);
+    }
     return s;
 }
 

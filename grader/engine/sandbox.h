@@ -57,7 +57,8 @@ uid_t freshUser();
 int endProcessesOf(uid_t uid);
 
 /// What a test's processes use together: the tree under `root`, and every process of `uid` (when not 0) wherever
-/// it went. CPU time counts what each has used and what its reaped children used.
+/// it went. CPU time counts what each has used and what its reaped children used; memory is resident anonymous and
+/// shared memory (what they allocated), not the libraries every process maps.
 struct Usage {
     double cpuSeconds = 0;
     long residentKiB = 0;
