@@ -1,8 +1,15 @@
 // simlab check: a student's self-check on the visible tests (or, for instructors, on all of them).
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <thread>
 
 #include "commands.h"
 #include "simlab/cli_checks.h"
@@ -27,7 +34,11 @@ struct CheckOptions {
     double timeout = 0;
     std::string rubric;
     std::vector<std::string> tests;
+    int jobs = 0;
 };
+
+// The cores this machine offers (at least 1).
+int cores() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
 
 void runCheck(const CheckOptions& o) {
     using namespace simlab::engine;
@@ -45,6 +56,20 @@ void runCheck(const CheckOptions& o) {
     GradeOptions options;
     options.includeHidden = o.all;
     options.onlyTests = o.tests;
+    options.judges = o.jobs > 0 ? o.jobs : cores();
+    // In a terminal, a line as each test starts: a long check is never silent (never in a pipe or a file, whose
+    // reader wants the report alone).
+    std::size_t started = 0, planned = 0;
+    for (const RubricTest& test : rubric.tests) {
+        const bool chosen = o.tests.empty() || std::find(o.tests.begin(), o.tests.end(), test.name) != o.tests.end();
+        if (chosen && (o.all || test.visible())) ++planned;
+    }
+    if (::isatty(2)) {
+        options.progress = [&started, planned](const std::string& what) {
+            if (what == "building") return;
+            std::cerr << "  [" << ++started << "/" << planned << "] " << printable(what) << "...\n";
+        };
+    }
     const Limits limits = limitsWith(rubric.limits, o.timeout, 0);
     options.limits = limits;
     for (const std::string& name : o.tests) {
@@ -55,7 +80,25 @@ void runCheck(const CheckOptions& o) {
         std::cerr << "Building " << printable(source) << " against the " << assignment.id << " grader...\n";
     }
     const Builder builder(manifest);
+    // How long each test took in the last self-check of this lab: the judges' shares are made to end together.
+    const std::string timesFile = builder.cacheDir() + "/test-seconds-" + assignment.id + ".json";
+    nlohmann::json times = nlohmann::json::object();
+    if (std::ifstream in(timesFile); in) {
+        times = nlohmann::json::parse(in, nullptr, false);
+        if (!times.is_object()) times = nlohmann::json::object();
+    }
+    for (const auto& [name, seconds] : times.items()) {
+        if (seconds.is_number() && std::isfinite(seconds.get<double>())) options.expectedSeconds[name] = seconds.get<double>();
+    }
     const GradeReport report = gradeSubmission(builder, assignment, rubric, files, options);
+    for (const TestResult& t : report.tests) {
+        if (std::isfinite(t.seconds) && t.seconds > 0) times[t.name] = t.seconds;
+    }
+    try {
+        writeFileAtomically(timesFile, times.dump());
+    } catch (const std::exception&) {
+        // only a hint for the next check's shares
+    }
     // Drawings a test made of the model land beside the student's file (replaced, never written through a link).
     const std::string folder = std::filesystem::absolute(source).parent_path().string();
     std::vector<std::string> written;
@@ -104,6 +147,9 @@ void addCheck(CLI::App& app) {
     check->add_option("--test", options->tests, "run only the test of this name (repeatable)");
     check->add_option("--rubric", options->rubric, "another rubric file (default: the assignment's)")
         ->check(CLI::ExistingFile);
+    check->add_option("--jobs", options->jobs,
+                      "tests run at once, each still alone in its sandbox (default: the number of cores)")
+        ->check(CLI::Range(1, 64));
     check->callback([options] { runCheck(*options); });
 }
 

@@ -1,10 +1,12 @@
 // simlab package: the student bundle and each platform's package (Gradescope, PrairieLearn, GitHub Classroom);
 // simlab autograde: what Gradescope's run_autograder and PrairieLearn's entry point run.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <iostream>
 #include <memory>
+#include <thread>
 
 #include "commands.h"
 #include "simlab/engine/batch.h"
@@ -53,6 +55,7 @@ void runAutograde(const AutogradeOptions& o) {
         if (const std::string exposed = secretsExposed(manifest, assignment); !exposed.empty()) throw UsageError(exposed);
         GradeOptions options;
         options.includeHidden = true;
+        options.judges = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));  // one submission
         const GradeReport report =
             gradeFolder(Builder(manifest), assignment, rubric, o.submission, /*recursive=*/true, /*followFolder=*/true,
                         options);

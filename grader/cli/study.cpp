@@ -5,7 +5,11 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <thread>
 #include <cstdio>
 #include <filesystem>
@@ -90,6 +94,42 @@ int runStudyProgram(const std::vector<std::string>& argv, bool sandboxed,
     if (result.cpuTimeout || result.wallTimeout) throw std::runtime_error(argv.front() + " ran past its time net");
     if (result.signal != 0) return 128 + result.signal;
     return result.exitCode;
+}
+
+/// The studies' programs and objects, built now where this tree leaves them out of its build: the student bundle
+/// builds them the first time a study needs them (`cmake --build BUILD --target simlab_studies`), with the build's
+/// lines on standard error.
+void ensureStudiesBuilt(const engine::Manifest& m, const std::vector<const engine::Assignment*>& labs, bool ofAFile) {
+    std::vector<std::string> needed;
+    for (const engine::Assignment* a : labs) {
+        if (ofAFile) needed.insert(needed.end(), a->studyObjects.begin(), a->studyObjects.end());
+        else if (!a->studyProgramPath.empty()) needed.push_back(a->studyProgramPath);
+    }
+    if (ofAFile) needed.insert(needed.end(), m.studyLibraries.begin(), m.studyLibraries.end());
+    if (std::all_of(needed.begin(), needed.end(), [](const std::string& p) { return fs::exists(p); })) return;
+    if (m.studiesTarget.empty()) throw engine::UsageError("the studies are not built: run scripts/setup again");
+    const std::string jobs = std::to_string(std::max(1u, std::thread::hardware_concurrency()));
+    const std::vector<std::string> argv = {m.cmake, "--build", m.buildDir, "--target", m.studiesTarget, "-j", jobs};
+    std::cerr << "simlab study: building the studies first, once (" << m.cmake << " --build " << m.buildDir
+              << " --target " << m.studiesTarget << "; about a minute)" << std::endl;
+    const pid_t pid = ::fork();
+    if (pid < 0) throw std::runtime_error(std::string("cannot start cmake: ") + std::strerror(errno));
+    if (pid == 0) {
+        ::dup2(2, 1);  // the build's lines are progress, not the study's output
+        std::vector<char*> args;
+        for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+        args.push_back(nullptr);
+        ::execvp(args[0], args.data());
+        std::fprintf(stderr, "simlab study: cannot run %s: %s\n", args[0], std::strerror(errno));
+        ::_exit(127);
+    }
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        throw std::runtime_error("building the studies failed (" + m.cmake + " --build " + m.buildDir +
+                                 " --target " + m.studiesTarget + " says why)");
+    }
 }
 
 std::string number(const json& value, const char* format = "%.6g") {
@@ -297,6 +337,7 @@ void runTrade(const StudyOptions& o) {
         labs.push_back(&a);
     }
     if (labs.empty()) throw engine::UsageError("no lab here has a study (their reference solutions are not in this tree)");
+    ensureStudiesBuilt(manifest, labs, !o.file.empty());
 
     // A student's file: its own study program, built as `simlab build` builds its lab program, with grading's object
     // check, and run in grading's sandbox.

@@ -86,7 +86,9 @@ std::vector<std::string> includeFolders(const std::vector<std::string>& command)
         const std::string& arg = command[i];
         if (arg.rfind("-I", 0) == 0 && arg.size() > 2) folders.push_back(arg.substr(2));
         if ((arg == "-isystem" || arg == "-I") && i + 1 < command.size()) folders.push_back(command[i + 1]);
-        if (arg == "-include" && i + 1 < command.size()) folders.push_back(fs::path(command[i + 1]).parent_path());
+        if ((arg == "-include" || arg == "-include-pch") && i + 1 < command.size()) {
+            folders.push_back(fs::path(command[i + 1]).parent_path());
+        }
     }
     // Folders under /usr are in the sandbox already.
     folders.erase(std::remove_if(folders.begin(), folders.end(),
@@ -155,13 +157,14 @@ namespace {
 
 bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
-// The sections g++ makes from C++ (and their relocations): anything else came from assembly the student wrote.
+// The sections g++ and clang++ make from C++ (and their relocations; .llvm_addrsig is clang's list of functions
+// whose addresses are taken): anything else came from assembly the student wrote.
 bool isCompilerSection(std::string name) {
     if (startsWith(name, ".rela.")) name = name.substr(5);
     static const std::set<std::string> exact = {
         "", ".text", ".data", ".bss", ".rodata", ".comment", ".eh_frame", ".init_array", ".fini_array",
         ".note.GNU-stack", ".note.gnu.property", ".group", ".shstrtab", ".strtab", ".symtab", ".symtab_shndx",
-        ".gcc_except_table", ".tbss", ".tdata", ".data.rel.ro", ".data.rel"};
+        ".gcc_except_table", ".tbss", ".tdata", ".data.rel.ro", ".data.rel", ".llvm_addrsig"};
     if (exact.count(name)) return true;
     for (const char* prefix : {".text.", ".data.", ".bss.", ".rodata.", ".gcc_except_table.", ".tbss.", ".tdata."}) {
         if (startsWith(name, prefix)) return true;
@@ -185,8 +188,8 @@ std::string sectionProblem(const std::string& section) {
         return "holds link-time-optimization code (" + section + "), which the linker would compile outside the "
                "checks: write C++, not its assembly";
     }
-    return "holds a section named " + section + ", which a C++ compiler does not make: the course links only what "
-           "g++ makes from C++";
+    return "holds a section named " + section + ", which a C++ compiler does not make: the course links only "
+           "compiled C++";
 }
 
 }  // namespace
@@ -244,6 +247,7 @@ std::string Builder::objectKey(const Assignment& assignment, const std::string& 
     for (const std::string& part : manifest_.compile) h.add(part);
     for (std::size_t i = 0; i + 1 < manifest_.compile.size(); ++i) {
         if (manifest_.compile[i] == "-include") h.addFileStamp(manifest_.compile[i + 1] + ".gch");
+        if (manifest_.compile[i] == "-include-pch") h.addFileStamp(manifest_.compile[i + 1]);
     }
     std::error_code error;
     std::vector<std::string> headers;

@@ -197,10 +197,20 @@ TestResult interpret(const RubricTest& test, const ProcessResult& probe, const P
     return t;
 }
 
-// Where one submission's grading happens: the probe's program, the judge's files, a folder per process.
+// Where one submission's grading happens: the probe's program, the judges' files, a folder per process.
 struct Workspace {
-    std::string root, build, probe, judgeFiles, submission;
+    std::string root, build, probe;
 };
+
+// A judge's files: the rubric, and the files handed in beside the source (or why each was refused).
+void writeJudgeFiles(const std::string& dir, const Rubric& rubric, const SubmissionFiles& files) {
+    fs::create_directories(dir + "/submission");
+    writeFileAtomically(dir + "/rubric.toml", readFile(rubric.path));
+    for (const HandedIn& extra : files.extras) {
+        if (extra.ok) writeFileAtomically(dir + "/submission/" + extra.name, extra.text);
+        else writeFileAtomically(dir + "/submission/" + extra.name + ".refused", extra.refusal);
+    }
+}
 
 // A folder every sandbox user may pass through to what it is handed, without seeing what else is there.
 void makePassable(const std::string& path) {
@@ -211,8 +221,12 @@ void makePassable(const std::string& path) {
 // The tests of one submission: one judge runs them all, in turn, and at each test's first question asks for a
 // probe of that test's own on the socket at its descriptor 6. The server below starts the probe with two new pipes
 // - requests to its descriptor 4, answers from its descriptor 5 - and hands the judge their other ends.
+// `judgeFiles` is this judge's own copy of the rubric and the files handed in (its user owns it for the run), and
+// `tag` sets its processes' folders apart from those of judges running beside it.
 std::vector<TestResult> runTests(const Assignment& assignment, const std::vector<const RubricTest*>& tests,
-                                 const Workspace& w, const Limits& limits, std::string* graderOutput) {
+                                 const Workspace& w, const std::string& judgeFiles, const std::string& tag,
+                                 const Limits& limits, std::string* graderOutput,
+                                 const std::function<void(const std::string&)>& progress) {
     int socket[2];
     if (::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, socket) != 0) {
         throw std::runtime_error(std::string("cannot create a socket: ") + std::strerror(errno));
@@ -230,6 +244,7 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
             if (n < 0 && errno == EINTR) continue;
             if (n <= 6 || std::string(message, 6) != "probe ") break;  // the judge is done (or confused)
             const std::string test(message + 6, static_cast<std::size_t>(n) - 6);
+            if (progress) progress(test);
             int requests[2] = {-1, -1}, answers[2] = {-1, -1};
             if (::pipe2(requests, O_CLOEXEC) != 0 || ::pipe2(answers, O_CLOEXEC) != 0) {
                 for (int fd : {requests[0], requests[1], answers[0], answers[1]}) {
@@ -237,11 +252,11 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
                 }
                 break;  // the judge reads the socket's end: its tests say the process could not start
             }
-            const std::string dir = w.root + "/test" + std::to_string(++started);
+            const std::string dir = w.root + "/" + tag + "test" + std::to_string(++started);
             fs::create_directory(dir);
             // Each test's probe runs as a user of its own, from a copy of the program that user owns while it runs
             // (a test's user never touches another's files, even as one test ends and the next begins).
-            const std::string program = w.root + "/program" + std::to_string(started);
+            const std::string program = w.root + "/" + tag + "program" + std::to_string(started);
             fs::create_directory(program);
             writeFileAtomically(program + "/probe", readFile(w.probe + "/probe"));
             fs::permissions(program + "/probe", fs::perms::owner_all);
@@ -285,7 +300,7 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
 
     // The judge runs from a copy of its own, in the folder its user owns for the run: the course's judge may be
     // (and, graded without bubblewrap or Landlock, must be) unreadable to every other user.
-    const std::string judgeProgram = w.judgeFiles + "/judge";
+    const std::string judgeProgram = judgeFiles + "/judge";
     writeFileAtomically(judgeProgram, readFile(assignment.judge));
     fs::permissions(judgeProgram, fs::perms::owner_all);
     ProcessRequest judge;
@@ -293,17 +308,17 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     std::string names;
     for (const RubricTest* test : tests) names += (names.empty() ? "" : ",") + test->name;
     judge.argv = {judgeProgram, "--use-colour", "no", names};
-    judge.env = {"PATH=/usr/bin:/bin", "HOME=" + w.root + "/judge-home", "TMPDIR=/tmp", "LC_ALL=C",
-                 "SIMLAB_RUBRIC=" + w.judgeFiles + "/rubric.toml", "SIMLAB_SUBMISSION_DIR=" + w.submission,
+    judge.env = {"PATH=/usr/bin:/bin", "HOME=" + w.root + "/" + tag + "judge-home", "TMPDIR=/tmp", "LC_ALL=C",
+                 "SIMLAB_RUBRIC=" + judgeFiles + "/rubric.toml", "SIMLAB_SUBMISSION_DIR=" + judgeFiles + "/submission",
                  "SIMLAB_ANSWER_LIMIT=" + std::to_string(static_cast<unsigned long long>(limits.observationMiB) << 20)};
-    judge.workDir = w.root + "/judge-home";
+    judge.workDir = w.root + "/" + tag + "judge-home";
     fs::create_directory(judge.workDir);
     judge.limits = judgeLimits(limits, tests.size());
     judge.reportChannel = true;
     judge.passFds = {{6, socket[1]}};
     judge.isolate = true;
-    judge.readOnlyPaths = {judgeProgram, w.judgeFiles};
-    judge.handOver = {w.judgeFiles};  // its user's alone: no probe can read the judge, the rubric or the files
+    judge.readOnlyPaths = {judgeProgram, judgeFiles};
+    judge.handOver = {judgeFiles};  // its user's alone: no probe can read the judge, the rubric or the files
     judge.scratchWorkDir = true;
     const ProcessResult judged = runProcess(judge);
     ::shutdown(socket[0], SHUT_RDWR);  // ends the server's wait, should the judge have left a copy behind
@@ -324,6 +339,72 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
         results.push_back(interpret(*test, probe, judged, limits));
     }
     return results;
+}
+
+// The selected tests, over `options.judges` judges at once, each with files of its own: judge k takes tests k,
+// k + J, k + 2J, ... of the rubric's order, or, where the tests' times of last time are known, the longest test
+// goes first to the judge with the least work; the results come back in the rubric's order.
+std::vector<TestResult> runJudges(const Assignment& assignment, const Rubric& rubric, const SubmissionFiles& files,
+                                  const std::vector<const RubricTest*>& selected, const Workspace& w,
+                                  const Limits& limits, const GradeOptions& options, std::string* graderOutput) {
+    if (selected.empty()) return {};
+    const std::size_t judges = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(options.judges, 1)), 1,
+                                                       selected.size());
+    std::vector<std::vector<const RubricTest*>> shares(judges);
+    std::vector<std::pair<std::size_t, std::size_t>> placed(selected.size());  // test i: judge, place in its share
+    std::vector<std::size_t> order(selected.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    if (!options.expectedSeconds.empty() && judges > 1) {
+        double known = 0;
+        for (const auto& [name, seconds] : options.expectedSeconds) known = std::max(known, seconds);
+        auto expected = [&](std::size_t i) {  // a test not seen before: as long as the longest
+            const auto found = options.expectedSeconds.find(selected[i]->name);
+            return found == options.expectedSeconds.end() ? known : found->second;
+        };
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return expected(a) > expected(b); });
+        std::vector<double> load(judges, 0.0);
+        for (std::size_t i : order) {
+            const std::size_t k = static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
+            load[k] += expected(i);
+            placed[i] = {k, shares[k].size()};
+            shares[k].push_back(selected[i]);
+        }
+    } else {
+        for (std::size_t i = 0; i < selected.size(); ++i) {
+            placed[i] = {i % judges, shares[i % judges].size()};
+            shares[i % judges].push_back(selected[i]);
+        }
+    }
+    std::vector<std::vector<TestResult>> results(judges);
+    std::vector<std::string> outputs(judges);
+    std::vector<std::exception_ptr> failures(judges);
+    std::mutex told;
+    auto progress = [&](const std::string& test) {
+        if (!options.progress) return;
+        std::lock_guard<std::mutex> guard(told);
+        options.progress(test);
+    };
+    auto judge = [&](std::size_t k) {
+        try {
+            const std::string dir = w.root + "/judge" + std::to_string(k + 1);
+            writeJudgeFiles(dir, rubric, files);
+            results[k] = runTests(assignment, shares[k], w, dir, "j" + std::to_string(k + 1) + "-", limits,
+                                  &outputs[k], progress);
+        } catch (...) {
+            failures[k] = std::current_exception();
+        }
+    };
+    std::vector<std::thread> running;
+    for (std::size_t k = 1; k < judges; ++k) running.emplace_back(judge, k);
+    judge(0);
+    for (std::thread& t : running) t.join();
+    for (const std::exception_ptr& failure : failures) {
+        if (failure) std::rethrow_exception(failure);
+    }
+    std::vector<TestResult> ordered;
+    for (std::size_t i = 0; i < selected.size(); ++i) ordered.push_back(results[placed[i].first][placed[i].second]);
+    for (const std::string& output : outputs) *graderOutput += output;
+    return ordered;
 }
 
 }  // namespace
@@ -451,25 +532,20 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
     }
 
     // work/build: the student's file and its object (the compiler's folder); work/probe: the probe's program,
-    // which its sandbox is lent; work/judge: the rubric and the files handed in beside the source, which the
-    // judge's sandbox is lent - never the probe's. Each process gets an empty folder of its own as well.
+    // which its sandbox is lent; work/judgeN: the rubric and the files handed in beside the source, which judge N's
+    // sandbox is lent - never a probe's. Each process gets an empty folder of its own as well.
     TempDir work("simlab-" + assignment.id + "-", options.workRoot);
-    Workspace w{work.path(), work.path() + "/build", work.path() + "/probe", work.path() + "/judge",
-                work.path() + "/judge/submission"};
-    for (const std::string& dir : {w.build, w.probe, w.judgeFiles, w.submission}) fs::create_directory(dir);
+    Workspace w{work.path(), work.path() + "/build", work.path() + "/probe"};
+    for (const std::string& dir : {w.build, w.probe}) fs::create_directory(dir);
     // Each folder below is handed to the sandbox user of the process that works in it, for that run (0700).
     makePassable(w.root);
+    if (options.progress) options.progress("building");
     report.build = builder.buildProbe(assignment, files.name, files.text, w.build, w.probe + "/probe");
     if (report.build.interrupted) throw Interrupted();
     const Limits limits = options.limits.value_or(rubric.limits);
 
     if (report.build.ok) {
-        writeFileAtomically(w.judgeFiles + "/rubric.toml", readFile(rubric.path));
-        for (const HandedIn& extra : files.extras) {
-            if (extra.ok) writeFileAtomically(w.submission + "/" + extra.name, extra.text);
-            else writeFileAtomically(w.submission + "/" + extra.name + ".refused", extra.refusal);
-        }
-        if (!selected.empty()) report.tests = runTests(assignment, selected, w, limits, &report.graderOutput);
+        report.tests = runJudges(assignment, rubric, files, selected, w, limits, options, &report.graderOutput);
     } else {
         const std::string& stage = report.build.stage;
         report.status = stage == "check" ? "forbidden code" : stage == "link" ? "did not link" : "did not compile";

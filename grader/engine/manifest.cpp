@@ -40,6 +40,8 @@ Manifest loadManifest(const std::string& path) {
         m.version = j.at("version");
         m.sourceDir = j.at("source_dir");
         m.buildDir = j.at("build_dir");
+        m.cmake = j.value("cmake", std::string("cmake"));
+        m.studiesTarget = j.value("studies_target", std::string());
         m.sampleClass = j.at("sample_class");
         m.catch2Include = j.at("catch2_include");
         m.compile = j.at("compile").get<std::vector<std::string>>();

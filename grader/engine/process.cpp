@@ -620,7 +620,9 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
         killed = true;
     };
     Clock::time_point reapedAt;
-    Clock::time_point nextCpuCheck = start;
+    // The test's processes are added up every 100 ms (each process's own limits hold in between): a look at every
+    // process of the machine, so not more often than that.
+    Clock::time_point nextCpuCheck = start + std::chrono::milliseconds(50);
     double treeCpu = 0;
     long peakResidentKiB = 0, ownPeakKiB = 0;
     const long memoryKiB = static_cast<long>(r.limits.memoryMiB) * 1024;
@@ -660,7 +662,7 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
         // The test's processes together: its tree and, with a user of its own, every process of that user
         // wherever it went. Their CPU time and their memory are the test's.
         if (!reaped && !killed && Clock::now() >= nextCpuCheck) {
-            nextCpuCheck = Clock::now() + std::chrono::milliseconds(50);
+            nextCpuCheck = Clock::now() + std::chrono::milliseconds(100);
             const sandbox::Usage usage = sandbox::usageOf(pid, launch.uid);
             ownPeakKiB = std::max(ownPeakKiB, sandbox::peakResidentOf(pid));
             treeCpu = std::max(treeCpu, usage.cpuSeconds);

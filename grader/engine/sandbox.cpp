@@ -15,6 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdint>
@@ -320,11 +321,14 @@ int endProcessesOf(uid_t uid) {
         if (helper == 0) {
             // Nothing simlab holds stays open in it (a program being written, say, would be busy meanwhile).
             ::close_range(3, ~0U, 0);
-            // As that user, signal every process it may signal: exactly that user's, wherever they are.
+            // As that user, signal every process it may signal: exactly that user's, wherever they are. A few
+            // times over: a child whose fork was under way during one signal is listed by the next. (A zombie can
+            // be signalled too, so "no process left" is never the answer while one waits to be reaped: the rounds
+            // below count what is left, zombies aside.)
             if (::setgroups(0, nullptr) != 0 || ::setresgid(uid, uid, uid) != 0 || ::setresuid(uid, uid, uid) != 0) {
                 ::_exit(2);
             }
-            for (int i = 0; i < 10000; ++i) {
+            for (int i = 0; i < 8; ++i) {
                 if (::kill(-1, SIGKILL) != 0) ::_exit(errno == ESRCH ? 0 : 3);
             }
             ::_exit(1);
@@ -337,6 +341,7 @@ int endProcessesOf(uid_t uid) {
         left = 0;
         for (const auto& [pid, state] : processesOf(uid)) left += state != 'Z' && state != 'X';
         if (left == 0) return 0;
+        ::usleep(2000 << std::min(round, 6));  // a killed process may take a moment to be gone
     }
     return left;
 }

@@ -7,7 +7,8 @@
 //     base = "solution"                        # or "starter"
 //     score = 35                               # total the grader must give, hidden tests included
 //     status = "graded"                        # optional: the gradebook's status for it
-//     report_contains = ["..."]                # optional: text the report must show
+//     report_contains = ["...", ["a", "b"]]   # optional: text the report must show; a list inside is a choice
+//                                              # (the compiler's own words: clang's, or GCC's where it compiles)
 //     report_lacks = ["..."]                   # optional: text it must not show (an answer key, say)
 //     [[edit]]                                 # `find` must occur exactly once in the base
 //     find = "Vec3(0, -scene.gravity, 0)"
@@ -89,7 +90,7 @@ struct Case {
     double score = 0;
     std::string status;
     bool skipped = false;
-    std::vector<std::string> reportContains;
+    std::vector<std::vector<std::string>> reportContains;  // each: any one of these
     std::vector<std::string> reportLacks;
     std::map<std::string, std::string> outcomes;
 };
@@ -196,7 +197,15 @@ Case loadCase(const Assignment& assignment, const simlab::Rubric& rubric, const 
         }
     }
     if (const toml::array* texts = t["report_contains"].as_array()) {
-        for (const toml::node& node : *texts) c.reportContains.push_back(node.value_or(std::string()));
+        for (const toml::node& node : *texts) {
+            std::vector<std::string> choice;
+            if (const toml::array* either = node.as_array()) {
+                for (const toml::node& one : *either) choice.push_back(one.value_or(std::string()));
+            } else {
+                choice.push_back(node.value_or(std::string()));
+            }
+            c.reportContains.push_back(choice);
+        }
     }
     if (const toml::array* texts = t["report_lacks"].as_array()) {
         for (const toml::node& node : *texts) c.reportLacks.push_back(node.value_or(std::string()));
@@ -321,8 +330,13 @@ std::vector<std::string> compare(const Case& c, const std::vector<TestResult>& t
         mismatches.push_back("score " + points(score) + ", expected " + points(c.score));
     }
     if (!c.status.empty() && status != c.status) mismatches.push_back("status '" + status + "', expected '" + c.status + "'");
-    for (const std::string& needle : c.reportContains) {
-        if (text.find(needle) == std::string::npos) mismatches.push_back("the report does not say '" + needle + "'");
+    for (const std::vector<std::string>& choice : c.reportContains) {
+        const bool said = std::any_of(choice.begin(), choice.end(),
+                                      [&](const std::string& needle) { return text.find(needle) != std::string::npos; });
+        if (said) continue;
+        std::string needles;
+        for (const std::string& needle : choice) needles += (needles.empty() ? "'" : " or '") + needle + "'";
+        mismatches.push_back("the report does not say " + needles);
     }
     for (const std::string& needle : c.reportLacks) {
         if (text.find(needle) != std::string::npos) mismatches.push_back("the report says '" + needle + "'");

@@ -41,7 +41,7 @@ inline Declaration declared() {
 /// A run of the student's model with `set` changed from the defaults, or of a mutant of it (course.h's Mutation:
 /// damped, gravity scaled, every generalized coordinate moved by its nudge at t = 0).
 inline Observed runWith(const Settings& set, const simlab::RunSettings& settings, const Mutation& mutation = {}) {
-    Observed o = observe::decode<Observed>(observe::ask("run", {{"set", simlab::wire::toJson(set)},
+    Observed o = observe::decode<Observed>(observe::askShared("run", {{"set", simlab::wire::toJson(set)},
                                                                 {"settings", simlab::wire::toJson(settings)},
                                                                 {"mutation", simlab::wire::toJson(mutation)}}),
                                            "run");

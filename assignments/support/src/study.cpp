@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -238,10 +239,33 @@ void runSubject(const std::string& lab, const Subject& subject, const Settings& 
                      .dump()
               << std::endl;
     const std::vector<Point> points = pointsOf(subject, settings);
+    // Progress, for a person watching: on a terminal, or where simlab asks for it (SIMLAB_PROGRESS=1: it shows
+    // what is not a JSON line), so that a log or a pipe holds only the results. A line as the study starts, and
+    // one as each integrator's sweep of accuracies or of fixed steps ends.
+    static const bool progress = isatty(2) || std::getenv("SIMLAB_PROGRESS") != nullptr;
+    if (progress) {
+        std::cerr << "  " << subject.name << ": " << points.size() << " points, each under "
+                  << settings.maxEvaluations << " evaluations (and " << settings.cap << " s of CPU time)\n";
+    }
+    struct Sweep {
+        std::string key;
+        int points = 0, ok = 0, costly = 0, failed = 0;
+        double best = -INFINITY;
+        long evaluations = 0;
+    } sweep;
+    auto tell = [&] {
+        if (!progress || sweep.points == 0) return;
+        std::ostringstream line;
+        line << "  " << subject.name << ": " << sweep.key << ": " << sweep.ok << " of " << sweep.points << " ok";
+        if (sweep.costly) line << ", " << sweep.costly << " too costly";
+        if (sweep.failed) line << ", " << sweep.failed << " failed or blew up";
+        if (std::isfinite(sweep.best)) line << "; best " << std::fixed << std::setprecision(1) << sweep.best << " digits";
+        line << "; " << sweep.evaluations << " evaluations in all\n";
+        std::cerr << line.str();
+    };
     // A point that passed the cap makes every tighter point of the same integrator and mode dearer still: they
     // are recorded as too costly, not run.
     std::string costlyKey, costlyMessage;
-    int done = 0;
     for (const Point& point : points) {
         Outcome out;
         const std::string key = point.integrator + "/" + point.mode;
@@ -260,13 +284,25 @@ void runSubject(const std::string& lab, const Subject& subject, const Settings& 
             }
         }
         std::cout << toJson(subject, point, out).dump() << std::endl;
-        // Progress, for a person watching: on a terminal, or where simlab asks for it (SIMLAB_PROGRESS=1: it shows
-        // what is not a JSON line), so that a log or a pipe holds only the results.
-        static const bool progress = isatty(2) || std::getenv("SIMLAB_PROGRESS") != nullptr;
-        if (progress && (++done % 20 == 0 || done == static_cast<int>(points.size()))) {
-            std::cerr << "  " << subject.name << ": " << done << " of " << points.size() << " points\n";
+        const std::string sweepKey = point.integrator + (point.mode == "accuracy" ? " at accuracies 1e-1 to 1e-14"
+                                                                                   : " at fixed steps");
+        if (sweepKey != sweep.key) {
+            tell();
+            sweep = Sweep{sweepKey};
         }
+        if (out.status == "no error control") continue;
+        ++sweep.points;
+        if (out.status == "ok") {
+            ++sweep.ok;
+            sweep.best = std::max(sweep.best, out.finalDigits);
+        } else if (out.status == "too costly") {
+            ++sweep.costly;
+        } else {
+            ++sweep.failed;
+        }
+        sweep.evaluations += out.evaluations;
     }
+    tell();
 }
 
 }  // namespace

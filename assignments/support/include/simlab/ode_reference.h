@@ -64,7 +64,13 @@ public:
 };
 
 /// Runge-Kutta-Fehlberg 7(8) in long double with Odeint's error control at `tolerance` (relative and absolute)
-/// and the arithmetic step adjuster.
+/// and the arithmetic step adjuster. (Odeint's controlled stepper copies a new stepper whose scratch arrays are not
+/// yet written, which GCC reports at -O1; they are written before they are read.)
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 template <class Y>
 auto referenceStepper(long double tolerance) {
     namespace odeint = boost::numeric::odeint;
@@ -74,6 +80,9 @@ auto referenceStepper(long double tolerance) {
     using Adjuster = ArithmeticStepAdjuster<long double, long double>;
     return odeint::controlled_runge_kutta<Stepper, Checker, Adjuster>(Checker(tolerance, tolerance), Adjuster());
 }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 
 /// A reference computed without Simbody: y' = f(y) for N long doubles (19 significant digits), integrated by
 /// referenceStepper at `tolerance` and advanced to each time asked for. Times must not decrease; an earlier time

@@ -55,6 +55,12 @@ public:
 /// checked to be well formed and finite. Throws the exceptions above.
 nlohmann::json ask(const std::string& kind, const nlohmann::json& arguments);
 
+/// ask(), for a question the tests of a judge ask alike (a run of the lab's default scene, say): its answer,
+/// once a student's process has given it, checked, is the answer for every later test of this judge that asks
+/// the same, which then need not start a process at all. For questions whose repetition is not itself what a test
+/// looks at.
+nlohmann::json askShared(const std::string& kind, const nlohmann::json& arguments);
+
 /// `answer` read as a T; a field missing or of the wrong type is a BadReport naming it.
 template <class T>
 T decode(const nlohmann::json& answer, const std::string& kind) {
@@ -68,11 +74,11 @@ T decode(const nlohmann::json& answer, const std::string& kind) {
 }
 
 /// The student's simulation of `scene` with `settings`, driven by the course's driver as the lab program drives
-/// it: every sample, the model's description and the integrator's statistics.
+/// it: every sample, the model's description and the integrator's statistics (an answer shared, see askShared).
 template <class Sample, class Scene>
 RunResult<Sample> run(const Scene& scene, const RunSettings& settings) {
-    return decode<RunResult<Sample>>(ask("run", {{"scene", wire::toJson(scene)}, {"settings", wire::toJson(settings)}}),
-                                     "run");
+    return decode<RunResult<Sample>>(
+        askShared("run", {{"scene", wire::toJson(scene)}, {"settings", wire::toJson(settings)}}), "run");
 }
 
 /// The model the student builds for `scene`: its bodies, mobilizers and degrees of freedom.

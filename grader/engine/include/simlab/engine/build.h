@@ -71,6 +71,8 @@ public:
     std::string graderKey(const Assignment& assignment) const;
     /// The course's symbols for `assignment`'s probe, found once (and kept in the cache).
     const CourseSymbols& courseSymbols(const Assignment& assignment) const;
+    /// The folder of the object cache (SIMLAB_CACHE, or the build's cache/).
+    const std::string& cacheDir() const { return cacheDir_; }
 
 private:
     /// The student's file compiled and linked first, before `objects` and `libraries`, into `output`.

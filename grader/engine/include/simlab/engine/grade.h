@@ -3,6 +3,8 @@
 // with observations - and name how each test ended.
 #pragma once
 
+#include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -69,6 +71,14 @@ struct GradeOptions {
     std::optional<Limits> limits;        ///< instead of the rubric's
     std::string workRoot;                ///< parent of the temporary directories; $TMPDIR when empty
     std::vector<std::string> onlyTests;  ///< run just these tests (by name); all selected ones when empty
+    /// Judges run at once, each over its share of the tests (each test still alone in its own sandbox, as a user
+    /// of its own): a self-check uses the machine's cores; a class, graded a submission per core, uses 1.
+    int judges = 1;
+    /// How long each test took last time (by name), to share the tests out so that the judges end together (the
+    /// longest first, each to the judge with the least work); round-robin in the rubric's order without it.
+    std::map<std::string, double> expectedSeconds;
+    /// Told what grading is doing as it goes ("compiling", a test starting), for a person to watch; may be empty.
+    std::function<void(const std::string&)> progress;
 };
 
 /// What a student handed in, read as data (readHandedIn): the source and the rubric's extra files.

@@ -34,6 +34,8 @@ struct Manifest {
     std::string version;
     std::string sourceDir;
     std::string buildDir;
+    std::string cmake;                 ///< the cmake that configured the build
+    std::string studiesTarget;         ///< the target that builds every study (left out of `all` in the bundle)
     std::string sampleClass;           ///< <build>/sample-class: one folder per assignment, made from tests/corpus
     std::string catch2Include;         ///< the folder holding catch2/catch.hpp (Catch2 2.13)
     std::vector<std::string> compile;  ///< compiler and flags; append -I<contract> -c SOURCE -o OBJECT

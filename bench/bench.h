@@ -1,0 +1,38 @@
+// What the benchmarks share: a tool run with generous limits, the clock and the median.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "simlab/engine/process.h"
+
+namespace simlab::bench {
+
+using Clock = std::chrono::steady_clock;
+
+inline double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+/// `argv` in `dir`, as simlab's own tools run: an hour of CPU and wall time, room for a class's processes.
+inline engine::ProcessResult run(const std::vector<std::string>& argv, const std::string& dir,
+                                 const std::vector<std::string>& env = {}) {
+    engine::ProcessRequest r;
+    r.argv = argv;
+    r.env = engine::childEnvironment(env);
+    r.workDir = dir;
+    r.limits.wallSeconds = r.limits.cpuSeconds = 3600;
+    r.limits.memoryMiB = 1 << 16;
+    r.limits.processes = 4096;
+    r.limits.fileMiB = 1 << 12;
+    r.limits.outputKiB = 1 << 20;
+    return engine::runProcess(r);
+}
+
+inline double median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+}  // namespace simlab::bench
