@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <thread>
 
 #include "commands.h"
 #include "simlab/cli_checks.h"
@@ -36,9 +35,6 @@ struct CheckOptions {
     std::vector<std::string> tests;
     int jobs = 0;
 };
-
-// The cores this machine offers (at least 1).
-int cores() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
 
 void runCheck(const CheckOptions& o) {
     using namespace simlab::engine;

@@ -25,6 +25,9 @@ Limits limitsWith(const Limits& rubric, double timeout, double memory);
 /// UsageError, in one line, for a file that is not there or not safe to read.
 engine::SubmissionFiles readSubmission(const std::string& path, const Rubric& rubric, const Limits& limits);
 
+/// The cores this machine offers (at least 1): the default for what runs at once.
+int cores();
+
 void addCheck(CLI::App& app);
 void addGrade(CLI::App& app);
 void addBuild(CLI::App& app);

@@ -30,7 +30,7 @@ struct GradeCommandOptions {
     std::string assignment;
     std::string submissions;
     std::string out;
-    int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    int jobs = cores();
     std::vector<std::string> only;
     std::string junit;
     double timeout = 0;

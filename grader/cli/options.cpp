@@ -1,8 +1,10 @@
 // What several simlab commands share: limit options checked against the rubric's ranges, and a student's file
-// read from the command line the way grading reads it.
+// read from the command line the way grading reads it; the cores to use by default.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <thread>
 
 #include "commands.h"
 #include "simlab/engine/errors.h"
@@ -39,6 +41,8 @@ Limits limitsWith(const Limits& rubric, double timeout, double memory) {
     }
     return limits;
 }
+
+int cores() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
 
 engine::SubmissionFiles readSubmission(const std::string& path, const Rubric& rubric, const Limits& limits) {
     const fs::path file(path);

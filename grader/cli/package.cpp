@@ -55,7 +55,7 @@ void runAutograde(const AutogradeOptions& o) {
         if (const std::string exposed = secretsExposed(manifest, assignment); !exposed.empty()) throw UsageError(exposed);
         GradeOptions options;
         options.includeHidden = true;
-        options.judges = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));  // one submission
+        options.judges = cores();  // one submission
         const GradeReport report =
             gradeFolder(Builder(manifest), assignment, rubric, o.submission, /*recursive=*/true, /*followFolder=*/true,
                         options);

@@ -108,7 +108,7 @@ void ensureStudiesBuilt(const engine::Manifest& m, const std::vector<const engin
     if (ofAFile) needed.insert(needed.end(), m.studyLibraries.begin(), m.studyLibraries.end());
     if (std::all_of(needed.begin(), needed.end(), [](const std::string& p) { return fs::exists(p); })) return;
     if (m.studiesTarget.empty()) throw engine::UsageError("the studies are not built: run scripts/setup again");
-    const std::string jobs = std::to_string(std::max(1u, std::thread::hardware_concurrency()));
+    const std::string jobs = std::to_string(cores());
     const std::vector<std::string> argv = {m.cmake, "--build", m.buildDir, "--target", m.studiesTarget, "-j", jobs};
     std::cerr << "simlab study: building the studies first, once (" << m.cmake << " --build " << m.buildDir
               << " --target " << m.studiesTarget << "; about a minute)" << std::endl;
