@@ -35,6 +35,7 @@ void runBuild(const BuildOptions& o) {
     if (!std::filesystem::is_directory(parent)) {
         throw UsageError("cannot write '" + output + "': no directory " + parent.string());
     }
+    if (const std::string closed = sandboxCannotReach(manifest, assignment); !closed.empty()) throw UsageError(closed);
     const BuildResult result = Builder(manifest).buildProgram(assignment, files.name, files.text, output);
     if (result.interrupted) throw UsageError("interrupted");
     if (!result.ok) {

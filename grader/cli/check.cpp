@@ -46,6 +46,7 @@ void runCheck(const CheckOptions& o) {
         throw UsageError("--all needs the hidden tests, which this copy of simlab does not have");
     }
     const Rubric rubric = loadRubric(o.rubric.empty() ? assignment.rubric : o.rubric);
+    if (const std::string closed = sandboxCannotReach(manifest, assignment); !closed.empty()) throw UsageError(closed);
     if (o.all) {
         if (const std::string exposed = secretsExposed(manifest, assignment); !exposed.empty()) throw UsageError(exposed);
     }

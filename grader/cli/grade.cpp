@@ -94,6 +94,7 @@ void runGrade(const GradeCommandOptions& o) {
 
     const SandboxSupport& sandbox = sandboxSupport();
     if (!sandbox.warning.empty()) std::cerr << "simlab: warning: " << sandbox.warning << "\n";
+    if (const std::string closed = sandboxCannotReach(manifest, assignment); !closed.empty()) throw UsageError(closed);
     // Hidden tests run only where no test's code can read them, nor the class's files.
     if (const std::string exposed = secretsExposed(manifest, assignment, {root, out}); !exposed.empty()) {
         throw UsageError(exposed);

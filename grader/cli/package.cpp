@@ -52,6 +52,7 @@ void runAutograde(const AutogradeOptions& o) {
         const Assignment& assignment = manifest.find(o.assignment);
         if (!fs::is_directory(o.submission)) throw UsageError("no submission folder " + o.submission);
         const Rubric rubric = loadRubric(assignment.rubric);
+        if (const std::string closed = sandboxCannotReach(manifest, assignment); !closed.empty()) throw UsageError(closed);
         if (const std::string exposed = secretsExposed(manifest, assignment); !exposed.empty()) throw UsageError(exposed);
         GradeOptions options;
         options.includeHidden = true;

@@ -352,6 +352,9 @@ void runTrade(const StudyOptions& o) {
         engine::requireCppSource(o.file);
         const Rubric rubric = loadRubric(a.rubric);
         const engine::SubmissionFiles files = readSubmission(o.file, rubric, rubric.limits);
+        if (const std::string closed = engine::sandboxCannotReach(manifest, a); !closed.empty()) {
+            throw engine::UsageError(closed);
+        }
         built = std::make_unique<engine::TempDir>("simlab-study-");
         studyProgram = built->path() + "/" + a.program + "-study";
         const engine::BuildResult result = engine::Builder(manifest).buildStudy(a, files.name, files.text, studyProgram);

@@ -1,5 +1,6 @@
 #include "simlab/engine/build.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -466,6 +467,43 @@ bool Builder::refusedObject(const Assignment& assignment, const std::string& obj
     result.stage = "check";
     for (const std::string& p : problems) result.log += p + "\n";
     return true;
+}
+
+std::string sandboxCannotReach(const Manifest& manifest, const Assignment& assignment) {
+    const SandboxSupport& sandbox = sandboxSupport();
+    // bubblewrap run as root lends each path whatever folder it lies below; as any other user, tools run as it.
+    if (!sandbox.ownUser || (sandbox.bubblewrap && sandbox.rootBubblewrap)) return "";
+    std::vector<std::string> needed = includeFolders(manifest.compile);
+    needed.push_back(assignment.contractInclude);
+    needed.insert(needed.end(), assignment.probeObjects.begin(), assignment.probeObjects.end());
+    needed.insert(needed.end(), manifest.probeLibraries.begin(), manifest.probeLibraries.end());
+    needed.erase(std::remove_if(needed.begin(), needed.end(),
+                                [](const std::string& p) {
+                                    std::error_code error;
+                                    return p.empty() || p.rfind("/usr/", 0) == 0 || !fs::exists(p, error);
+                                }),
+                 needed.end());
+    const std::vector<std::string> readable = readableInSandbox(needed, needed);
+    for (const std::string& path : needed) {
+        if (std::find(readable.begin(), readable.end(), path) != readable.end()) continue;
+        // The first folder on the way that others may not pass through; else the path itself is closed.
+        const fs::path absolute = fs::absolute(path).lexically_normal();
+        fs::path closed, walked;
+        for (const fs::path& part : absolute.parent_path()) {
+            walked /= part;
+            struct stat info {};
+            if (::stat(walked.c_str(), &info) == 0 && !(info.st_mode & S_IXOTH)) {
+                closed = walked;
+                break;
+            }
+        }
+        const std::string fix = closed.empty() ? "chmod -R o+rX " + printable(path)
+                                               : "chmod o+x " + printable(closed.string());
+        return "in this sandbox (" + sandbox.mode + ") the tools run as throwaway users, who cannot reach " +
+               printable(path) + (closed.empty() ? "" : " (" + printable(closed.string()) + " is closed to others)") +
+               ", so nothing can be built: " + fix + ", or install bubblewrap";
+    }
+    return "";
 }
 
 BuildResult Builder::buildProbe(const Assignment& assignment, const std::string& name, const std::string& text,

@@ -723,7 +723,7 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
 
 }  // namespace
 
-std::vector<std::string> readableInSandbox(const std::vector<std::string>& paths) {
+std::vector<std::string> readableInSandbox(const std::vector<std::string>& paths, const std::vector<std::string>& lent) {
     namespace fs = std::filesystem;
     std::vector<std::string> existing;
     for (const std::string& path : paths) {
@@ -743,6 +743,7 @@ std::vector<std::string> readableInSandbox(const std::vector<std::string>& paths
     request.env = childEnvironment({"LC_ALL=C"});
     request.workDir = dir;
     request.isolate = true;
+    request.readOnlyPaths = lent;
     request.scratchWorkDir = true;
     request.limits.cpuSeconds = 10;
     request.limits.wallSeconds = 60;

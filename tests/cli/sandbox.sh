@@ -40,9 +40,24 @@ if [[ ${#as_docker[@]} -gt 0 ]]; then
   run_mode limits-docker SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1 -- "${as_docker[@]}"
   check "limits only with Docker's capabilities: every rule holds" test "$(status_of limits-docker)" -eq 0
 
-  # simlab refuses to run hidden tests where a test could read them, in one line that says how to fix it.
   mkdir -p class/alice
   cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" class/alice/
+  if [[ -n $build_closed ]]; then
+    # The build lies below a folder other users may not enter: the throwaway users could build nothing, and simlab
+    # says so in one line, before grading anyone.
+    for command in grade check; do
+      args=(grade apple class --out grades)
+      [[ $command == check ]] && args=(check apple class/alice/NewtonsApple.cpp)
+      run_capture "closed-$command" env SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1 "${as_docker[@]}" "$SIMLAB" "${args[@]}"
+      check "the build lies below $build_closed, closed to others: simlab $command refuses (exit 2), grading nothing" \
+        bash -c "test $(status_of "closed-$command") -eq 2 && test ! -e grades/gradebook.csv"
+      check "in one line naming the folder and the fix (chmod o+x $build_closed)" \
+        bash -c "test \$(wc -l <closed-$command.err) -le 2 && grep -qF 'cannot reach' closed-$command.err && grep -qF '($build_closed is closed to others)' closed-$command.err && grep -qF 'chmod o+x $build_closed,' closed-$command.err"
+    done
+    echo "skipped: the audit of what a test could read, and the visible tests, in this mode (the build lies below $build_closed)"
+    finish
+  fi
+  # simlab refuses to run hidden tests where a test could read them, in one line that says how to fix it.
   run_capture refused env SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1 "${as_docker[@]}" "$SIMLAB" grade apple class --out grades
   check "limits only, files readable by all: simlab grade refuses (exit 2), grading nothing" \
     bash -c "test $(status_of refused) -eq 2 && test ! -e grades/gradebook.csv"

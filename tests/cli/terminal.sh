@@ -77,8 +77,14 @@ for mode in bubblewrap Landlock "limits only"; do
   fi
   name=${mode// /-}
   python3 shell.py "$prefix $SIMLAB check apple $file" "${settings[@]}" >"$name.transcript" 2>&1
-  check "$mode: simlab graded the typist (Score: 80/80 on the visible tests)" grep -q "Score: 80/80" "$name.transcript"
-  check "$mode: the sandbox it names is $mode" grep -q "sandbox: $mode" "$name.transcript"
+  if [[ $mode != bubblewrap && -n $build_closed ]]; then
+    # Below a folder closed to other users the throwaway users cannot reach the build: simlab says so and builds nothing.
+    check "$mode: the build lies below $build_closed, closed to others: simlab refuses in one line, naming it" \
+      grep -qF "in this sandbox ($mode) the tools run as throwaway users, who cannot reach" "$name.transcript"
+  else
+    check "$mode: simlab graded the typist (Score: 80/80 on the visible tests)" grep -q "Score: 80/80" "$name.transcript"
+    check "$mode: the sandbox it names is $mode" grep -q "sandbox: $mode" "$name.transcript"
+  fi
   check "$mode: nothing the submission typed ran after simlab ended" test ! -e "$marker"
   check "$mode: no escape sequence reached the terminal" bash -c "! grep -q \$'\\x1b' '$name.transcript'"
   check "$mode: nor the submission's words" bash -c "! grep -q 'the screen is mine' '$name.transcript'"

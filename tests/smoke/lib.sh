@@ -18,3 +18,18 @@ run_capture() {
   echo $? >"$name.status"
 }
 status_of() { cat "$1.status"; }
+
+# closed_to_others PATH: the first folder on the way to PATH that other users may not pass through (empty if none).
+# As root without bubblewrap, simlab's tools run as throwaway users, who must reach the build: below such a folder
+# simlab refuses to build, in one line naming it. $build_closed is that folder for this build when we are root.
+closed_to_others() {
+  local path="" part parts
+  IFS=/ read -ra parts <<<"${1#/}"
+  for part in "${parts[@]}"; do
+    path=$path/$part
+    [[ -d $path ]] || return 0
+    if (( (8#$(stat -c %a "$path") & 1) == 0 )); then echo "$path"; return 0; fi
+  done
+}
+build_closed=""
+if [[ $(id -u) -eq 0 && -n ${BIN_DIR:-} ]]; then build_closed=$(closed_to_others "$BIN_DIR"); fi

@@ -49,6 +49,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
 #include <fstream>
@@ -459,6 +460,20 @@ const char* const kDockerCapabilities =
     "-all,+chown,+dac_override,+fowner,+fsetid,+kill,+setgid,+setuid,+setpcap,+net_bind_service,+net_raw,"
     "+sys_chroot,+mknod,+audit_write,+setfcap";
 
+// The first folder on the way to `path` that other users may not pass through; empty if there is none.
+std::string closedToOthers(const std::string& path) {
+    fs::path walked;
+    for (const fs::path& part : fs::absolute(path).lexically_normal().parent_path()) {
+        walked /= part;
+        struct stat info {};
+        if (::stat(walked.c_str(), &info) == 0 && !(info.st_mode & S_IXOTH)) return walked.string();
+    }
+    return "";
+}
+
+// What ctest counts as skipped (SKIP_RETURN_CODE): the class cannot be graded in this mode from where the build lies.
+constexpr int kSkipped = 77;
+
 int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, const std::vector<std::string>& paths,
                  const std::string& simlab, int jobs, const std::vector<std::string>& environment,
                  bool dockerCapabilities) {
@@ -494,6 +509,24 @@ int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, con
     request.keepOutput = 1 << 20;
     const ProcessResult batch = runProcess(request);
     std::cout << printable(batch.output, true);
+
+    // As root without bubblewrap each tool runs as a throwaway user, who must reach the build: below a folder closed
+    // to other users simlab refuses, in one line naming it, and grades nobody. The class is then skipped.
+    const bool throwawayUsers = ::geteuid() == 0 && std::find(environment.begin(), environment.end(),
+                                                              "SIMLAB_NO_BUBBLEWRAP=1") != environment.end();
+    if (const std::string closed = closedToOthers(simlab); throwawayUsers && !closed.empty()) {
+        const bool said = batch.exitCode == 2 && batch.output.find("cannot reach") != std::string::npos &&
+                          batch.output.find("(" + closed + " is closed to others)") != std::string::npos &&
+                          batch.output.find("chmod o+x " + closed + ",") != std::string::npos;
+        if (!said || fs::exists(out + "/gradebook.csv")) {
+            std::cout << "FAILED: the build lies below " << closed
+                      << ", which other users may not enter, and simlab did not refuse in one line naming it\n";
+            return 1;
+        }
+        std::cout << "OK: simlab refused, naming " << closed << "\nskipped: the class in this mode (the build lies below "
+                  << closed << ", which other users may not enter)\n";
+        return kSkipped;
+    }
 
     std::vector<std::string> problems;
     if (!batch.exitedCleanly()) problems.push_back("simlab grade did not complete (status " + std::to_string(batch.exitCode) + ")");

@@ -47,6 +47,13 @@ using CourseSymbols = std::map<std::string, CourseSymbol>;
 std::vector<std::string> forbiddenCode(const std::string& objectPath, const std::string& sourceName,
                                        const CourseSymbols& course);
 
+/// Where the sandbox's users could not reach what a build lends them (the contract's headers, the precompiled
+/// header, the course's objects and libraries) - as root without bubblewrap each tool runs as a throwaway user,
+/// which must be able to pass through every folder above them: one line naming the closed folder and the fix
+/// ("... chmod o+x /root"). Tried as a tool is run (readableInSandbox), and only where such users are used; empty
+/// where everything is reachable.
+std::string sandboxCannotReach(const Manifest& manifest, const Assignment& assignment);
+
 class Builder {
 public:
     /// Objects are cached in <build>/cache/objects, or in $SIMLAB_CACHE.

@@ -89,8 +89,9 @@ struct SandboxSupport {
 const SandboxSupport& sandboxSupport();
 
 /// Of `paths` (files or folders), those a sandboxed process can read here: each is tried as a test's probe would
-/// be run (its own user, its rules, its filter). Empty when nothing leaks.
-std::vector<std::string> readableInSandbox(const std::vector<std::string>& paths);
+/// be run (its own user, its rules, its filter), lent `lent` as a tool is lent its inputs. Empty when nothing leaks.
+std::vector<std::string> readableInSandbox(const std::vector<std::string>& paths,
+                                           const std::vector<std::string>& lent = {});
 
 /// Stop every running child, start no other, and make runProcess return; safe to call from a signal handler.
 void interruptChildren();
