@@ -133,8 +133,9 @@ void addCheck(CLI::App& app) {
     check->add_option("assignment", options->assignment, "which assignment (simlab list shows them)")->required();
     check->add_option("source", options->source, "your file (default: the starter in this tree)");
     check->add_option("--format", options->format,
-                      "text; json: a Gradescope results.json on stdout; classroom: GitHub Classroom's runner "
-                      "result (what the template repository's workflow reports)")
+                      "text; json: a Gradescope results.json on stdout; classroom: GitHub Classroom's two runner "
+                      "results, points earned and points missed, one a line (what the template repository's workflow "
+                      "reports)")
         ->check(CLI::IsMember({"text", "json", "classroom"}))
         ->capture_default_str();
     check->add_flag("--all", options->all, "run the hidden tests too (instructors)");

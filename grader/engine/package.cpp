@@ -265,6 +265,20 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
         "# Gradescope runs this once, as root, to build the autograder image. Choose an Ubuntu 24.04 (or newer)\n"
         "# base image: simlab needs CMake 3.25 and libtomlplusplus-dev.\n"
         "set -euo pipefail\n"
+        "# The base image first, in one line, rather than a build that fails far down.\n"
+        "os_release=${SIMLAB_OS_RELEASE:-/etc/os-release}\n"
+        "ID=unknown VERSION_ID=0 PRETTY_NAME=unknown\n"
+        "[ -r \"$os_release\" ] && . \"$os_release\"\n"
+        "case \"$ID\" in\n"
+        "  ubuntu) minimum=24.04 ;;\n"
+        "  debian) minimum=12 ;;\n"
+        "  *) minimum=\"\" ;;\n"
+        "esac\n"
+        "if [ -z \"$minimum\" ] || ! dpkg --compare-versions \"$VERSION_ID\" ge \"$minimum\"; then\n"
+        "  echo \"simlab: the autograder's base image is $PRETTY_NAME: choose Ubuntu 24.04 (or newer) in the\" \\\n"
+        "       \"autograder's settings (simlab needs CMake 3.25 and libtomlplusplus-dev)\" >&2\n"
+        "  exit 1\n"
+        "fi\n"
         "source_dir=$(cd \"$(dirname \"${BASH_SOURCE[0]}\")\" && pwd)\n"
         "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" \"$source_dir/scripts/setup\"\n"
         "# The hidden tests, solutions and judges readable by root alone, should neither bubblewrap nor Landlock run.\n"
@@ -387,10 +401,13 @@ PackageSummary writeClassroomTemplate(const Manifest& manifest, const Assignment
     for (const RubricTest& t : loadRubric(assignment.rubric).tests) {
         if (t.visible()) visible += t.points;
     }
-    // If simlab could not be built or run, the reporter still gets a result: an error, worth the visible points.
-    const std::string failed = "{\"version\": 1, \"status\": \"error\", \"max_score\": " + points(visible) +
-                               ", \"tests\": [{\"name\": \"simlab check\", \"status\": \"error\", \"score\": 0, "
-                               "\"message\": \"simlab could not build or run: see the steps above\", \"line_no\": 0}]}";
+    // If simlab could not be built or run, the reporter still gets its two results: nothing earned, every visible
+    // point missed, as errors.
+    const std::string failedTest = "{\"name\": \"simlab check\", \"status\": \"error\", \"score\": 0, "
+                                   "\"message\": \"simlab could not build or run: see the steps above\", \"line_no\": 0}";
+    const std::string failed = "'{\"version\": 1, \"status\": \"error\", \"max_score\": 0, \"tests\": [" + failedTest +
+                               "]}' '{\"version\": 1, \"status\": \"error\", \"max_score\": " + points(visible) +
+                               ", \"tests\": [" + failedTest + "]}'";
     fs::create_directories(outDir + "/.github/workflows");
     writeFileAtomically(outDir + "/.github/workflows/classroom.yml",
         "# GitHub Classroom's autograding of the " + assignment.id + " lab: on every push, build simlab, run the\n"
@@ -419,16 +436,20 @@ PackageSummary writeClassroomTemplate(const Manifest& manifest, const Assignment
         "        if: always()\n"
         "        run: |\n"
         "          if ! " + check + " --format classroom >\"$RUNNER_TEMP/simlab.json\"; then\n"
-        "            echo '" + failed + "' >\"$RUNNER_TEMP/simlab.json\"\n"
+        "            printf '%s\\n' " + failed + " >\"$RUNNER_TEMP/simlab.json\"\n"
         "          fi\n"
-        "          echo \"result=$(base64 -w 0 \"$RUNNER_TEMP/simlab.json\")\" >>\"$GITHUB_OUTPUT\"\n"
+        "          # Two runners, the points earned and the points missed, so that the reporter's table and the\n"
+        "          # points Classroom records agree under partial credit.\n"
+        "          echo \"earned=$(sed -n 1p \"$RUNNER_TEMP/simlab.json\" | base64 -w 0)\" >>\"$GITHUB_OUTPUT\"\n"
+        "          echo \"missed=$(sed -n 2p \"$RUNNER_TEMP/simlab.json\" | base64 -w 0)\" >>\"$GITHUB_OUTPUT\"\n"
         "      - name: Autograding Reporter\n"
         "        if: always()\n"
         "        uses: classroom-resources/autograding-grading-reporter@v1\n"
         "        env:\n"
-        "          SIMLAB_RESULTS: \"${{ steps.simlab.outputs.result }}\"\n"
+        "          EARNED_RESULTS: \"${{ steps.simlab.outputs.earned }}\"\n"
+        "          MISSED_RESULTS: \"${{ steps.simlab.outputs.missed }}\"\n"
         "        with:\n"
-        "          runners: simlab\n");
+        "          runners: earned,missed\n");
 
     writeFileAtomically(outDir + "/README.md", readFile(outDir + "/README.md") +
         "\n## Your repository checks itself\n\n"

@@ -111,6 +111,15 @@ std::string renderText(const GradeReport& r) {
     return out.str();
 }
 
+// What Gradescope shows of a test. Its specification: a "hidden" test is never shown to the student, and while any
+// test is hidden the student cannot see the total score either. So a test that carries points is never "hidden":
+// a hidden test of simlab's (not in the student bundle) is shown "after_due_date" unless the rubric chose
+// "after_published"; only a test worth nothing may stay hidden.
+std::string gradescopeVisibility(const TestResult& t) {
+    if (t.visibility == "hidden" && t.maxScore > 0) return "after_due_date";
+    return t.visibility;
+}
+
 nlohmann::json toGradescope(const GradeReport& r) {
     nlohmann::json tests = nlohmann::json::array();
     for (const TestResult& t : r.tests) {
@@ -123,7 +132,7 @@ nlohmann::json toGradescope(const GradeReport& r) {
                                {"max_score", t.maxScore},
                                {"status", t.outcome == Outcome::Passed ? "passed" : "failed"},
                                {"output", output},
-                               {"visibility", t.visibility},
+                               {"visibility", gradescopeVisibility(t)},
                                {"extra_data", {{"outcome", outcomeName(t.outcome)}, {"seconds", t.seconds}}}};
         if (t.figure) {
             test["extra_data"]["figure"] = *t.figure;

@@ -13,6 +13,13 @@ check "and no solutions (but the worked example project's)" \
 root=$PWD/autograder
 mkdir -p "$root/source" "$root/submission" "$root/results"
 unzip -q autograder.zip -d "$root/source"
+
+# Gradescope's default base image is Ubuntu 22.04, whose CMake is too old: setup.sh says so in one line, at once.
+printf 'ID=ubuntu\nVERSION_ID="22.04"\nPRETTY_NAME="Ubuntu 22.04.4 LTS"\n' >jammy-os-release
+run_capture jammy env SIMLAB_OS_RELEASE=$PWD/jammy-os-release "$root/source/setup.sh"
+check "on Ubuntu 22.04 setup.sh stops at once, in one line naming the image and the one to choose" \
+  bash -c "test $(status_of jammy) -eq 1 && test \$(wc -l <jammy.err) -eq 1 &&
+    grep -q 'base image is Ubuntu 22.04.4 LTS: choose Ubuntu 24.04' jammy.err && test ! -e '$root/source/build'"
 check "the archive carries Catch2 2.13's header, for images that ship Catch2 3" \
   bash -c "unzip -Z1 autograder.zip | grep -qx third_party/catch2/catch.hpp"
 # Build as on an image without Catch2 2 (Gradescope's Ubuntu 24.04 ships Catch2 3): from the carried header.
@@ -32,7 +39,14 @@ cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" "$root/submission/upload/"
 grade_submission reference
 check "run_autograder grades the reference: 100/100 on 12 tests" \
   "$VALIDATE" "$root/results/results.json" --score 100 --max 100 --tests 12
-check "hidden tests are marked hidden" test "$(grep -c '"visibility": "hidden"' "$root/results/results.json")" -eq 4
+# Gradescope's specification: a hidden test is never shown, and while any test is hidden the student cannot see
+# the total. A test with points is never hidden: simlab's hidden tests are shown after the due date.
+check "the hidden tests (points) are shown after the due date" \
+  test "$(grep -c '"visibility": "after_due_date"' "$root/results/results.json")" -eq 4
+check "and no test that carries points is hidden" python3 -c '
+import json, sys
+tests = json.load(open(sys.argv[1]))["tests"]
+sys.exit(any(t["visibility"] == "hidden" and t["max_score"] > 0 for t in tests))' "$root/results/results.json"
 
 rm -rf "$root/submission"/* && cp "$SOURCE_DIR/starter/apple/NewtonsApple.cpp" "$root/submission/apple.cpp"
 grade_submission misnamed

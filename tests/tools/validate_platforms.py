@@ -8,11 +8,14 @@
   validate_platforms.py prairielearn-info INFO
       A question's info.json (PrairieLearn's strict schema for question info, schemas/infoQuestion.ts), external
       grading enabled.
-  validate_platforms.py classroom RESULT [--points N] [--max N] [--status S]
-      GitHub Classroom's runner result, as autograding-grading-reporter reads it (JSON, or its base64).
-  validate_platforms.py workflow YML RUNNER
-      The Classroom workflow: the names Classroom looks for, a step RUNNER that writes `result` to GITHUB_OUTPUT,
-      and the reporter reading <RUNNER>_RESULTS from it.
+  validate_platforms.py classroom EARNED MISSED [--points N] [--max N] [--status S]
+      GitHub Classroom's two runner results, as autograding-grading-reporter@v1 reads them (JSON, or its base64),
+      and the reporter's two totals computed as it computes them: its console table's (tests passed / tests x
+      max_score for each runner) and the points it records (the tests' scores over the runners' max_score). Both
+      must be N of the N given by --max; --status is the status of the missed runner (the earned one passes).
+  validate_platforms.py workflow YML STEP
+      The Classroom workflow: the names Classroom looks for, a step STEP that writes `earned` and `missed` to
+      GITHUB_OUTPUT, and the reporter reading EARNED_RESULTS and MISSED_RESULTS from it.
 
 Exit 0 when valid and as expected; 1 with one line per problem otherwise.
 """
@@ -140,7 +143,7 @@ def prairielearn_info(path):
     expect(ego.get("enableNetworking", False) is False, "info.json: the grader has the network")
 
 
-def classroom(path, opts):
+def runner_result(path):
     text = open(path).read().strip()
     if not text.startswith("{"):
         text = base64.b64decode(text, validate=True).decode("utf-8")
@@ -151,6 +154,7 @@ def classroom(path, opts):
     expect(doc.get("status") in ("pass", "fail", "error"), "status is not pass, fail or error")
     expect(number(doc.get("max_score")) and doc["max_score"] >= 0, "max_score is not a number")
     tests = doc.get("tests")
+    # The reporter divides by the number of tests.
     expect(isinstance(tests, list) and tests, "tests is not a list of tests")
     score = 0
     for i, t in enumerate(tests if isinstance(tests, list) else []):
@@ -170,15 +174,29 @@ def classroom(path, opts):
         score += t.get("score", 0) if number(t.get("score")) else 0
     if number(doc.get("max_score")):
         expect(score <= doc["max_score"] + 0.005, "the tests' scores add up to more than max_score")
-    if isinstance(tests, list) and tests and doc.get("status") != "error":
-        all_pass = all(t.get("status") == "pass" for t in tests)
-        expect((doc.get("status") == "pass") == all_pass, "status does not say whether every test passed")
+    return doc
+
+
+def classroom(paths, opts):
+    runners = [runner_result(p) for p in paths]
+    if problems:
+        return
+    # The console table (aggregate-results.js, test-helpers.js getTestScore): per runner, tests passed / tests x
+    # max_score; its Total row adds them up.
+    table = sum(sum(t["status"] == "pass" for t in r["tests"]) / len(r["tests"]) * (r["max_score"] or 0)
+                for r in runners)
+    table_max = sum(r["max_score"] for r in runners)
+    # The points recorded for Classroom (notify-classroom.js): runners with a max_score, their tests' scores.
+    recorded = sum(t["score"] for r in runners if r["max_score"] for t in r["tests"])
+    recorded_max = sum(r["max_score"] for r in runners if r["max_score"])
+    expect(abs(table - recorded) < 0.005 and abs(table_max - recorded_max) < 0.005,
+           "the reporter's table gives %g/%g but it records %g/%g" % (table, table_max, recorded, recorded_max))
     if "points" in opts:
-        expect(abs(score - float(opts["points"])) < 0.005, "the tests' scores add up to %g, not %s" % (score, opts["points"]))
+        expect(abs(recorded - float(opts["points"])) < 0.005, "the points recorded are %g, not %s" % (recorded, opts["points"]))
     if "max" in opts:
-        expect(abs(doc.get("max_score", -1) - float(opts["max"])) < 0.005, "max_score is %s, not %s" % (doc.get("max_score"), opts["max"]))
+        expect(abs(recorded_max - float(opts["max"])) < 0.005, "the maximum recorded is %g, not %s" % (recorded_max, opts["max"]))
     if "status" in opts:
-        expect(doc.get("status") == opts["status"], "status is %s, not %s" % (doc.get("status"), opts["status"]))
+        expect(runners[-1].get("status") == opts["status"], "status is %s, not %s" % (runners[-1].get("status"), opts["status"]))
 
 
 def workflow(path, runner):
@@ -200,20 +218,21 @@ def workflow(path, runner):
         step = steps[ids.index(runner)]
         run = step.get("run", "")
         expect("--format classroom" in run, "the step %s does not run simlab check --format classroom" % runner)
-        expect(re.search(r'echo "result=\$\(base64 -w 0 [^)]*\)" >>"\$GITHUB_OUTPUT"', run),
-               "the step %s does not write its result, in base64, to GITHUB_OUTPUT" % runner)
+        for output in ("earned", "missed"):
+            expect(re.search(r'echo "%s=\$\([^)]*base64 -w 0\)" >>"\$GITHUB_OUTPUT"' % output, run),
+                   "the step %s does not write %s, in base64, to GITHUB_OUTPUT" % (runner, output))
         expect(step.get("if") == "always()", "the step %s does not run when the build failed" % runner)
     reporters = [s for s in steps if str(s.get("uses", "")) == "classroom-resources/autograding-grading-reporter@v1"]
     expect(len(reporters) == 1, "no step uses classroom-resources/autograding-grading-reporter@v1")
     if reporters:
         reporter = reporters[0]
         runners = str(reporter.get("with", {}).get("runners", ""))
-        expect(re.match(r"^([a-zA-Z0-9]+,)*[a-zA-Z0-9]+$", runners) and runner in runners.split(","),
-               "the reporter's runners are not a list of ids holding " + runner)
+        expect(runners == "earned,missed", "the reporter's runners are not earned,missed")
         env = reporter.get("env", {})
-        wanted = "${{ steps.%s.outputs.result }}" % runner
-        expect(env.get(runner.upper() + "_RESULTS") == wanted, "the reporter does not read %s_RESULTS from %s" %
-               (runner.upper(), wanted))
+        for output in ("earned", "missed"):
+            wanted = "${{ steps.%s.outputs.%s }}" % (runner, output)
+            expect(env.get(output.upper() + "_RESULTS") == wanted, "the reporter does not read %s_RESULTS from %s" %
+                   (output.upper(), wanted))
         expect(reporter.get("if") == "always()", "the reporter does not run when a step failed")
         expect(ids.index(runner) < steps.index(reporter), "the reporter runs before the tests")
 
@@ -229,7 +248,7 @@ def main():
         elif kind == "prairielearn-info":
             prairielearn_info(path)
         elif kind == "classroom":
-            classroom(path, options(rest))
+            classroom([path, rest[0]], options(rest[1:]))
         elif kind == "workflow":
             workflow(path, rest[0])
         else:

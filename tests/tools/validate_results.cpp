@@ -103,6 +103,10 @@ int main(int argc, char** argv) {
         checkEnum(t, where, "visibility", kVisibility);
         checkEnum(t, where, "output_format", kFormats);
         if (t.value("score", 0.0) > t.value("max_score", 0.0) + 1e-9) problems.push_back(where + " scores above its max");
+        // A hidden test is never shown, and while one is, the student sees no total: points are never hidden.
+        if (t.value("visibility", "") == "hidden" && t.value("max_score", 0.0) > 0) {
+            problems.push_back(where + " carries points but is hidden (the student would see no total score)");
+        }
         sum += t.value("score", 0.0);
         max += t.value("max_score", 0.0);
     }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "simlab/engine/errors.h"
+#include "simlab/engine/report.h"
 #include "simlab/engine/roster.h"
 #include "simlab/engine/text.h"
 #include "simlab/engine/writers.h"
@@ -114,25 +115,99 @@ TEST_CASE("PrairieLearn: under the limit, pictures go first, then the texts are 
     CHECK(isValidUtf8(prairieLearnJson(r, 3000)));
 }
 
-TEST_CASE("Classroom: the runner result the grading reporter reads", "[platforms]") {
-    const json doc = json::parse(classroomJson(report()));
-    CHECK(doc["version"] == 1);
-    CHECK(doc["status"] == "fail");
-    CHECK(doc["max_score"] == 20);
-    REQUIRE(doc["tests"].size() == 3);
-    CHECK(doc["tests"][0]["status"] == "pass");
-    CHECK(doc["tests"][0]["score"] == 10);
-    CHECK(doc["tests"][0]["line_no"] == 0);
-    CHECK(doc["tests"][0]["test_code"] == "build/bin/simlab check apple NewtonsApple.cpp --test \"the fall\"");
-    CHECK(doc["tests"][1]["status"] == "fail");
-    CHECK(doc["tests"][1]["message"].get<std::string>().find('\x1b') == std::string::npos);
+namespace {
+// The two runner results classroomJson writes, one a line.
+std::pair<json, json> runners(const GradeReport& r) {
+    const std::string text = classroomJson(r);
+    const std::size_t line = text.find('\n');
+    REQUIRE(line != std::string::npos);
+    REQUIRE(text.back() == '\n');
+    return {json::parse(text.substr(0, line)), json::parse(text.substr(line + 1))};
+}
+// The reporter's console table (autograding-grading-reporter@v1): per runner, tests passed / tests x max_score.
+double tableTotal(const std::pair<json, json>& both) {
+    double total = 0;
+    for (const json& r : {both.first, both.second}) {
+        int passed = 0;
+        for (const json& t : r["tests"]) passed += t["status"] == "pass";
+        total += static_cast<double>(passed) / static_cast<double>(r["tests"].size()) * r["max_score"].get<double>();
+    }
+    return total;
+}
+// The points it records for Classroom: the tests' scores of the runners with a max_score.
+double recorded(const std::pair<json, json>& both) {
+    double total = 0;
+    for (const json& r : {both.first, both.second}) {
+        if (r["max_score"].get<double>() == 0) continue;
+        for (const json& t : r["tests"]) total += t["score"].get<double>();
+    }
+    return total;
+}
+}  // namespace
+
+TEST_CASE("Classroom: two runners, so that the reporter's table and the points it records agree", "[platforms]") {
+    const auto [earned, missed] = runners(report());
+    CHECK(earned["version"] == 1);
+    CHECK(earned["status"] == "pass");
+    CHECK(earned["max_score"] == 15);
+    CHECK(missed["status"] == "fail");
+    CHECK(missed["max_score"] == 5);
+    REQUIRE(earned["tests"].size() == 2);
+    CHECK(earned["tests"][0]["name"] == "the fall (10 of 10 points)");
+    CHECK(earned["tests"][0]["status"] == "pass");
+    CHECK(earned["tests"][0]["score"] == 10);
+    CHECK(earned["tests"][0]["line_no"] == 0);
+    CHECK(earned["tests"][0]["test_code"] == "build/bin/simlab check apple NewtonsApple.cpp --test \"the fall\"");
+    REQUIRE(missed["tests"].size() == 1);
+    CHECK(missed["tests"][0]["status"] == "fail");
+    CHECK(missed["tests"][0]["score"] == 0);
+    CHECK(missed["tests"][0]["message"].get<std::string>().find('\x1b') == std::string::npos);
+    CHECK(tableTotal({earned, missed}) == Approx(15));
+    CHECK(recorded({earned, missed}) == Approx(15));
+
+    // Partial credit: one runner would show 10 (2 of 3 passed x 15) and record 12.81; these two agree.
+    GradeReport partial = report();
+    partial.tests[1].score = 2.81;
+    const auto both = runners(partial);
+    CHECK(both.first["max_score"].get<double>() == Approx(17.81));
+    CHECK(both.second["max_score"].get<double>() == Approx(2.19));
+    CHECK(tableTotal(both) == Approx(17.81));
+    CHECK(recorded(both) == Approx(17.81));
+    const std::string name = both.second["tests"][0]["name"];
+    CHECK(name.find('\x1b') == std::string::npos);
+    CHECK(name.find(" (2.19 of 5 points missed)") != std::string::npos);
+
+    // Full marks and none: neither runner is ever empty (the reporter divides by its number of tests).
+    GradeReport full = report();
+    full.tests[1].score = 5;
+    const auto all = runners(full);
+    CHECK(all.second["status"] == "pass");
+    CHECK(all.second["max_score"] == 0);
+    CHECK(all.second["tests"].size() == 1);
+    CHECK(tableTotal(all) == Approx(20));
+    CHECK(recorded(all) == Approx(20));
 
     GradeReport broken = report();
     broken.build.ok = false;
     for (TestResult& t : broken.tests) t.outcome = Outcome::DidNotCompile, t.score = 0;
-    const json error = json::parse(classroomJson(broken));
-    CHECK(error["status"] == "error");
-    CHECK(error["tests"][0]["status"] == "error");
+    const auto error = runners(broken);
+    CHECK(error.first["status"] == "error");
+    CHECK(error.second["status"] == "error");
+    CHECK(error.second["tests"][0]["status"] == "error");
+    CHECK(tableTotal(error) == 0);
+    CHECK(recorded(error) == 0);
+    CHECK(error.second["max_score"] == 20);
+}
+
+TEST_CASE("Gradescope: a test with points is never hidden, so the student always sees the total", "[platforms]") {
+    GradeReport r = report();
+    r.tests.push_back(test("hidden: a note worth nothing", 0, 0, Outcome::Passed, "hidden"));
+    r.tests.push_back(test("shown when published", 2, 2, Outcome::Passed, "after_published"));
+    const json doc = toGradescope(r);
+    CHECK(doc["tests"][0]["visibility"] == "visible");
+    CHECK(doc["tests"][2]["visibility"] == "after_due_date");  // hidden in the rubric, 5 points
+    CHECK(doc["tests"][3]["visibility"] == "hidden");          // no points: it may stay hidden
+    CHECK(doc["tests"][4]["visibility"] == "after_published");
 }
 
 TEST_CASE("CSV: quoted cells, doubled quotes, line breaks inside, CRLF, a byte order mark", "[platforms]") {

@@ -85,8 +85,11 @@ std::string prairieLearnJson(const GradeReport& report, std::size_t limitBytes =
 /// PrairieLearn's results.json when simlab could not grade at all: not gradable (no attempt is charged), and why.
 std::string prairieLearnErrorJson(const std::string& why);
 
-/// The runner result GitHub Classroom's grading reporter reads (base64-encoded in <RUNNER>_RESULTS): version 1,
-/// status (pass, fail, or error when nothing was built), max_score, and tests[] with name, status, score, message,
+/// The two runner results GitHub Classroom's grading reporter reads (each base64-encoded in <RUNNER>_RESULTS), one
+/// JSON document a line: "earned" (max_score the points earned, a passing entry per test that earned points) and
+/// "missed" (max_score the points missed, a failing entry per test that missed points), so that the reporter's
+/// table and the points it records for Classroom agree (classroom_json.cpp says why). Each: version 1, status
+/// (pass, fail, or error when nothing was built), max_score, and tests[] with name, status, score, message,
 /// test_code (the command that runs the test alone), filename, line_no and duration (ms).
 std::string classroomJson(const GradeReport& report);
 
