@@ -163,6 +163,48 @@ TEST_CASE("report.html escapes hostile ids and links each student's feedback by 
                       "14.8 [14.8, 14.8] digits"});
 }
 
+TEST_CASE("report.html: needs a look lists every test that crashed or timed out, whatever the score; the pass "
+          "rate counts the files built and run", "[report][html]") {
+    simlab::engine::ClassResult result;
+    // Eleven students lower than the two below fill the "lowest scores" list.
+    for (int i = 0; i < 11; ++i) {
+        StudentRecord r;
+        r.id = "low" + std::to_string(i);
+        r.status = "graded";
+        r.score = 10 + i;
+        r.maxScore = 100;
+        r.tests = {test("the fall", Outcome::Failed, r.score, 100, "")};
+        result.records.push_back(r);
+    }
+    StudentRecord crashed;
+    crashed.id = "crashed-at-95";
+    crashed.status = "graded";
+    crashed.score = 95;
+    crashed.maxScore = 100;
+    crashed.tests = {test("the fall", Outcome::Passed, 95, 95, ""), test("the trade", Outcome::Crashed, 0, 5, "SIGSEGV")};
+    StudentRecord slow = crashed;
+    slow.id = "timed-out-at-89";
+    slow.score = 89;
+    slow.tests[1] = test("the trade", Outcome::TimedOut, 0, 11, "");
+    StudentRecord unbuilt;
+    unbuilt.id = "unbuilt";
+    unbuilt.status = "did not compile";
+    unbuilt.maxScore = 100;
+    unbuilt.tests = {test("the fall", Outcome::DidNotCompile, 0, 95, ""), test("the trade", Outcome::DidNotCompile, 0, 5, "")};
+    result.records.push_back(crashed);
+    result.records.push_back(slow);
+    result.records.push_back(unbuilt);
+    simlab::Rubric rubric = rubricOf(crashed);
+    const std::string page = simlab::engine::classReportHtml(apple(), rubric, result);
+    const std::string attention = page.substr(page.find("<section id=\"attention\">"));
+    checkHolds(attention, {"A test crashed, ran out of time or memory, or was refused",
+                           "crashed-at-95</a></td><td class=\"num\">95/100</td><td class=\"name\">the trade (crashed)",
+                           "timed-out-at-89</a></td><td class=\"num\">89/100</td><td class=\"name\">the trade (timed out)"});
+    // The pass rate is over the 13 files built and run, not the 14 students.
+    checkHolds(page, {"the trade</td><td class=\"num\">5</td><td class=\"num\">0/2 (0%)",
+                      "the fall</td><td class=\"num\">95</td><td class=\"num\">2/13 (15%)"});
+}
+
 TEST_CASE("report.html draws figures that span many orders of magnitude on log axes", "[report][html]") {
     simlab::engine::ClassResult result;
     for (double drift : {0.0, 1.9e-14, 2e-14, 3e-10, 2.0}) {

@@ -24,7 +24,11 @@ std::vector<TestSummary> summarize(const Rubric& rubric, const std::vector<Stude
         s.test = &test;
         for (const StudentRecord& r : records) {
             for (const TestResult& t : r.tests) {
-                if (t.name != test.name || t.outcome == Outcome::MissingFile) continue;
+                // Built and run: not a missing file, nor one that did not compile or was refused before it ran.
+                if (t.name != test.name || t.outcome == Outcome::MissingFile || t.outcome == Outcome::DidNotCompile ||
+                    t.outcome == Outcome::Refused) {
+                    continue;
+                }
                 ++s.graded;
                 s.passed += t.outcome == Outcome::Passed;
                 if (t.figure) {

@@ -27,7 +27,8 @@ struct TestSummary {
     Spread figures;              ///< of values
     std::string unit;
 };
-/// Each test of the rubric, in its order, over the records (a "missing file" outcome is not counted as graded).
+/// Each test of the rubric, in its order, over the records whose file was built and run (a missing file, one that
+/// did not compile and one refused before it ran are not counted as graded).
 std::vector<TestSummary> summarize(const Rubric& rubric, const std::vector<StudentRecord>& records);
 
 /// "0.833", "14.8", "1.97e-14" (three significant digits); empty for NaN.

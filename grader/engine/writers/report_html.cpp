@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <sstream>
 
@@ -214,12 +215,14 @@ std::string testsTable(const Rubric& rubric, const std::vector<StudentRecord>& r
 
 // A table of students, each linked to their feedback: score, status (flagged unless graded), and with `withTime`
 // how long they took and their slowest test; the notes in a column when one has a note.
-std::string studentsTable(const std::vector<const StudentRecord*>& rows, bool withTime) {
+std::string studentsTable(const std::vector<const StudentRecord*>& rows, bool withTime,
+                          const std::function<std::string(const StudentRecord&)>& tests = {}) {
     const bool notes = std::any_of(rows.begin(), rows.end(), [](const StudentRecord* r) { return !r->note.empty(); });
     std::ostringstream out;
     out << "<table>\n<thead><tr><th>student</th><th class=\"num\">score</th>"
-        << (withTime ? "<th class=\"num\">seconds</th><th>its slowest test</th>" : "") << "<th>status</th>"
-        << (notes ? "<th>note</th>" : "") << "</tr></thead>\n<tbody>\n";
+        << (withTime ? "<th class=\"num\">seconds</th><th>its slowest test</th>" : "")
+        << (tests ? "<th>tests</th>" : "") << "<th>status</th>" << (notes ? "<th>note</th>" : "")
+        << "</tr></thead>\n<tbody>\n";
     for (const StudentRecord* r : rows) {
         out << "<tr><td class=\"name\">" << studentLink(r->id) << "</td><td class=\"num\">" << points(r->score) << "/"
             << points(r->maxScore) << "</td>";
@@ -238,6 +241,7 @@ std::string studentsTable(const std::vector<const StudentRecord*>& rows, bool wi
             }
             out << "</td>";
         }
+        if (tests) out << "<td class=\"name\">" << htmlText(shortened(tests(*r), kNoteChars)) << "</td>";
         if (r->status == "graded") out << "<td class=\"muted\">graded</td>";
         else out << "<td><span class=\"badge error\">" << htmlText(r->status) << "</span></td>";
         if (notes) out << "<td class=\"name\">" << htmlText(shortened(r->note, kNoteChars)) << "</td>";
@@ -249,6 +253,31 @@ std::string studentsTable(const std::vector<const StudentRecord*>& rows, bool wi
 
 bool byScore(const StudentRecord* a, const StudentRecord* b) {
     return a->score != b->score ? a->score < b->score : a->id < b->id;
+}
+
+// Whether a test ended other than by passing or failing: it crashed, ran out of time or memory, flooded, broke its
+// report, or was refused.
+bool endedBadly(Outcome o) {
+    return o != Outcome::Passed && o != Outcome::Failed && o != Outcome::MissingFile && o != Outcome::DidNotCompile;
+}
+
+// "name (crashed); name (timed out)": the tests of `r` that ended badly.
+std::string badEnds(const StudentRecord& r) {
+    std::string out;
+    for (const TestResult& t : r.tests) {
+        if (endedBadly(t.outcome)) out += (out.empty() ? "" : "; ") + t.name + " (" + outcomeName(t.outcome) + ")";
+    }
+    return out;
+}
+
+// Every submission graded as handed in with a test that ended badly, whatever its score, lowest score first.
+std::vector<const StudentRecord*> withBadEnds(const std::vector<StudentRecord>& records) {
+    std::vector<const StudentRecord*> rows;
+    for (const StudentRecord& r : records) {
+        if (r.status == "graded" && !badEnds(r).empty()) rows.push_back(&r);
+    }
+    std::sort(rows.begin(), rows.end(), byScore);
+    return rows;
 }
 
 // Every submission not graded as handed in (any status but "graded"), lowest score first.
@@ -338,12 +367,21 @@ std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, 
         << testsTable(rubric, records) << "</section>\n";
 
     out << "<section id=\"attention\">\n<h2>Needs a look</h2>\n";
-    const std::vector<const StudentRecord*> refused = notGraded(records), low = lowest(records);
-    if (refused.empty() && low.empty()) out << "<p>Every submission was graded as handed in and scored full marks.</p>\n";
+    const std::vector<const StudentRecord*> refused = notGraded(records), low = lowest(records),
+                                            troubled = withBadEnds(records);
+    if (refused.empty() && low.empty() && troubled.empty()) {
+        out << "<p>Every submission was graded as handed in and scored full marks.</p>\n";
+    }
     if (!refused.empty()) {
         out << "<h3>Not graded as handed in</h3>\n<p class=\"muted\">Any status but graded: the file was missing, "
                "misnamed, refused, did not build, or simlab could not grade it.</p>\n"
             << studentsTable(refused, false);
+    }
+    if (!troubled.empty()) {
+        out << "<h3>A test crashed, ran out of time or memory, or was refused</h3>\n<p class=\"muted\">Every "
+               "graded submission with such a test, whatever its score ("
+            << troubled.size() << "): the points it lost may be the code's, or the machine's.</p>\n"
+            << studentsTable(troubled, false, badEnds);
     }
     if (!low.empty()) {
         out << "<h3>Lowest scores</h3>\n<p class=\"muted\">Graded, below full marks: the " << kListed
