@@ -10,6 +10,7 @@
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/manifest.h"
+#include "simlab/engine/manual.h"
 #include "simlab/engine/report.h"
 #include "simlab/engine/roster.h"
 #include "simlab/engine/text.h"
@@ -29,6 +30,7 @@ struct CanvasOptions {
     std::string output;
     std::string name;
     std::string canvasId;
+    std::string rubric;
 };
 
 // "a, b and 3 more": a list a person reads in one line.
@@ -70,8 +72,12 @@ void runCanvas(const CanvasOptions& o) {
         record->id = e.name;
         records.push_back(*record);
     }
-    double possible = 0;
-    for (const RubricTest& t : loadRubric(assignment.rubric).tests) possible += t.points;
+    // What a person graded counts too (manual.csv, beside the gradebook).
+    const Rubric rubric = loadRubric(o.rubric.empty() ? assignment.rubric : o.rubric);
+    ManualSheet sheet;
+    if (fs::exists(grades + "/manual.csv")) sheet = readManualCsv(readFile(grades + "/manual.csv"), grades + "/manual.csv", rubric);
+    for (StudentRecord& r : records) applyManual(r, sheet, rubric);
+    const double possible = rubric.totalPoints() + rubric.manualPoints();
     std::string column = o.name.empty() ? (assignment.title.empty() ? assignment.id : assignment.title) : o.name;
     if (!o.canvasId.empty()) column += " (" + o.canvasId + ")";
 
@@ -79,6 +85,19 @@ void runCanvas(const CanvasOptions& o) {
     writeFileAtomically(o.output, made.csv);
     std::cout << "Wrote " << printable(o.output) << ": " << printable(column) << ", " << made.scored << " of "
               << roster.size() << " students on the roster scored (out of " << points(possible) << ").\n";
+    if (!made.noId.empty()) {
+        std::cerr << "simlab: warning: " << made.noId.size()
+                  << " on the roster without a simlab id (blank: Canvas keeps what it has): " << listed(made.noId) << "\n";
+    }
+    if (!made.missingFile.empty()) {
+        std::cerr << "simlab: warning: " << made.missingFile.size()
+                  << " handed in no file to grade (blank, not 0: give the grade in Canvas): " << listed(made.missingFile)
+                  << "\n";
+    }
+    if (!made.manualPending.empty()) {
+        std::cerr << "simlab: warning: " << made.manualPending.size() << " with items graded by hand still pending in "
+                  << grades << "/manual.csv (blank until they have their points): " << listed(made.manualPending) << "\n";
+    }
     if (!made.notGraded.empty()) {
         std::cerr << "simlab: warning: " << made.notGraded.size()
                   << " on the roster without a grade (blank: Canvas keeps what it has): " << listed(made.notGraded)
@@ -115,6 +134,8 @@ void addExport(CLI::App& app) {
     canvas->add_option("--canvas-id", options->canvasId,
                        "the assignment's id in Canvas (the number in its address), so that Canvas matches the column "
                        "to it whatever its name");
+    canvas->add_option("--rubric", options->rubric, "the rubric the class was graded with (default: the assignment's)")
+        ->check(CLI::ExistingFile);
     canvas->callback([options] { runCanvas(*options); });
 }
 

@@ -49,8 +49,9 @@ std::string minutesAndSeconds(double seconds) {
 std::string studentLine(const engine::StudentRecord& r, bool reused) {
     std::string status = r.status + (r.note.empty() ? "" : ": " + r.note);
     if (reused) status += " (unchanged)";
+    if (r.pendingPoints() > 0) status += "; " + engine::points(r.pendingPoints()) + " points to grade by hand";
     char score[32];
-    std::snprintf(score, sizeof score, "%7s", (engine::points(r.score) + "/" + engine::points(r.maxScore)).c_str());
+    std::snprintf(score, sizeof score, "%7s", (engine::points(r.total()) + "/" + engine::points(r.maxTotal())).c_str());
     std::string id = engine::printable(r.id);
     if (id.size() < 24) id.resize(24, ' ');
     return "  " + id + " " + score + "  " + engine::printable(status);
@@ -139,7 +140,9 @@ void runGrade(const GradeCommandOptions& o) {
     if (!o.junit.empty()) writeFileAtomically(o.junit, junitXml(assignment, records));
     std::cout << "\nWrote " << printable(out) << "/gradebook.csv, " << printable(out) << "/summary.csv, "
               << printable(out) << "/report.html and " << printable(out)
-              << "/students/<id>/{results.json,feedback.md,feedback.html}"
+              << "/students/<id>/{results.json,feedback.md,feedback.html,history.jsonl}"
+              << (rubric.manual.empty() ? "" : ", and " + printable(out) + "/manual.csv (fill in the points of the "
+                                                "items graded by hand, then run this again: no code runs again)")
               << (o.junit.empty() ? "" : ", " + printable(o.junit)) << "\n";
     if (result.graderErrors > 0) {
         throw std::runtime_error(std::to_string(result.graderErrors) +

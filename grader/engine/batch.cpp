@@ -2,16 +2,19 @@
 
 #include <algorithm>
 #include <atomic>
+#include <ctime>
 #include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "simlab/attachments.h"
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
+#include "simlab/engine/manual.h"
 #include "simlab/engine/process.h"
 #include "simlab/engine/text.h"
 #include "simlab/engine/writers.h"
@@ -70,6 +73,50 @@ std::vector<Attachment> attachedBeside(const std::string& dir) {
         }
     }
     return attached;
+}
+
+// What of the rubric decides the tests' verdicts: everything but the points (and the descriptions), so that a
+// change of points alone re-scores the recorded verdicts instead of running every student's code again.
+std::string verdictsOf(const Rubric& rubric) {
+    std::string shape = rubric.assignment + "\n" + rubric.submission + "\n";
+    for (const std::string& extra : rubric.extraFiles) shape += "extra " + extra + "\n";
+    for (const RubricTest& t : rubric.tests) {
+        shape += "test " + t.name + "\n" + t.visibility + "\n";
+        for (const auto& [key, value] : t.params) shape += key + "=" + std::to_string(value) + "\n";
+    }
+    return shape;
+}
+
+// The record's tests scored with the rubric's points: each test's credit times its points now. True if a score
+// moved.
+bool rescore(StudentRecord& r, const Rubric& rubric) {
+    bool moved = false;
+    double score = 0, max = 0;
+    for (TestResult& t : r.tests) {
+        if (const RubricTest* test = rubric.find(t.name)) {
+            const double now = roundScore(test->points * t.credit);
+            moved = moved || now != t.score || test->points != t.maxScore;
+            t.score = now;
+            t.maxScore = test->points;
+        }
+        score += t.score;
+        max += t.maxScore;
+    }
+    r.score = roundScore(score);
+    r.maxScore = roundScore(max);
+    return moved;
+}
+
+// A line of students/<id>/history.jsonl: when the grade was made, from which file, the score, and why.
+void appendHistory(const std::string& dir, const StudentRecord& r, const std::string& why) {
+    const std::time_t now = std::time(nullptr);
+    char when[32];
+    std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    const nlohmann::json line = {{"when", when},        {"file", r.file},  {"key", r.key}, {"status", r.status},
+                                 {"score", r.score},    {"max_score", r.maxScore},          {"why", why}};
+    std::string lines = fs::exists(dir + "/history.jsonl") ? readFile(dir + "/history.jsonl") : "";
+    lines += line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+    writeFileAtomically(dir + "/history.jsonl", lines);
 }
 
 std::vector<std::string> namesOf(const std::vector<Attachment>& attached) {
@@ -166,7 +213,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
 
     // What every grade depends on besides the student's files.
     Hash base;
-    base.add(builder.graderKey(assignment)).add(readFile(rubric.path));
+    base.add(builder.graderKey(assignment)).add(verdictsOf(rubric));
     const Limits limits = options.grade.limits.value_or(rubric.limits);
     for (double v : {limits.wallSeconds, limits.cpuSeconds, double(limits.memoryMiB), double(limits.outputKiB),
                      double(limits.fileMiB), double(limits.processes), double(limits.observationMiB),
@@ -175,11 +222,24 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     }
     base.add(options.grade.includeHidden ? "all tests" : "visible tests");
 
+    // What a person graded (manual.csv): read first, so that a sheet with a mistake stops simlab before anything is
+    // graded; written back at once with a row for every student and item (nothing typed in it is lost).
+    const std::string sheetPath = outDir + "/manual.csv";
+    ManualSheet sheet;
+    if (fs::exists(sheetPath)) sheet = readManualCsv(readFile(sheetPath), sheetPath, rubric);
+    if (!rubric.manual.empty() || fs::exists(sheetPath)) {
+        std::vector<std::string> printableIds;
+        for (const std::string& id : ids) printableIds.push_back(printable(id));
+        writeFileAtomically(sheetPath, manualCsv(sheet, printableIds, rubric));
+    }
+
     std::map<std::string, StudentRecord> records;
     struct Pending {
         std::string id, key;
         Gathered gathered;
+        std::string why;  // why it is graded again (history.jsonl)
     };
+    std::vector<std::string> rescored;  // kept records whose scores the rubric's points moved
     std::vector<Pending> pending;
     int reused = 0;
     for (const std::string& id : ids) {
@@ -206,11 +266,34 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
             }
         }
         if (kept && options.only.empty() && kept->key == key.hex()) {
+            if (rescore(*kept, rubric)) rescored.push_back(id);
             records[id] = *kept;
             ++reused;
         } else {
-            pending.push_back({id, key.hex(), std::move(gathered)});
+            const std::string why = !kept                          ? "first graded"
+                                    : kept->key == "retry"         ? "its last grading failed"
+                                    : kept->basis != base.hex()    ? "the grader, the rubric's tests or the limits changed"
+                                    : !options.only.empty()        ? "asked for (--only)"
+                                                                   : "the submission changed";
+            pending.push_back({id, key.hex(), std::move(gathered), why});
         }
+    }
+    // Kept records re-scored by the rubric's points, and graded by hand: their files say so.
+    for (auto& [id, r] : records) {
+        applyManual(r, sheet, rubric);
+        const bool moved = std::count(rescored.begin(), rescored.end(), id) > 0;
+        if (!moved && rubric.manual.empty()) continue;
+        const std::string dir = outDir + "/students/" + id;
+        if (moved) {
+            writeFileAtomically(dir + "/record.json", recordJson(r));
+            appendHistory(dir, r, "the rubric's points changed (re-scored from the recorded verdicts)");
+        }
+        if (fs::exists(dir + "/results.json")) {
+            writeFileAtomically(dir + "/results.json", updatedResultsJson(readFile(dir + "/results.json"), r));
+        }
+        const std::vector<Attachment> attached = attachedBeside(dir);
+        writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, r, rubric.manual, namesOf(attached)));
+        writeFileAtomically(dir + "/" + kFeedbackHtml, feedbackHtml(assignment, r, rubric.manual, attached));
     }
 
     // A kept record graded by a simlab that wrote no feedback.html gets one, so that report.html links to a page.
@@ -244,11 +327,14 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     std::atomic<std::size_t> next{0};
     std::atomic<bool> stop{false};
     const int alreadyDone = progress.done;
-    auto finish = [&](StudentRecord record, bool writeRecord, const GradeReport* report) {
+    auto finish = [&](StudentRecord record, bool writeRecord, const GradeReport* report, const std::string& why) {
         const std::string dir = outDir + "/students/" + record.id;
         fs::create_directories(dir);
+        record.basis = base.hex();
+        applyManual(record, sheet, rubric);
         if (report) {
-            writeFileAtomically(dir + "/results.json", resultsJson(*report));
+            const std::string results = resultsJson(*report);
+            writeFileAtomically(dir + "/results.json", record.manual.empty() ? results : updatedResultsJson(results, record));
             writeFileAtomically(dir + "/output.txt", testOutputText(*report));
         }
         std::vector<Attachment> attached;
@@ -263,7 +349,10 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
         }
         writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, record, rubric.manual, namesOf(attached)));
         writeFileAtomically(dir + "/" + kFeedbackHtml, feedbackHtml(assignment, record, rubric.manual, attached));
-        if (writeRecord) writeFileAtomically(dir + "/record.json", recordJson(record));  // last: the commit
+        if (writeRecord) {
+            appendHistory(dir, record, why);
+            writeFileAtomically(dir + "/record.json", recordJson(record));  // last: the commit
+        }
 
         std::lock_guard<std::mutex> guard(lock);
         records[record.id] = record;
@@ -292,7 +381,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
                     report = notGradedReport(assignment, rubric, p.gathered.status, p.gathered.note,
                                              grade.includeHidden);
                 }
-                finish(recordOf(p.id, p.key, report, p.gathered.found.shown), true, &report);
+                finish(recordOf(p.id, p.key, report, p.gathered.found.shown), true, &report, p.why);
             } catch (const Interrupted&) {
                 stop = true;  // this student has no outcome: the next run grades them
             } catch (const std::exception& e) {
@@ -304,7 +393,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
                 failed.note = e.what();
                 failed.maxScore = rubric.totalPoints();
                 try {
-                    finish(failed, true, nullptr);
+                    finish(failed, true, nullptr, p.why + "; simlab could not grade it: " + failed.note);
                 } catch (const std::exception&) {
                     stop = true;  // nothing can be written: stop rather than lose grades silently
                 }

@@ -20,6 +20,7 @@
 #include "simlab/bounded_json.h"
 #include "simlab/engine/errors.h"
 #include "simlab/engine/process.h"
+#include "simlab/engine/record.h"
 
 namespace fs = std::filesystem;
 
@@ -193,6 +194,7 @@ TestResult interpret(const RubricTest& test, const ProcessResult& probe, const P
             t.unit = figure.value("unit", "");
         }
     }
+    t.credit = credit;
     t.score = roundScore(test.points * credit);
     return t;
 }
@@ -498,6 +500,24 @@ double GradeReport::maxScore() const {
     double total = 0;
     for (const TestResult& t : tests) total += t.maxScore;
     return roundScore(total);
+}
+
+double StudentRecord::total() const {
+    double sum = score;
+    for (const ManualGrade& m : manual) sum += m.points.value_or(0);
+    return roundScore(sum);
+}
+
+double StudentRecord::maxTotal() const {
+    double sum = maxScore;
+    for (const ManualGrade& m : manual) sum += m.maxPoints;
+    return roundScore(sum);
+}
+
+double StudentRecord::pendingPoints() const {
+    double sum = 0;
+    for (const ManualGrade& m : manual) sum += m.points ? 0 : m.maxPoints;
+    return roundScore(sum);
 }
 
 GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment, const Rubric& rubric,

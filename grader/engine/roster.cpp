@@ -2,22 +2,11 @@
 
 #include <algorithm>
 #include <map>
-#include <set>
 
 #include "simlab/engine/errors.h"
 #include "simlab/engine/text.h"
 
 namespace simlab::engine {
-
-namespace {
-
-std::string trimmed(const std::string& s) {
-    const std::size_t first = s.find_first_not_of(" \t");
-    if (first == std::string::npos) return "";
-    return s.substr(first, s.find_last_not_of(" \t") - first + 1);
-}
-
-}  // namespace
 
 std::vector<std::vector<std::string>> readCsv(const std::string& text) {
     std::vector<std::vector<std::string>> rows;
@@ -106,7 +95,6 @@ std::vector<RosterEntry> readRoster(const std::string& text, const std::string& 
         return found == column.end() || found->second >= row.size() ? std::string() : trimmed(row[found->second]);
     };
     std::vector<RosterEntry> entries;
-    std::set<std::string> seen;
     for (std::size_t r = 1; r < rows.size(); ++r) {
         const std::string line = where + ", row " + std::to_string(r + 1);
         if (rows[r].size() > rows[0].size()) {
@@ -120,12 +108,12 @@ std::vector<RosterEntry> readRoster(const std::string& text, const std::string& 
         e.sisUserId = cellOf(rows[r], "SIS User ID");
         e.sisLoginId = cellOf(rows[r], "SIS Login ID");
         e.section = cellOf(rows[r], "Section");
+        // An empty simlab id is a student simlab has no grade for (a blank cell); the same id on several rows is
+        // a group's folder, whose grade each member gets.
         e.folder = cellOf(rows[r], ownIds ? "simlab id" : "SIS Login ID");
-        if (e.folder.empty()) {
-            throw UsageError(line + " (" + printable(e.student) + ") has no " +
-                             (ownIds ? "simlab id" : "SIS Login ID (used as the simlab id)"));
+        if (e.student.empty() && e.canvasId.empty() && e.sisUserId.empty() && e.sisLoginId.empty()) {
+            throw UsageError(line + " names no student (Student, ID, SIS User ID and SIS Login ID are all empty)");
         }
-        if (!seen.insert(e.folder).second) throw UsageError(line + ": the simlab id " + printable(e.folder) + " is there twice");
         entries.push_back(e);
     }
     return entries;

@@ -101,6 +101,12 @@ std::string printable(const std::string& bytes, bool keepNewlines) {
     return out;
 }
 
+std::string trimmed(const std::string& s) {
+    const std::size_t first = s.find_first_not_of(" \t");
+    if (first == std::string::npos) return "";
+    return s.substr(first, s.find_last_not_of(" \t") - first + 1);
+}
+
 std::string csvCell(const std::string& text) {
     std::string cell = printable(text);
     const std::size_t first = text.find_first_not_of(' ');

@@ -57,8 +57,23 @@ bad() {  # bad NAME TEXT WHAT: a roster holding TEXT is refused in one line sayi
 bad no-student 'Name,ID,simlab id\nAda,1,ada\n' 'no Student column'
 bad no-id 'Student,Section,simlab id\nAda,A,ada\n' 'none of the columns ID, SIS User ID and SIS Login ID'
 bad open-quote 'Student,ID,simlab id\n"Ada,1,ada\n' 'never closed'
-bad twice 'Student,ID,simlab id\nAda,1,ada\nAda,2,ada\n' 'there twice'
+bad nobody 'Student,ID,simlab id\n,,ada\n' 'names no student'
 bad empty '' 'is empty'
+# A group's folder named on each member's row, a student simlab has no id for, a folder with no file in it.
+mkdir -p class/eve && echo "my notes" >class/eve/README.txt
+"$SIMLAB" grade apple class -o grades -j 2 >regrade.out 2>&1
+printf '%s\n' 'Student,ID,SIS User ID,SIS Login ID,Section,simlab id' 'Fay,201,s201,fay,Lab A,dan' \
+  'Gus,202,s202,gus,Lab A,dan' 'Hal,203,s203,hal,Lab A,' 'Eve,204,s204,eve,Lab A,eve' >groups.csv
+run_capture groups "$SIMLAB" export canvas apple --grades grades --roster groups.csv -o groups-out.csv
+starter_points=$(points starter.json | sed 's/\.0$//')
+check "a group's members each get the group's grade" \
+  bash -c "test $(status_of groups) -eq 0 && test '$(cell groups-out.csv 2 5)' = '$starter_points' &&
+           test '$(cell groups-out.csv 3 5)' = '$starter_points'"
+check "a student with no simlab id: a blank cell, and said" \
+  bash -c "test -z '$(cell groups-out.csv 4 5)' && grep -q '1 on the roster without a simlab id .*: Hal' groups.err"
+check "a folder with no file: a blank cell, never a 0, and said" \
+  bash -c "test -z '$(cell groups-out.csv 5 5)' && grep -q '1 handed in no file to grade (blank, not 0' groups.err"
+
 run_capture nofile "$SIMLAB" export canvas apple --grades grades --roster missing.csv -o x.csv
 check "no roster file: one line" bash -c "test $(status_of nofile) -ne 0 && test \$(wc -l <nofile.err) -eq 1"
 run_capture nogrades "$SIMLAB" export canvas apple --grades nowhere --roster roster.csv -o x.csv

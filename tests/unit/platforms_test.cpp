@@ -5,6 +5,7 @@
 #include <string>
 
 #include "simlab/engine/errors.h"
+#include "simlab/engine/manual.h"
 #include "simlab/engine/report.h"
 #include "simlab/engine/roster.h"
 #include "simlab/engine/text.h"
@@ -242,9 +243,11 @@ TEST_CASE("Roster: Canvas's columns, the simlab id or the SIS login, one-line er
     CHECK_THAT(error("Name,ID\nAda,1\n"), Catch::Contains("no Student column"));
     CHECK_THAT(error("Student,Section\nAda,A\n"), Catch::Contains("none of the columns ID, SIS User ID"));
     CHECK_THAT(error("Student,ID\nAda,1\n"), Catch::Contains("no 'simlab id' column"));
-    CHECK_THAT(error("Student,ID,simlab id\nAda,1,a\nBob,2,a\n"), Catch::Contains("row 3: the simlab id a is there twice"));
+    // A group's folder on each member's row; a student simlab has no id for.
+    CHECK(error("Student,ID,simlab id\nAda,1,team\nBob,2,team\n") == "(no error)");
+    CHECK(readRoster("Student,ID,simlab id\nAda,1,\n", "r.csv")[0].folder.empty());
     CHECK_THAT(error("Student,ID,simlab id\nAda,1,a,extra\n"), Catch::Contains("row 2 has 4 cells"));
-    CHECK_THAT(error("Student,ID,simlab id\nAda,1,\n"), Catch::Contains("has no simlab id"));
+    CHECK_THAT(error("Student,ID,simlab id\n,,a\n"), Catch::Contains("row 2 names no student"));
     CHECK_THAT(error("Student,ID,simlab id\n\"Ada,1,a\n"), Catch::Contains("never closed"));
     CHECK_THAT(error(""), Catch::Contains("is empty"));
     for (const std::string& e : {error("Name\n"), error("Student,ID,simlab id\n\"Ada,1,a\n")}) {
@@ -252,24 +255,94 @@ TEST_CASE("Roster: Canvas's columns, the simlab id or the SIS login, one-line er
     }
 }
 
-TEST_CASE("Canvas: one column, formula-safe cells, who is missing on either side", "[platforms]") {
+TEST_CASE("Canvas: one column, formula-safe cells, groups, blanks for what has no grade, who is missing", "[platforms]") {
     const auto roster = readRoster("Student,ID,SIS User ID,SIS Login ID,Section,simlab id\n"
                                    "\"Lovelace, Ada\",101,s1,ada,A,ada\n"
                                    "=HYPERLINK(\"x\"),102,s2,eve,\"A,B\",eve\n"
-                                   "Carol,103,s3,carol,B,carol\n",
+                                   "Carol,103,s3,carol,B,carol\n"
+                                   "Dan,104,s4,dan,B,\n"
+                                   "Fay,105,s5,fay,B,team\n"
+                                   "Gus,106,s6,gus,B,team\n"
+                                   "Hal,107,s7,hal,B,hal\n",
                                    "r.csv");
-    StudentRecord ada, eve, zed, broken;
-    ada.id = "ada", ada.score = 87.5, ada.status = "graded";
+    StudentRecord ada, eve, zed, broken, team, hal;
+    ada.id = "ada", ada.score = 67.5, ada.maxScore = 75, ada.status = "graded";
+    ada.manual = {{"the schematic", 25, 20.0, "clear"}};
     eve.id = "eve", eve.score = 0, eve.status = "missing file";
     zed.id = "=zed", zed.score = 50, zed.status = "graded";
     broken.id = "carol", broken.status = "grader error";
-    const CanvasExport made = canvasCsv("Newton's apple (1234)", 100, roster, {ada, eve, zed, broken});
-    CHECK(made.csv == "Student,ID,SIS User ID,SIS Login ID,Section,Newton's apple (1234)\n"
+    team.id = "team", team.score = 70, team.maxScore = 75, team.status = "graded";
+    team.manual = {{"the schematic", 25, 25.0, ""}};
+    hal.id = "hal", hal.score = 75, hal.maxScore = 75, hal.status = "graded";
+    hal.manual = {{"the schematic", 25, std::nullopt, ""}};
+    const CanvasExport made = canvasCsv("Biosimulation project (1234)", 100, roster, {ada, eve, zed, broken, team, hal});
+    CHECK(made.csv == "Student,ID,SIS User ID,SIS Login ID,Section,Biosimulation project (1234)\n"
                       "Points Possible,,,,,100\n"
-                      "\"Lovelace, Ada\",101,s1,ada,A,87.5\n"
-                      "\"'=HYPERLINK(\"\"x\"\")\",102,s2,eve,\"A,B\",0\n"
-                      "Carol,103,s3,carol,B,\n");
-    CHECK(made.scored == 2);
+                      "\"Lovelace, Ada\",101,s1,ada,A,87.5\n"      // 67.5 of the tests, 20 by hand
+                      "\"'=HYPERLINK(\"\"x\"\")\",102,s2,eve,\"A,B\",\n"  // no file: blank, never 0
+                      "Carol,103,s3,carol,B,\n"
+                      "Dan,104,s4,dan,B,\n"
+                      "Fay,105,s5,fay,B,95\n"                       // the group's grade, each member
+                      "Gus,106,s6,gus,B,95\n"
+                      "Hal,107,s7,hal,B,\n");                       // its manual item pending
+    CHECK(made.scored == 3);
     CHECK(made.notGraded == std::vector<std::string>{"carol"});
+    CHECK(made.noId == std::vector<std::string>{"Dan"});
+    CHECK(made.missingFile == std::vector<std::string>{"eve"});
+    CHECK(made.manualPending == std::vector<std::string>{"hal"});
     CHECK(made.notOnRoster == std::vector<std::string>{"=zed"});
+}
+
+TEST_CASE("manual.csv: rows for every student and item, what a person typed kept, one-line errors", "[platforms]") {
+    simlab::Rubric rubric;
+    rubric.manual = {{"the schematic", 10, ""}, {"=the paragraph", 5, ""}};
+    // Written for a class: a row per student and item, pending.
+    const std::string fresh = manualCsv({}, {"ada", "bob"}, rubric);
+    CHECK(fresh == "student,item,points,comment\n"
+                   "ada,the schematic,,\n"
+                   "ada,\"'=the paragraph\",,\n"
+                   "bob,the schematic,,\n"
+                   "bob,\"'=the paragraph\",,\n");
+    // Filled in, read back; a new student gets rows, a student who left keeps theirs.
+    const std::string filled = "student,item,points,comment\n"
+                               "ada,the schematic,8,\"no axis, no joint\"\n"
+                               "ada,\"'=the paragraph\",5,\n"
+                               "bob,the schematic,,\n"
+                               "gone,the schematic,3,kept\n";
+    const ManualSheet sheet = readManualCsv(filled, "manual.csv", rubric);
+    CHECK(*sheet.entries.at({"ada", "the schematic"}).points == 8);
+    CHECK(sheet.entries.at({"ada", "the schematic"}).comment == "no axis, no joint");
+    CHECK(*sheet.entries.at({"ada", "=the paragraph"}).points == 5);
+    CHECK_FALSE(sheet.entries.at({"bob", "the schematic"}).points);
+    const std::string merged = manualCsv(sheet, {"ada", "bob", "cy"}, rubric);
+    CHECK_THAT(merged, Catch::Contains("ada,the schematic,8,\"no axis, no joint\"\n"));
+    CHECK_THAT(merged, Catch::Contains("gone,the schematic,3,kept\n"));
+    CHECK_THAT(merged, Catch::Contains("cy,the schematic,,\ncy,\"'=the paragraph\",,\n"));
+    // A student's grade from the sheet.
+    StudentRecord ada;
+    ada.id = "ada", ada.score = 50, ada.maxScore = 75;
+    applyManual(ada, sheet, rubric);
+    CHECK(ada.total() == 63);
+    CHECK(ada.maxTotal() == 90);
+    CHECK(ada.pendingPoints() == 0);
+    StudentRecord bob;
+    bob.id = "bob", bob.score = 70, bob.maxScore = 75;
+    applyManual(bob, sheet, rubric);
+    CHECK(bob.total() == 70);
+    CHECK(bob.pendingPoints() == 15);
+
+    auto error = [&](const std::string& text) {
+        try {
+            readManualCsv(text, "manual.csv", rubric);
+        } catch (const UsageError& e) {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    CHECK_THAT(error("name,item,points\n"), Catch::Contains("the first line must be student,item,points,comment"));
+    CHECK_THAT(error("student,item,points\nada,the schematic,eight\n"), Catch::Contains("row 2: the points 'eight' are not a number"));
+    CHECK_THAT(error("student,item,points\nada,the schematic,11\n"), Catch::Contains("worth 0 to 10"));
+    CHECK_THAT(error("student,item,points\nada,the schematic,-1\n"), Catch::Contains("worth 0 to 10"));
+    CHECK_THAT(error("student,item,points\nada,the schematic,1\nada,the schematic,2\n"), Catch::Contains("row 3"));
+    CHECK(error("") == "(no error)");
 }

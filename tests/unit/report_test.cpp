@@ -52,5 +52,12 @@ TEST_CASE("a project's feedback names its drawings and its pending items", "[rep
     record.maxScore = 8;
     const std::string md = simlab::engine::feedbackMarkdown(a, record, projectReport().manual, {"schematic-tree.svg"});
     CHECK_THAT(md, Catch::Contains("Drawn from your model, beside this file: schematic-tree.svg"));
-    CHECK_THAT(md, Catch::Contains("Graded by hand, pending (15 points):\n\n- the schematic is clear (10)\n"));
+    CHECK_THAT(md, Catch::Contains("Graded by hand, 15 points pending:\n\n- the schematic is clear: pending (10)\n"));
+    // With the points given in manual.csv: each item's points and comment, and the score counts them.
+    record.manual = {{"the schematic is clear", 10, 7.0, "label the knee"},
+                     {"the paragraph describes the system", 5, std::nullopt, ""}};
+    const std::string graded = simlab::engine::feedbackMarkdown(a, record, projectReport().manual, {});
+    CHECK_THAT(graded, Catch::Contains("**Score: 15/23**"));
+    CHECK_THAT(graded, Catch::Contains("Graded by hand, 5 points pending:\n\n- the schematic is clear: 7/10 (label the knee)\n"
+                                       "- the paragraph describes the system: pending (5)\n"));
 }

@@ -19,14 +19,20 @@ CanvasExport canvasCsv(const std::string& column, double pointsPossible, const s
     for (const RosterEntry& e : roster) {
         out.csv += csvCell(e.student) + "," + csvCell(e.canvasId) + "," + csvCell(e.sisUserId) + "," +
                    csvCell(e.sisLoginId) + "," + csvCell(e.section) + ",";
-        const auto found = byId.find(e.folder);
-        // A student simlab could not grade (a grader error) has no grade yet; neither has one without a folder.
-        if (found == byId.end() || found->second->status == "grader error") {
+        const auto found = e.folder.empty() ? byId.end() : byId.find(e.folder);
+        // A blank cell, never a grade the student has not earned: no id, no folder, no file handed in, a grader
+        // error, or points a person has still to give.
+        if (e.folder.empty()) {
+            out.noId.push_back(e.student);
+        } else if (found == byId.end() || found->second->status == "grader error") {
             out.notGraded.push_back(e.folder);
+        } else if (found->second->status == "missing file") {
+            out.missingFile.push_back(e.folder);
+        } else if (found->second->pendingPoints() > 0) {
+            out.manualPending.push_back(e.folder);
         } else {
-            out.csv += points(found->second->score);
+            out.csv += points(found->second->total());
             ++out.scored;
-            byId.erase(found);
         }
         out.csv += "\n";
     }

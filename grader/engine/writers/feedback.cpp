@@ -13,7 +13,7 @@ Feedback feedbackOf(const Assignment& assignment, const StudentRecord& r, const 
     Feedback f;
     f.title = assignment.title;
     f.id = r.id;
-    f.score = points(r.score) + "/" + points(r.maxScore);
+    f.score = points(r.total()) + "/" + points(r.maxTotal());
     if (r.status != "graded") f.status = r.status;
     f.note = r.note;
     f.sandbox = r.sandbox;
@@ -42,8 +42,12 @@ Feedback feedbackOf(const Assignment& assignment, const StudentRecord& r, const 
         f.tests.push_back(shown);
     }
     f.attached = attached;
-    f.manual = manual;
-    for (const ManualItem& m : manual) f.manualPoints += m.points;
+    // The points the instructor gave (manual.csv), or, without a sheet (a self-check), every item pending.
+    f.manual = r.manual;
+    if (f.manual.empty()) {
+        for (const ManualItem& m : manual) f.manual.push_back({m.name, m.points, std::nullopt, ""});
+    }
+    for (const ManualGrade& m : f.manual) f.manualPoints += m.points ? 0 : m.maxPoints;
     return f;
 }
 

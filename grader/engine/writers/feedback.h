@@ -29,8 +29,8 @@ struct Feedback {
     std::string compiler;       ///< the message, printable with its newlines
     std::vector<FeedbackTest> tests;
     std::vector<std::string> attached;  ///< files beside the feedback that the tests drew
-    std::vector<ManualItem> manual;     ///< graded by hand, pending
-    double manualPoints = 0;
+    std::vector<ManualGrade> manual;    ///< graded by hand: the points given, or pending
+    double manualPoints = 0;            ///< the points still pending
     std::string sandbox;        ///< the sandbox the code ran in, one line; empty when nothing ran
     std::string check;          ///< the self-check command for the student's file
     bool plainCommand = false;  ///< the file's name is plain enough to show the commands as code

@@ -92,9 +92,13 @@ std::string feedbackHtml(const Assignment& assignment, const StudentRecord& reco
         out << "</p>\n";
     }
     if (!f.manual.empty()) {
-        out << "<h2>Graded by hand, pending (" << points(f.manualPoints) << " points)</h2>\n<ul>\n";
-        for (const ManualItem& m : f.manual) {
-            out << "<li>" << htmlText(m.name) << " (" << points(m.points) << ")</li>\n";
+        out << "<h2>Graded by hand" << (f.manualPoints > 0 ? ", " + points(f.manualPoints) + " points pending" : "")
+            << "</h2>\n<ul>\n";
+        for (const ManualGrade& m : f.manual) {
+            out << "<li>" << htmlText(m.name) << ": "
+                << (m.points ? points(*m.points) + "/" + points(m.maxPoints) : "pending (" + points(m.maxPoints) + ")");
+            if (!m.comment.empty()) out << " <span class=\"muted\">" << htmlText(m.comment) << "</span>";
+            out << "</li>\n";
         }
         out << "</ul>\n";
     }

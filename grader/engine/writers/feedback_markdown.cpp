@@ -49,8 +49,14 @@ std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& 
         out << "\n\n";
     }
     if (!f.manual.empty()) {
-        out << "Graded by hand, pending (" << points(f.manualPoints) << " points):\n\n";
-        for (const ManualItem& m : f.manual) out << "- " << markdownText(m.name) << " (" << points(m.points) << ")\n";
+        out << "Graded by hand" << (f.manualPoints > 0 ? ", " + points(f.manualPoints) + " points pending" : "")
+            << ":\n\n";
+        for (const ManualGrade& m : f.manual) {
+            out << "- " << markdownText(m.name) << ": "
+                << (m.points ? points(*m.points) + "/" + points(m.maxPoints) : "pending (" + points(m.maxPoints) + ")");
+            if (!m.comment.empty()) out << " (" << markdownText(m.comment) << ")";
+            out << "\n";
+        }
         out << "\n";
     }
     if (!f.sandbox.empty()) out << "Your code ran in simlab's sandbox: " << markdownText(f.sandbox) << ".\n\n";

@@ -1,4 +1,5 @@
-// gradebook.csv: one row per student, the points of each test.
+// gradebook.csv: one row per student, the points of each test and of each item graded by hand (manual.csv); the
+// score is the tests' points and the manual points given so far, the max every point there is.
 #include <algorithm>
 #include <sstream>
 
@@ -16,13 +17,17 @@ std::string gradebookCsv(const Rubric& rubric, const std::vector<StudentRecord>&
     for (const ManualItem& m : rubric.manual) out << "," << csvCell("manual (" + points(m.points) + "): " + m.name);
     out << "\n";
     for (const StudentRecord& r : records) {
-        out << csvCell(r.id) << "," << points(r.score) << "," << points(r.maxScore) << "," << csvCell(r.status);
+        out << csvCell(r.id) << "," << points(r.total()) << "," << points(r.maxTotal()) << "," << csvCell(r.status);
         for (const RubricTest& t : rubric.tests) {
             const auto found = std::find_if(r.tests.begin(), r.tests.end(),
                                             [&](const TestResult& x) { return x.name == t.name; });
             out << "," << (found == r.tests.end() ? "" : points(found->score));
         }
-        for (std::size_t i = 0; i < rubric.manual.size(); ++i) out << ",pending";
+        for (const ManualItem& m : rubric.manual) {
+            const auto given = std::find_if(r.manual.begin(), r.manual.end(),
+                                            [&](const ManualGrade& g) { return g.name == m.name; });
+            out << "," << (given != r.manual.end() && given->points ? points(*given->points) : "pending");
+        }
         out << "\n";
     }
     return out.str();

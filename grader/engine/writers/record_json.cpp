@@ -8,12 +8,12 @@ std::string recordJson(const StudentRecord& r) {
     nlohmann::json tests = nlohmann::json::array();
     for (const TestResult& t : r.tests) {
         nlohmann::json j = {{"name", t.name},         {"visibility", t.visibility}, {"score", t.score},
-                            {"max_score", t.maxScore}, {"outcome", outcomeName(t.outcome)},
+                            {"max_score", t.maxScore}, {"credit", t.credit}, {"outcome", outcomeName(t.outcome)},
                             {"reason", t.reason},     {"feedback", t.feedback},     {"seconds", t.seconds}};
         if (t.figure) j["figure"] = {{"value", *t.figure}, {"unit", t.unit}};
         tests.push_back(j);
     }
-    const nlohmann::json record = {{"id", r.id},       {"key", r.key},           {"status", r.status},
+    const nlohmann::json record = {{"id", r.id},       {"key", r.key},           {"basis", r.basis},  {"status", r.status},
                                    {"note", r.note},   {"file", r.file},         {"score", r.score},
                                    {"max_score", r.maxScore}, {"seconds", r.seconds}, {"compiler", r.compiler},
                                    {"sandbox", r.sandbox},    {"tests", tests}};
@@ -26,6 +26,7 @@ std::optional<StudentRecord> readRecordJson(const std::string& text) {
         StudentRecord r;
         r.id = j.at("id");
         r.key = j.at("key");
+        r.basis = j.value("basis", "");
         r.status = j.at("status");
         r.note = j.at("note");
         r.file = j.at("file");
@@ -41,6 +42,10 @@ std::optional<StudentRecord> readRecordJson(const std::string& text) {
             x.score = t.at("score");
             x.maxScore = t.at("max_score");
             x.outcome = outcomeNamed(t.at("outcome"));
+            // A record of an older simlab has no credit: its share of the points, or all or nothing.
+            x.credit = t.contains("credit") ? t["credit"].get<double>()
+                       : x.maxScore > 0     ? x.score / x.maxScore
+                                            : x.outcome == Outcome::Passed ? 1.0 : 0.0;
             x.reason = t.at("reason");
             x.feedback = t.at("feedback").get<std::vector<std::string>>();
             x.seconds = t.at("seconds");

@@ -55,8 +55,8 @@ std::string studentLink(const std::string& id) {
 std::string scoreHistogram(const std::vector<StudentRecord>& records, double total) {
     std::vector<int> counts(kScoreBins, 0);
     for (const StudentRecord& r : records) {
-        const double of = r.maxScore > 0 ? r.maxScore : total;
-        const double fraction = of > 0 && std::isfinite(r.score) ? std::clamp(r.score / of, 0.0, 1.0) : 0.0;
+        const double of = r.maxTotal() > 0 ? r.maxTotal() : total;
+        const double fraction = of > 0 && std::isfinite(r.total()) ? std::clamp(r.total() / of, 0.0, 1.0) : 0.0;
         ++counts[std::min(kScoreBins - 1, static_cast<int>(fraction * kScoreBins))];
     }
     const int most = std::max(1, *std::max_element(counts.begin(), counts.end()));
@@ -224,8 +224,8 @@ std::string studentsTable(const std::vector<const StudentRecord*>& rows, bool wi
         << (tests ? "<th>tests</th>" : "") << "<th>status</th>" << (notes ? "<th>note</th>" : "")
         << "</tr></thead>\n<tbody>\n";
     for (const StudentRecord* r : rows) {
-        out << "<tr><td class=\"name\">" << studentLink(r->id) << "</td><td class=\"num\">" << points(r->score) << "/"
-            << points(r->maxScore) << "</td>";
+        out << "<tr><td class=\"name\">" << studentLink(r->id) << "</td><td class=\"num\">" << points(r->total()) << "/"
+            << points(r->maxTotal()) << "</td>";
         if (withTime) {
             char seconds[32];
             std::snprintf(seconds, sizeof seconds, "%.1f", r->seconds);
@@ -252,7 +252,7 @@ std::string studentsTable(const std::vector<const StudentRecord*>& rows, bool wi
 }
 
 bool byScore(const StudentRecord* a, const StudentRecord* b) {
-    return a->score != b->score ? a->score < b->score : a->id < b->id;
+    return a->total() != b->total() ? a->total() < b->total() : a->id < b->id;
 }
 
 // Whether a test ended other than by passing or failing: it crashed, ran out of time or memory, flooded, broke its
@@ -294,7 +294,7 @@ std::vector<const StudentRecord*> notGraded(const std::vector<StudentRecord>& re
 std::vector<const StudentRecord*> lowest(const std::vector<StudentRecord>& records) {
     std::vector<const StudentRecord*> rows;
     for (const StudentRecord& r : records) {
-        if (r.status == "graded" && r.score < r.maxScore) rows.push_back(&r);
+        if (r.status == "graded" && r.total() < r.maxTotal()) rows.push_back(&r);
     }
     std::sort(rows.begin(), rows.end(), byScore);
     if (rows.size() > kListed) rows.resize(kListed);
@@ -316,12 +316,16 @@ std::vector<const StudentRecord*> slowest(const std::vector<StudentRecord>& reco
 
 std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, const ClassResult& result) {
     const std::vector<StudentRecord>& records = result.records;
-    const double total = rubric.totalPoints();
+    // With manual.csv, the points given by hand count, and every point there is is the total.
+    const bool byHand = std::any_of(records.begin(), records.end(), [](const StudentRecord& r) { return !r.manual.empty(); });
+    const double total = rubric.totalPoints() + (byHand ? rubric.manualPoints() : 0);
     std::vector<double> scores;
     std::map<std::string, int> statuses;
+    int pendingStudents = 0;
     for (const StudentRecord& r : records) {
-        scores.push_back(r.score);
+        scores.push_back(r.total());
         ++statuses[r.status];
+        pendingStudents += r.pendingPoints() > 0;
     }
     const writers::Spread spread = writers::spreadOf(scores);
 
@@ -343,6 +347,14 @@ std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, 
     out << htmlText(counted) << (result.skipped.empty() ? "" : "; " + plural(result.skipped.size(), "entry", "entries") +
                                                                    " of the folder skipped")
         << ".</p>\n";
+    if (byHand) {
+        out << "<p>Graded by hand (manual.csv): " << (pendingStudents == 0
+                                                          ? std::string("every student's items have their points")
+                                                          : plural(pendingStudents, "student", "students") +
+                                                                " with items still pending (their scores hold the "
+                                                                "points given so far)")
+            << ".</p>\n";
+    }
     // The sandboxes the students' code ran in (one, unless the class was graded in parts on other machines).
     std::map<std::string, std::size_t> sandboxes;
     for (const StudentRecord& r : records) {

@@ -26,10 +26,15 @@ std::string summaryCsv(const Rubric& rubric, const std::vector<StudentRecord>& r
 std::string summaryTable(const Rubric& rubric, const std::vector<StudentRecord>& records) {
     std::ostringstream out;
     std::vector<double> scores;
-    for (const StudentRecord& r : records) scores.push_back(r.score);
+    bool byHand = false;
+    for (const StudentRecord& r : records) {
+        scores.push_back(r.total());
+        byHand = byHand || !r.manual.empty();
+    }
     const writers::Spread total = writers::spreadOf(scores);
     out << "Class of " << records.size() << ": median " << number(total.median) << ", min " << number(total.min)
-        << ", max " << number(total.max) << " of " << points(rubric.totalPoints()) << " points\n";
+        << ", max " << number(total.max) << " of "
+        << points(rubric.totalPoints() + (byHand ? rubric.manualPoints() : 0)) << " points\n";
     char line[256];
     std::snprintf(line, sizeof line, "  %-6s %-6s  %-44s  %s\n", "passed", "points", "measured: median [min, max]",
                   "test");

@@ -34,6 +34,7 @@ struct TestResult {
     std::string visibility;
     double maxScore = 0;
     double score = 0;
+    double credit = 0;                  ///< the share of its points the judge gave, 0 to 1 (score = points x credit)
     Outcome outcome = Outcome::DidNotFinish;
     std::string reason;                 ///< one line: the measured figure, or why it failed
     std::vector<std::string> feedback;  ///< further lines for the student

@@ -2,6 +2,7 @@
 // The batch (batch.h) makes them; the writers (writers.h) turn them into files.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -9,10 +10,19 @@
 
 namespace simlab::engine {
 
+/// An item a person grades, for one student, as manual.csv holds it (manual.h).
+struct ManualGrade {
+    std::string name;
+    double maxPoints = 0;
+    std::optional<double> points;  ///< empty: pending
+    std::string comment;
+};
+
 /// A student's grade as kept in record.json and shown in the gradebook.
 struct StudentRecord {
     std::string id;
     std::string key;     ///< what the grade was made from; a different key means regrade
+    std::string basis;   ///< the part of the key that is not the student's: the grader, the rubric's tests, limits
     std::string status;  ///< graded, misnamed file, missing file, unsafe file, file too large, did not compile,
                          ///< forbidden code, did not link, grader error
     std::string note;
@@ -23,6 +33,16 @@ struct StudentRecord {
     std::string compiler;  ///< the compiler's message: why it failed, or its warnings (first lines)
     std::string sandbox;   ///< the sandbox its code ran in, one line (empty when nothing ran)
     std::vector<TestResult> tests;
+    /// The rubric's manual items with the points manual.csv gives them (not in record.json: the sheet is the
+    /// instructor's); empty where there is no sheet (a self-check).
+    std::vector<ManualGrade> manual;
+
+    /// The tests' points and the manual points given so far.
+    double total() const;
+    /// Every point there is: the tests' and the manual items'.
+    double maxTotal() const;
+    /// The points of the manual items still pending.
+    double pendingPoints() const;
 };
 
 /// An entry of the submissions folder that is not a student: a hidden folder (its name starts with a dot), a

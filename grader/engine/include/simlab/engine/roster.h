@@ -26,8 +26,9 @@ struct RosterEntry {
 /// a UTF-8 byte order mark is skipped). Throws UsageError, in one line, for an unterminated quote.
 std::vector<std::vector<std::string>> readCsv(const std::string& text);
 
-/// The roster `text` holds. Throws UsageError, in one line naming `name` and the row, if a required column is
-/// missing, a row has more cells than the header, or a student's simlab id is empty or repeated.
+/// The roster `text` holds. A row with an empty simlab id is kept (the student has no grade from simlab); the same
+/// simlab id on several rows is a group's folder. Throws UsageError, in one line naming `name` and the row, if a
+/// required column is missing, a row has more cells than the header, or a row names no student.
 std::vector<RosterEntry> readRoster(const std::string& text, const std::string& name);
 
 }  // namespace simlab::engine

@@ -38,6 +38,9 @@ std::string printable(const std::string& bytes, bool keepNewlines = false);
 /// simlab writes itself are not passed through here.
 std::string csvCell(const std::string& text);
 
+/// `s` without the spaces and tabs at either end (a cell as a person typed it).
+std::string trimmed(const std::string& s);
+
 /// Inline Markdown text for a table cell, a heading or a line after a label ("- " + markdownText(x)): printable on
 /// one line (a newline shows as "\n": in Markdown it would end the cell or start a block), then escaped so it
 /// renders as the same characters and cannot change the document's structure: '\', '`', '|', '*', '_', '[' and

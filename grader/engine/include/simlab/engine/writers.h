@@ -67,6 +67,11 @@ std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, 
 
 /// results.json: Gradescope's document for the report (toGradescope), as text in valid UTF-8.
 std::string resultsJson(const GradeReport& report);
+/// `text` (a results.json written when the student was graded) with the scores of `record` now (re-scored by the
+/// rubric's points) and, when the record has manual items, the points given by hand: manual_graded (name, score,
+/// max_score, comment), manual_pending, total_with_manual and max_with_manual in extra_data. `text` as it is if
+/// it is not such a document.
+std::string updatedResultsJson(const std::string& text, const StudentRecord& record);
 
 /// record.json: the record as simlab keeps it to resume a class.
 std::string recordJson(const StudentRecord& record);
@@ -98,11 +103,16 @@ struct CanvasExport {
     std::string csv;
     int scored = 0;                        ///< roster students with a score in the file
     std::vector<std::string> notGraded;    ///< on the roster, no grade (no folder, or a grader error): left blank
+    std::vector<std::string> noId;         ///< on the roster with no simlab id (by name): left blank
+    std::vector<std::string> missingFile;  ///< their folder holds no file to grade: left blank, not a 0
+    std::vector<std::string> manualPending;  ///< items graded by hand still pending: left blank
     std::vector<std::string> notOnRoster;  ///< graded, but not on the roster: not in the file
 };
 /// One row per roster student, in the roster's order: Student, ID, SIS User ID, SIS Login ID, Section, then the
-/// score under the header `column` ("Newton's apple (1234)": Canvas matches the assignment by the id in
-/// parentheses, else by name), after a "Points Possible" row.
+/// score (the tests' points and the points given by hand) under the header `column` ("Newton's apple (1234)":
+/// Canvas matches the assignment by the id in parentheses, else by name), after a "Points Possible" row. Members
+/// of a group share its simlab id, and each gets the group's grade. A blank cell leaves Canvas's grade as it is:
+/// a student with no id, no folder, no file, a grader error or manual items still pending gets one, and is listed.
 CanvasExport canvasCsv(const std::string& column, double pointsPossible, const std::vector<RosterEntry>& roster,
                        const std::vector<StudentRecord>& records);
 

@@ -1,0 +1,108 @@
+#include "simlab/engine/manual.h"
+
+#include <cmath>
+#include <cstdlib>
+
+#include "simlab/engine/errors.h"
+#include "simlab/engine/report.h"
+#include "simlab/engine/roster.h"
+#include "simlab/engine/text.h"
+
+namespace simlab::engine {
+
+namespace {
+
+// A cell as written: csvCell puts a quote before a cell a spreadsheet would read as a formula; read it back.
+std::string unneutralized(const std::string& cell) {
+    return cell.size() > 1 && cell[0] == '\'' && std::string("=+-@\t\r").find(cell[1]) != std::string::npos
+               ? cell.substr(1)
+               : cell;
+}
+
+}  // namespace
+
+ManualSheet readManualCsv(const std::string& text, const std::string& name, const Rubric& rubric) {
+    const std::string where = printable(name);
+    std::vector<std::vector<std::string>> rows;
+    try {
+        rows = readCsv(text);
+    } catch (const UsageError& e) {
+        throw UsageError(where + ": " + e.what());
+    }
+    ManualSheet sheet;
+    if (rows.empty()) return sheet;
+    std::vector<std::string> header;
+    for (const std::string& cell : rows[0]) header.push_back(trimmed(cell));
+    const bool withComment = header == std::vector<std::string>{"student", "item", "points", "comment"};
+    if (!withComment && header != std::vector<std::string>{"student", "item", "points"}) {
+        throw UsageError(where + ": the first line must be student,item,points,comment");
+    }
+    for (std::size_t r = 1; r < rows.size(); ++r) {
+        const std::vector<std::string>& row = rows[r];
+        const std::string line = where + ", row " + std::to_string(r + 1);
+        bool blank = true;
+        for (const std::string& cell : row) blank = blank && trimmed(cell).empty();
+        if (blank) continue;
+        if (row.size() < 3 || row.size() > header.size()) {
+            throw UsageError(line + " has " + std::to_string(row.size()) + " cells: student,item,points,comment");
+        }
+        const std::string student = unneutralized(trimmed(row[0])), item = unneutralized(trimmed(row[1]));
+        if (student.empty() || item.empty()) throw UsageError(line + " has no student or no item");
+        ManualEntry entry;
+        const std::string points = trimmed(row[2]);
+        if (!points.empty()) {
+            char* end = nullptr;
+            const double value = std::strtod(points.c_str(), &end);
+            if (end == points.c_str() || *end != '\0' || !std::isfinite(value)) {
+                throw UsageError(line + ": the points '" + printable(points) + "' are not a number");
+            }
+            for (const ManualItem& m : rubric.manual) {
+                if (m.name == item && (value < 0 || value > m.points + 1e-9)) {
+                    throw UsageError(line + ": " + points + " points for '" + printable(item) + "', which is worth 0 to " +
+                                     simlab::engine::points(m.points));
+                }
+            }
+            entry.points = value;
+        }
+        if (row.size() > 3) entry.comment = unneutralized(row[3]);
+        const auto key = std::make_pair(student, item);
+        if (sheet.entries.count(key)) {
+            throw UsageError(line + ": " + printable(student) + " and '" + printable(item) + "' are there twice");
+        }
+        sheet.order.push_back(key);
+        sheet.entries[key] = entry;
+    }
+    return sheet;
+}
+
+std::string manualCsv(ManualSheet sheet, const std::vector<std::string>& students, const Rubric& rubric) {
+    for (const std::string& student : students) {
+        for (const ManualItem& m : rubric.manual) {
+            const auto key = std::make_pair(student, m.name);
+            if (sheet.entries.emplace(key, ManualEntry{}).second) sheet.order.push_back(key);
+        }
+    }
+    std::string out = "student,item,points,comment\n";
+    for (const auto& key : sheet.order) {
+        const ManualEntry& e = sheet.entries.at(key);
+        out += csvCell(key.first) + "," + csvCell(key.second) + "," + (e.points ? points(*e.points) : "") + "," +
+               csvCell(e.comment) + "\n";
+    }
+    return out;
+}
+
+// The rubric's manual items with the points the sheet gives this student.
+void applyManual(StudentRecord& r, const ManualSheet& sheet, const Rubric& rubric) {
+    r.manual.clear();
+    for (const ManualItem& m : rubric.manual) {
+        ManualGrade g{m.name, m.points, std::nullopt, ""};
+        const auto found = sheet.entries.find({printable(r.id), m.name});
+        if (found != sheet.entries.end()) {
+            g.points = found->second.points;
+            g.comment = found->second.comment;
+        }
+        r.manual.push_back(g);
+    }
+}
+
+}  // namespace simlab::engine
