@@ -38,5 +38,6 @@ void addExport(CLI::App& app);
 void addProject(CLI::App& app);
 void addStudy(CLI::App& app);
 void addPlot(CLI::App& app);
+void addSimilarity(CLI::App& app);
 
 }  // namespace simlab::cli

@@ -15,6 +15,7 @@
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/grade.h"
+#include "simlab/engine/intake.h"
 #include "simlab/engine/manifest.h"
 #include "simlab/engine/process.h"
 #include "simlab/engine/report.h"
@@ -36,6 +37,7 @@ struct GradeCommandOptions {
     double timeout = 0;
     double memory = 0;
     std::string rubric;
+    std::string from;
 };
 
 std::string minutesAndSeconds(double seconds) {
@@ -78,7 +80,7 @@ void runGrade(const GradeCommandOptions& o) {
     if (!assignment.hiddenTestsBuilt) {
         throw UsageError("grading needs the hidden tests, which this copy of simlab does not have");
     }
-    const std::string root = o.submissions.empty() ? manifest.sampleClass + "/" + assignment.id : o.submissions;
+    std::string root = o.submissions.empty() ? manifest.sampleClass + "/" + assignment.id : o.submissions;
     if (!fs::is_directory(root)) {
         throw UsageError(o.submissions.empty() ? "this copy of simlab has no sample class for " + assignment.id +
                                                      "; name a folder of submissions"
@@ -86,6 +88,25 @@ void runGrade(const GradeCommandOptions& o) {
     }
     const std::string out = o.out.empty() ? "grades/" + assignment.id : o.out;
     const Rubric rubric = loadRubric(o.rubric.empty() ? assignment.rubric : o.rubric);
+
+    // A platform's download is taken in as a class folder beside the gradebook, with a roster of who is who; a
+    // folder that looks like one, or that holds loose files, is refused with the option to use.
+    if (!o.from.empty()) {
+        const std::size_t cap = static_cast<std::size_t>(rubric.limits.submissionKiB) * 1024;
+        fs::create_directories(out);
+        const std::vector<IntakeStudent> students = takeIn(o.from, root, out + "/class", rubric.submission, cap);
+        writeFileAtomically(out + "/roster.csv", intakeRosterCsv(students));
+        std::printf("Took in %zu submitter%s of a %s download into %s/class; who is who: %s/roster.csv\n",
+                    students.size(), students.size() == 1 ? "" : "s", o.from.c_str(), printable(out).c_str(),
+                    printable(out).c_str());
+        root = out + "/class";
+    } else if (const std::string layout = layoutOf(root); layout == "loose files") {
+        throw UsageError(printable(root) + " holds files, not a folder per student: put each student's file in a "
+                         "folder named after them, or, for a platform's download, add --from gradescope, canvas, "
+                         "moodle or classroom");
+    } else if (!layout.empty()) {
+        throw UsageError(printable(root) + " looks like a " + layout + " download: add --from " + layout);
+    }
 
     ClassOptions options;
     options.jobs = o.jobs;
@@ -175,6 +196,12 @@ void addGrade(CLI::App& app) {
         ->check(limitOption("memory_mib"));
     grade->add_option("--rubric", options->rubric, "another rubric file (default: the assignment's)")
         ->check(CLI::ExistingFile);
+    grade->add_option("--from", options->from,
+                      "SUBMISSIONS is a platform's download, as it comes: gradescope (Export Submissions), canvas "
+                      "(Download Submissions), moodle (Download all submissions) or classroom (gh classroom clone "
+                      "student-repos); taken in as OUT/class, with OUT/roster.csv (names, ids, e-mails, late flags, "
+                      "groups) for simlab export canvas")
+        ->check(CLI::IsMember(engine::downloadLayouts()));
     grade->callback([options] { runGrade(*options); });
 }
 

@@ -1,0 +1,76 @@
+// simlab similarity: the pairs of a class's submissions far more alike than the class, on a page side by side.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "commands.h"
+#include "simlab/engine/batch.h"
+#include "simlab/engine/errors.h"
+#include "simlab/engine/files.h"
+#include "simlab/engine/manifest.h"
+#include "simlab/engine/similarity.h"
+#include "simlab/engine/text.h"
+#include "simlab/rubric.h"
+
+namespace fs = std::filesystem;
+
+namespace simlab::cli {
+
+namespace {
+
+struct SimilarityOptions {
+    std::string assignment;
+    std::string submissions;
+    std::string out;
+};
+
+void runSimilarity(const SimilarityOptions& o) {
+    using namespace simlab::engine;
+    const Manifest manifest = loadManifest();
+    const Assignment& assignment = manifest.find(o.assignment);
+    const std::string root = o.submissions.empty() ? manifest.sampleClass + "/" + assignment.id : o.submissions;
+    if (!fs::is_directory(root)) throw UsageError("no submissions folder " + root);
+    const Rubric rubric = loadRubric(assignment.rubric);
+    // Each student's file, found and read as grading finds and reads it.
+    std::map<std::string, std::string> files;
+    for (const FolderEntry& e : listFolder(root, /*followFolder=*/true)) {
+        if (e.type != EntryType::Directory || e.name[0] == '.') continue;
+        const Gathered g = gatherSubmission(root + "/" + e.name, rubric, rubric.limits, false, false);
+        if (g.files) files[e.name] = g.files->text;
+    }
+    const std::string starter = fs::exists(assignment.starter) ? readFile(assignment.starter) : "";
+    const SimilarityReport report = compareSubmissions(files, starter);
+    const std::string out = o.out.empty() ? "grades/" + assignment.id : o.out;
+    fs::create_directories(out);
+    writeFileAtomically(out + "/similarity.html", similarityHtml(assignment.title, report, files, starter));
+    std::printf("Compared %zu files in pairs, the starter's lines removed: the median pair shares %.0f %%; "
+                "listed at %.0f %% or more:\n", report.ids.size(), report.median, report.threshold);
+    for (const SimilarPair& p : report.flagged) {
+        std::printf("  %5.0f %%  %s  %s\n", p.percent, printable(p.a).c_str(), printable(p.b).c_str());
+    }
+    if (report.flagged.empty()) std::printf("  no pair\n");
+    std::printf("Wrote %s/similarity.html (each listed pair side by side)\n", printable(out).c_str());
+}
+
+}  // namespace
+
+void addSimilarity(CLI::App& app) {
+    auto options = std::make_shared<SimilarityOptions>();
+    CLI::App* similarity = app.add_subcommand(
+        "similarity", "Find the pairs of a class's submissions far more alike than the class: every pair compared by "
+                      "sim_c++ (Debian's similarity-tester) once the starter's lines are removed; a pair is listed "
+                      "when one file holds at least 50 % of the other, and three times the class's median pair. "
+                      "Writes similarity.html with each listed pair side by side. A lead for a person to read, not "
+                      "a verdict.");
+    similarity->add_option("assignment", options->assignment, "which assignment")->required();
+    similarity->add_option("submissions", options->submissions,
+                           "folder of student folders, as simlab grade reads it (default: the bundled sample class)");
+    similarity->add_option("--out,-o", options->out, "where similarity.html goes (default: grades/<assignment>)");
+    similarity->callback([options] { runSimilarity(*options); });
+}
+
+}  // namespace simlab::cli

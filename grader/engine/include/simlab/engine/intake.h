@@ -1,0 +1,48 @@
+// A class as a platform hands it over: the download of Gradescope ("Export Submissions"), Canvas ("Download
+// Submissions"), Moodle ("Download all submissions") or GitHub Classroom (`gh classroom clone student-repos`),
+// taken in as a class folder simlab grades (a folder per student holding the file) and a roster of who is who.
+//
+//   canvas      flat files  lovelaceada_101_9001_NewtonsApple.cpp, with "late" after the name for a late one and
+//               "-N" before the extension for the Nth resubmission; the id is the name and Canvas's user id
+//   gradescope  submission_metadata.yml beside submission_<id>/ folders; each submission's submitters (name, sid,
+//               email): one member, or a group whose members share its id
+//   moodle      "Full Name_123456_assignsubmission_file_/" folders (and "..._onlinetext_/", the same student);
+//               the id is the name and Moodle's participant number
+//   classroom   one git repository per student, "<assignment>-<login>/"; the file wherever the repository has it
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace simlab::engine {
+
+/// One student (or a group's member) of a download, as the roster beside the gradebook lists them.
+struct IntakeStudent {
+    std::string id;       ///< simlab's id: the folder graded (shared by a group's members)
+    std::string name;     ///< as the platform spells it
+    std::string canvasId; ///< Canvas's user id (a Canvas download)
+    std::string sid;      ///< the platform's own id: Gradescope's SID, Moodle's participant number, GitHub login
+    std::string email;
+    bool late = false;    ///< the platform marked the submission late
+    std::string group;    ///< the members' names, for a group submission
+    std::string note;     ///< what intake saw: "no NewtonsApple.cpp in the submission", "resubmitted 2 times", ...
+};
+
+/// The platforms whose downloads simlab reads: "gradescope", "canvas", "moodle", "classroom".
+const std::vector<std::string>& downloadLayouts();
+
+/// The platform a folder's layout looks like ("canvas", ...), "loose files" for a folder of files that is no
+/// platform's layout, or "" for a class folder (a folder per student).
+std::string layoutOf(const std::string& folder);
+
+/// Takes the download `folder` of platform `layout` into `classDir` (made empty first): a folder per id holding
+/// the student's files, read as untrusted data (regular files only, at most `limitBytes` each). Returns every
+/// student, in the download's order. Throws UsageError, in one line, if `folder` is not such a download.
+std::vector<IntakeStudent> takeIn(const std::string& layout, const std::string& folder, const std::string& classDir,
+                                  const std::string& expectedFile, std::size_t limitBytes);
+
+/// The roster of a download: Canvas's columns (Student, ID, SIS User ID, SIS Login ID, Section), simlab id, then
+/// Email, Late, Group and Note, as CSV (what `simlab export canvas --roster` reads).
+std::string intakeRosterCsv(const std::vector<IntakeStudent>& students);
+
+}  // namespace simlab::engine

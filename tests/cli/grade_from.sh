@@ -1,0 +1,114 @@
+# simlab grade --from: each platform's download graded as it comes, laid out as the platform's documentation and
+# its users' parsers describe it - Canvas's flat files (late ones, resubmissions), Gradescope's export (its
+# submission_metadata.yml, a group), Moodle's folders (an online text beside the file), GitHub Classroom's
+# repositories (the file deep inside) - one row per student or group, with names and flags in roster.csv; the same
+# folders without --from, and a folder of loose files, are refused in one line naming what to do.
+source "$(dirname "$0")/../smoke/lib.sh"
+cell() { python3 -c 'import csv,sys; print(list(csv.reader(open(sys.argv[1])))[int(sys.argv[2])][int(sys.argv[3])])' "$@"; }
+rows() { python3 -c 'import csv,sys; print(len(list(csv.reader(open(sys.argv[1])))) - 1)' "$1"; }
+# score_of GRADES ID: the student's score in the gradebook
+score_of() { python3 -c '
+import csv, sys
+for row in csv.reader(open(sys.argv[1] + "/gradebook.csv")):
+    if row[0] == sys.argv[2]: print(row[1] + " " + row[3])' "$1" "$2"; }
+reference=$SOURCE_DIR/solutions/apple/NewtonsApple.cpp
+starter=$SOURCE_DIR/starter/apple/NewtonsApple.cpp
+
+# Canvas: name_userid_submissionid_file; "late" after the name; "-1" before the extension for a resubmission.
+mkdir canvas
+cp "$reference" canvas/lovelaceada_101_9001_NewtonsApple.cpp
+cp "$starter" canvas/babbagecharles_late_102_9002_NewtonsApple.cpp
+cp "$reference" canvas/babbagecharles_late_102_9003_NewtonsApple-1.cpp
+echo "my notes" >canvas/hoppergrace_103_9004_notes.txt
+run_capture canvas-refused "$SIMLAB" grade apple canvas -o canvas-grades
+check "Canvas's download without --from: refused in one line naming --from canvas" \
+  bash -c "test $(status_of canvas-refused) -eq 2 && grep -q 'looks like a canvas download: add --from canvas' canvas-refused.err &&
+           test \$(wc -l <canvas-refused.err) -eq 1 && ! test -e canvas-grades/gradebook.csv"
+run_capture canvas-graded "$SIMLAB" grade apple canvas -o canvas-grades --from canvas -j 2
+check "Canvas: one row per student, ids from the name and Canvas's user id" \
+  bash -c "test $(status_of canvas-graded) -eq 0 && test $(rows canvas-grades/gradebook.csv) -eq 3"
+check "the latest resubmission is graded (the reference, 100)" test "$(score_of canvas-grades babbagecharles_102)" = "100 graded"
+check "and the first student's file (100)" test "$(score_of canvas-grades lovelaceada_101)" = "100 graded"
+check "a student who handed in no C++ file is a missing file, not a silent row" \
+  test "$(score_of canvas-grades hoppergrace_103)" = "0 missing file"
+check "the roster has Canvas's ID and the late flag" \
+  bash -c "grep -q '^babbagecharles,102,,,,babbagecharles_102,,late,' canvas-grades/roster.csv &&
+           grep -q '^lovelaceada,101,,,,lovelaceada_101,,,' canvas-grades/roster.csv"
+
+# Gradescope: submission_metadata.yml beside submission_<id>/ folders; a group of two.
+mkdir -p gradescope/submission_901 gradescope/submission_902
+cp "$reference" gradescope/submission_901/
+cp "$starter" gradescope/submission_902/
+cat >gradescope/submission_metadata.yml <<'YML'
+---
+submission_901:
+  :submitters:
+  - :name: Ada Lovelace
+    :sid: '101'
+    :email: ada@example.edu
+  :created_at: 2026-11-20 10:00:00.000000000 +00:00
+  :score: 0.0
+  :status: processed
+submission_902:
+  :submitters:
+  - :name: Fay Team
+    :sid: '201'
+    :email: fay@example.edu
+  - :name: Gus Team
+    :sid: '202'
+    :email: gus@example.edu
+  :created_at: 2026-11-21 10:00:00.000000000 +00:00
+YML
+run_capture gs-refused "$SIMLAB" grade apple gradescope -o gs-grades
+check "Gradescope's export without --from: refused, naming --from gradescope" \
+  grep -q 'looks like a gradescope download: add --from gradescope' gs-refused.err
+run_capture gs-graded "$SIMLAB" grade apple gradescope -o gs-grades --from gradescope -j 2
+check "Gradescope: a row per submission, ids from the SIDs, a group's joined" \
+  bash -c "test $(status_of gs-graded) -eq 0 && test $(rows gs-grades/gradebook.csv) -eq 2 &&
+           test '$(score_of gs-grades 101)' = '100 graded' && test '$(score_of gs-grades 201+202)' = '0 graded'"
+check "the roster names each member, with e-mail and group" \
+  bash -c "test $(rows gs-grades/roster.csv) -eq 3 &&
+           grep -q '^Gus Team,,202,,,201+202,gus@example.edu,,\"Fay Team, Gus Team\",' gs-grades/roster.csv"
+run_capture gs-canvas "$SIMLAB" export canvas apple --grades gs-grades --roster gs-grades/roster.csv -o gs-canvas.csv
+check "exported to Canvas with that roster, each member gets the group's grade" \
+  bash -c "test $(status_of gs-canvas) -eq 0 && test '$(cell gs-canvas.csv 2 5)' = 100 &&
+           test '$(cell gs-canvas.csv 3 5)' = 0 && test '$(cell gs-canvas.csv 4 5)' = 0"
+
+# Moodle: "Full Name_participant_assignsubmission_file_" folders; an online text is the same student.
+mkdir -p "moodle/Ada Lovelace_123456_assignsubmission_file_" "moodle/Ada Lovelace_123456_assignsubmission_onlinetext_" \
+         "moodle/Bob Byte_123457_assignsubmission_file_"
+cp "$reference" "moodle/Ada Lovelace_123456_assignsubmission_file_/"
+echo "<p>see the file</p>" >"moodle/Ada Lovelace_123456_assignsubmission_onlinetext_/onlinetext.html"
+cp "$starter" "moodle/Bob Byte_123457_assignsubmission_file_/"
+run_capture moodle-refused "$SIMLAB" grade apple moodle -o moodle-grades
+check "Moodle's download without --from: refused, naming --from moodle" \
+  grep -q 'looks like a moodle download: add --from moodle' moodle-refused.err
+run_capture moodle-graded "$SIMLAB" grade apple moodle -o moodle-grades --from moodle -j 2
+check "Moodle: one row per student (the online text is not a second one), ids from name and number" \
+  bash -c "test $(status_of moodle-graded) -eq 0 && test $(rows moodle-grades/gradebook.csv) -eq 2 &&
+           test '$(score_of moodle-grades Ada-Lovelace_123456)' = '100 graded'"
+
+# GitHub Classroom: a repository per student, the file deep inside.
+for who in ada bob; do
+  mkdir -p "classroom/apple-lab-$who/.git" "classroom/apple-lab-$who/starter/apple"
+done
+cp "$reference" classroom/apple-lab-ada/starter/apple/NewtonsApple.cpp
+cp "$starter" classroom/apple-lab-bob/starter/apple/NewtonsApple.cpp
+run_capture classroom-refused "$SIMLAB" grade apple classroom -o classroom-grades
+check "Classroom's clones without --from: refused, naming --from classroom" \
+  grep -q 'looks like a classroom download: add --from classroom' classroom-refused.err
+run_capture classroom-graded "$SIMLAB" grade apple classroom -o classroom-grades --from classroom -j 2
+check "Classroom: ids are the logins, the file found deep in each repository" \
+  bash -c "test $(status_of classroom-graded) -eq 0 && test '$(score_of classroom-grades ada)' = '100 graded' &&
+           test '$(score_of classroom-grades bob)' = '0 graded'"
+
+# Loose files are no one's folder: refused, with what to do.
+mkdir loose && cp "$reference" loose/ada.cpp && cp "$starter" loose/bob.cpp
+run_capture loose "$SIMLAB" grade apple loose -o loose-grades
+check "a folder of loose files: refused in one line, naming a folder per student and --from" \
+  bash -c "test $(status_of loose) -eq 2 && grep -q 'holds files, not a folder per student' loose.err &&
+           test \$(wc -l <loose.err) -eq 1"
+run_capture wrong "$SIMLAB" grade apple loose -o wrong-grades --from gradescope
+check "--from a platform the folder is not: one line" \
+  bash -c "test $(status_of wrong) -eq 2 && test \$(wc -l <wrong.err) -eq 1 && grep -q 'submission_metadata.yml' wrong.err"
+finish
