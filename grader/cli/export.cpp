@@ -73,7 +73,9 @@ void runCanvas(const CanvasOptions& o) {
         records.push_back(*record);
     }
     // What a person graded counts too (manual.csv, beside the gradebook).
-    const Rubric rubric = loadRubric(o.rubric.empty() ? assignment.rubric : o.rubric);
+    // The rubric the class was graded with: simlab grade keeps a copy beside the grades.
+    const std::string kept = grades + "/rubric.toml";
+    const Rubric rubric = loadRubric(!o.rubric.empty() ? o.rubric : fs::exists(kept) ? kept : assignment.rubric);
     ManualSheet sheet;
     if (fs::exists(grades + "/manual.csv")) sheet = readManualCsv(readFile(grades + "/manual.csv"), grades + "/manual.csv", rubric);
     for (StudentRecord& r : records) applyManual(r, sheet, rubric);
@@ -85,6 +87,11 @@ void runCanvas(const CanvasOptions& o) {
     writeFileAtomically(o.output, made.csv);
     std::cout << "Wrote " << printable(o.output) << ": " << printable(column) << ", " << made.scored << " of "
               << roster.size() << " students on the roster scored (out of " << points(possible) << ").\n";
+    if (!made.unmatched.empty()) {
+        std::cerr << "simlab: warning: " << made.unmatched.size()
+                  << " scored on a row with no ID, SIS User ID or SIS Login ID, which Canvas cannot match: add one to "
+                  << printable(o.roster) << ": " << listed(made.unmatched) << "\n";
+    }
     if (!made.noId.empty()) {
         std::cerr << "simlab: warning: " << made.noId.size()
                   << " on the roster without a simlab id (blank: Canvas keeps what it has): " << listed(made.noId) << "\n";
@@ -134,7 +141,9 @@ void addExport(CLI::App& app) {
     canvas->add_option("--canvas-id", options->canvasId,
                        "the assignment's id in Canvas (the number in its address), so that Canvas matches the column "
                        "to it whatever its name");
-    canvas->add_option("--rubric", options->rubric, "the rubric the class was graded with (default: the assignment's)")
+    canvas->add_option("--rubric", options->rubric,
+                       "the rubric whose points count (default: the one the class was graded with, kept in the "
+                       "grades folder)")
         ->check(CLI::ExistingFile);
     canvas->callback([options] { runCanvas(*options); });
 }

@@ -17,6 +17,7 @@
 #include "simlab/engine/grade.h"
 #include "simlab/engine/intake.h"
 #include "simlab/engine/manifest.h"
+#include "simlab/engine/manual.h"
 #include "simlab/engine/process.h"
 #include "simlab/engine/report.h"
 #include "simlab/engine/text.h"
@@ -91,14 +92,26 @@ void runGrade(const GradeCommandOptions& o) {
 
     // A platform's download is taken in as a class folder beside the gradebook, with a roster of who is who; a
     // folder that looks like one, or that holds loose files, is refused with the option to use.
+    // A sheet of manual points with a mistake stops simlab before anything changes.
+    if (fs::exists(out + "/manual.csv")) readManualCsv(readFile(out + "/manual.csv"), out + "/manual.csv", rubric);
     if (!o.from.empty()) {
         const std::size_t cap = static_cast<std::size_t>(rubric.limits.submissionKiB) * 1024;
         fs::create_directories(out);
-        const std::vector<IntakeStudent> students = takeIn(o.from, root, out + "/class", rubric.submission, cap);
-        writeFileAtomically(out + "/roster.csv", intakeRosterCsv(students));
-        std::printf("Took in %zu submitter%s of a %s download into %s/class; who is who: %s/roster.csv\n",
-                    students.size(), students.size() == 1 ? "" : "s", o.from.c_str(), printable(out).c_str(),
-                    printable(out).c_str());
+        std::vector<std::string> handedIn = {rubric.submission};
+        handedIn.insert(handedIn.end(), rubric.extraFiles.begin(), rubric.extraFiles.end());
+        const std::vector<IntakeStudent> students = takeIn(o.from, root, out + "/class", handedIn, cap);
+        // The roster is the instructor's to edit (Canvas ids, sections): one that differs from the download's is
+        // kept, and the download's is written beside it.
+        const std::string roster = intakeRosterCsv(students), rosterPath = out + "/roster.csv";
+        std::string written = rosterPath;
+        if (fs::exists(rosterPath) && readFile(rosterPath) != roster) {
+            written = out + "/roster.new.csv";
+            std::cerr << "simlab: warning: kept " << printable(rosterPath) << ", which differs from the download's "
+                      << "roster; the download's is " << printable(written) << "\n";
+        }
+        writeFileAtomically(written, roster);
+        std::printf("Took in %zu submitter%s of a %s download into %s/class; who is who: %s\n", students.size(),
+                    students.size() == 1 ? "" : "s", o.from.c_str(), printable(out).c_str(), printable(written).c_str());
         root = out + "/class";
     } else if (const std::string layout = layoutOf(root); layout == "loose files") {
         throw UsageError(printable(root) + " holds files, not a folder per student: put each student's file in a "
@@ -156,6 +169,7 @@ void runGrade(const GradeCommandOptions& o) {
     for (const Skipped& s : result.skipped) {
         std::cout << "  skipped " << printable(s.name) << ": " << s.why << "\n";
     }
+    for (const std::string& w : result.warnings) std::cerr << "simlab: warning: " << printable(w) << "\n";
 
     std::cout << "\n" << summaryTable(rubric, records);
     if (!o.junit.empty()) writeFileAtomically(o.junit, junitXml(assignment, records));

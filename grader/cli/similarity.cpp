@@ -37,18 +37,30 @@ void runSimilarity(const SimilarityOptions& o) {
     const Rubric rubric = loadRubric(assignment.rubric);
     // Each student's file, found and read as grading finds and reads it.
     std::map<std::string, std::string> files;
+    std::vector<std::string> without;
     for (const FolderEntry& e : listFolder(root, /*followFolder=*/true)) {
         if (e.type != EntryType::Directory || e.name[0] == '.') continue;
         const Gathered g = gatherSubmission(root + "/" + e.name, rubric, rubric.limits, false, false);
         if (g.files) files[e.name] = g.files->text;
+        else without.push_back(printable(e.name) + " (" + g.status + ")");
+    }
+    if (!without.empty()) {
+        std::string list;
+        for (const std::string& w : without) list += (list.empty() ? "" : ", ") + w;
+        std::cerr << "simlab: warning: " << without.size() << " without a file to compare: " << list << "\n";
+    }
+    if (files.size() < 2) {
+        throw UsageError("similarity needs at least two files to compare; " + printable(root) + " has " +
+                         std::to_string(files.size()));
     }
     const std::string starter = fs::exists(assignment.starter) ? readFile(assignment.starter) : "";
     const SimilarityReport report = compareSubmissions(files, starter);
     const std::string out = o.out.empty() ? "grades/" + assignment.id : o.out;
     fs::create_directories(out);
     writeFileAtomically(out + "/similarity.html", similarityHtml(assignment.title, report, files, starter));
-    std::printf("Compared %zu files in pairs, the starter's lines removed: the median pair shares %.0f %%; "
-                "listed at %.0f %% or more:\n", report.ids.size(), report.median, report.threshold);
+    std::printf("Compared %zu files in pairs, the starter's lines removed: the median pair shares %.0f %% (spread "
+                "%.0f %%); listed at %.0f %% or more:\n", report.ids.size(), report.median, report.spread,
+                report.threshold);
     for (const SimilarPair& p : report.flagged) {
         std::printf("  %5.0f %%  %s  %s\n", p.percent, printable(p.a).c_str(), printable(p.b).c_str());
     }
@@ -63,7 +75,8 @@ void addSimilarity(CLI::App& app) {
     CLI::App* similarity = app.add_subcommand(
         "similarity", "Find the pairs of a class's submissions far more alike than the class: every pair compared by "
                       "sim_c++ (Debian's similarity-tester) once the starter's lines are removed; a pair is listed "
-                      "when one file holds at least 50 % of the other, and three times the class's median pair. "
+                      "when one file holds at least 50 % of the other, and more than the class's median pair by three "
+                      "times the class's spread. "
                       "Writes similarity.html with each listed pair side by side. A lead for a person to read, not "
                       "a verdict.");
     similarity->add_option("assignment", options->assignment, "which assignment")->required();

@@ -228,10 +228,16 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     ManualSheet sheet;
     if (fs::exists(sheetPath)) sheet = readManualCsv(readFile(sheetPath), sheetPath, rubric);
     if (!rubric.manual.empty() || fs::exists(sheetPath)) {
-        std::vector<std::string> printableIds;
-        for (const std::string& id : ids) printableIds.push_back(printable(id));
-        writeFileAtomically(sheetPath, manualCsv(sheet, printableIds, rubric));
+        const std::vector<std::string> stray = strayManualRows(sheet, ids, rubric);
+        if (!stray.empty()) {
+            result.warnings.push_back(std::to_string(stray.size()) + " row(s) of " + sheetPath +
+                                      " name no student of the class or no item of the rubric, and count for nothing "
+                                      "(kept as typed): " + stray.front() + (stray.size() > 1 ? ", ..." : ""));
+        }
+        writeFileAtomically(sheetPath, manualCsv(sheet, ids, rubric));
     }
+    // The rubric the class was graded with, beside the grades: the exports read its points.
+    writeFileAtomically(outDir + "/rubric.toml", readFile(rubric.path));
 
     std::map<std::string, StudentRecord> records;
     struct Pending {

@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <regex>
+#include <set>
 
 #include "simlab/engine/batch.h"
 #include "simlab/engine/errors.h"
@@ -98,6 +99,10 @@ Node readYaml(const std::string& text, const std::string& where) {
         std::unique_ptr<yaml_event_t, void (*)(yaml_event_t*)> done(&event, yaml_event_delete);
         const yaml_event_type_t type = event.type;
         if (type == YAML_STREAM_END_EVENT) break;
+        if (type == YAML_ALIAS_EVENT) {
+            throw UsageError(where + ", line " + std::to_string(event.start_mark.line + 1) +
+                             ": an alias (*name), which Gradescope's export never writes");
+        }
         if (open.size() > 32) throw UsageError(where + " is nested too deep");
         if (type == YAML_SCALAR_EVENT) {
             Node n;
@@ -139,12 +144,26 @@ void takeFile(const std::string& folder, const std::string& name, const std::str
 }
 
 // Every regular file below `folder` (a submission as the platform keeps it), each under its own name.
+// Every regular file below `folder` (a submission as the platform keeps it), each under its own name; of two files
+// of one name, the one nearer the top (a folder of old attempts does not win over the file handed in).
 void takeFolder(const std::string& folder, const std::string& toDir, std::size_t limit, IntakeStudent& student) {
     fs::create_directories(toDir);
-    for (const FolderEntry& e : walkFolder(folder)) {
-        if (e.type != EntryType::Regular) continue;
+    std::vector<FolderEntry> entries = walkFolder(folder);
+    auto depth = [](const FolderEntry& e) { return std::count(e.name.begin(), e.name.end(), '/'); };
+    std::stable_sort(entries.begin(), entries.end(),
+                     [&](const FolderEntry& a, const FolderEntry& b) { return depth(a) < depth(b); });
+    for (const FolderEntry& e : entries) {
         const std::string base = e.name.substr(e.name.rfind('/') + 1);
-        if (base.empty() || base[0] == '.') continue;
+        if (base.empty() || base[0] == '.' || e.type == EntryType::Directory) continue;
+        if (e.type != EntryType::Regular) {
+            student.note += (student.note.empty() ? "" : "; ") + printable(e.name) + " is not a regular file: not taken";
+            continue;
+        }
+        if (fs::exists(toDir + "/" + base)) {
+            student.note += (student.note.empty() ? "" : "; ") + printable(e.name) + ": another " + printable(base) +
+                            " nearer the top was taken";
+            continue;
+        }
         takeFile(e.folder, base, toDir, base, limit, student);
     }
 }
@@ -209,8 +228,12 @@ std::vector<IntakeStudent> gradescope(const std::string& folder, const std::stri
     if (!yml.ok) throw UsageError("cannot read " + printable(metadata) + ": " + yml.refusal);
     const Node root = readYaml(yml.text, printable(metadata));
     if (root.kind != Node::Kind::Map) throw UsageError(printable(metadata) + " is not a map of submissions");
+    static const std::regex folderName(R"(^[A-Za-z0-9_.-]+$)");
     std::vector<IntakeStudent> out;
+    std::map<std::string, std::string> idOf;  // submission -> id, and the ids taken
+    std::set<std::string> taken;
     for (const auto& [submission, info] : root.entries) {
+        if (idOf.count(submission)) throw UsageError(printable(metadata) + " names " + printable(submission) + " twice");
         const Node* submitters = entryOf(info, "submitters");
         std::vector<IntakeStudent> members;
         if (submitters && submitters->kind == Node::Kind::Sequence) {
@@ -230,13 +253,20 @@ std::vector<IntakeStudent> gradescope(const std::string& folder, const std::stri
             id += (id.empty() ? "" : "+") + safeId(own);
             names += (names.empty() ? "" : ", ") + s.name;
         }
-        const std::string dir = folder + "/" + submission;
+        // Ids are the students': two submissions whose students' ids are alike stay apart, and say so.
         IntakeStudent first = members.front();
+        if (!taken.insert(id).second) {
+            first.note = "the id " + id + " is another submission's too: this one is " + id + "-" + safeId(submission);
+            id += "-" + safeId(submission);
+            taken.insert(id);
+        }
+        idOf[submission] = id;
         first.id = id;
+        const std::string dir = folder + "/" + submission;
         std::error_code error;
-        if (submission.find('/') != std::string::npos || submission.find("..") != std::string::npos ||
+        if (!std::regex_match(submission, folderName) || submission == "." || submission == ".." ||
             !fs::is_directory(fs::symlink_status(dir, error))) {
-            first.note = "no folder " + printable(submission) + " in the download";
+            first.note += std::string(first.note.empty() ? "" : "; ") + "no folder " + printable(submission) + " in the download";
             fs::create_directories(classDir + "/" + id);
         } else {
             takeFolder(dir, classDir + "/" + id, limit, first);
@@ -258,7 +288,7 @@ std::vector<IntakeStudent> moodle(const std::string& folder, const std::string& 
         std::smatch m;
         if (e.type != EntryType::Directory || !std::regex_match(e.name, m, kMoodleFolder)) continue;
         IntakeStudent& s = studentOf(students, order, safeId(m[1].str() + "_" + m[2].str()), m[1]);
-        s.sid = m[2];
+        s.platformId = m[2];
         const std::string id = s.id;
         fs::create_directories(classDir + "/" + id);
         // The uploaded files are graded; an online text is the same student's, and is noted.
@@ -271,13 +301,17 @@ std::vector<IntakeStudent> moodle(const std::string& folder, const std::string& 
 }
 
 std::vector<IntakeStudent> classroom(const std::string& folder, const std::string& classDir,
-                                     const std::string& expectedFile, std::size_t limit) {
+                                     const std::vector<std::string>& handedIn, std::size_t limit) {
     std::vector<std::string> repos;
     for (const FolderEntry& e : listFolder(folder, /*followFolder=*/true)) {
-        if (e.type == EntryType::Directory && e.name[0] != '.') repos.push_back(e.name);
+        // A repository has .git; anything else there (a grades folder, say) is no student's.
+        if (e.type == EntryType::Directory && e.name[0] != '.' && fs::exists(folder + "/" + e.name + "/.git")) {
+            repos.push_back(e.name);
+        }
     }
-    // The assignment's name is what every repository's name starts with, up to its last '-'.
-    std::string prefix = repos.empty() ? "" : repos.front();
+    // The assignment's name is what every repository's name starts with, up to its last '-' (with one repository
+    // there is no telling: its whole name is the id).
+    std::string prefix = repos.size() < 2 ? "" : repos.front();
     for (const std::string& r : repos) {
         std::size_t n = 0;
         while (n < prefix.size() && n < r.size() && prefix[n] == r[n]) ++n;
@@ -287,16 +321,22 @@ std::vector<IntakeStudent> classroom(const std::string& folder, const std::strin
     std::vector<IntakeStudent> out;
     for (const std::string& repo : repos) {
         IntakeStudent s;
-        s.sid = repo.substr(prefix.size());
-        if (s.sid.empty()) s.sid = repo;
-        s.name = s.sid;
-        s.id = safeId(s.sid);
+        s.platformId = repo.substr(prefix.size());
+        if (s.platformId.empty()) s.platformId = repo;
+        s.name = s.platformId;
+        s.id = safeId(s.platformId);
         fs::create_directories(classDir + "/" + s.id);
-        const Submission found = findSubmission(folder + "/" + repo, expectedFile, /*recursive=*/true, false);
+        const Submission found = findSubmission(folder + "/" + repo, handedIn.front(), /*recursive=*/true, false);
         if (found.name.empty()) {
             s.note = found.note;
         } else {
+            // The file, and the files the rubric reads beside it (answers, a project description) from its folder.
             takeFile(found.folder, found.name, classDir + "/" + s.id, found.name, limit, s);
+            for (std::size_t i = 1; i < handedIn.size(); ++i) {
+                if (fs::exists(fs::symlink_status(found.folder + "/" + handedIn[i]))) {
+                    takeFile(found.folder, handedIn[i], classDir + "/" + s.id, handedIn[i], limit, s);
+                }
+            }
             if (found.shown != found.name) s.note = "found at " + found.shown;
         }
         out.push_back(s);
@@ -332,28 +372,36 @@ std::string layoutOf(const std::string& folder) {
 }
 
 std::vector<IntakeStudent> takeIn(const std::string& layout, const std::string& folder, const std::string& classDir,
-                                  const std::string& expectedFile, std::size_t limitBytes) {
+                                  const std::vector<std::string>& handedIn, std::size_t limitBytes) {
     if (!fs::is_directory(folder)) throw UsageError("no folder " + printable(folder));
     // The class folder is simlab's to remake (it says so in a file of its own); never the download, nor a folder of
     // someone's that happens to have its name.
     std::error_code ignored;
     const fs::path download = fs::weakly_canonical(folder, ignored), made = fs::weakly_canonical(classDir, ignored);
-    const auto [inside, rest] = std::mismatch(made.begin(), made.end(), download.begin(), download.end());
-    if (inside == made.end()) {
+    const auto within = [](const fs::path& inner, const fs::path& outer) {
+        return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first == outer.end();
+    };
+    if (within(download, made)) {
         throw UsageError(printable(folder) + " lies in " + printable(classDir) +
                          ", which simlab remakes from the download: choose another --out");
     }
-    if (fs::exists(classDir) && !fs::exists(classDir + "/.simlab-intake")) {
+    if (within(made, download)) {
+        throw UsageError(printable(classDir) + " lies in the download " + printable(folder) +
+                         ": choose an --out outside it");
+    }
+    // The mark that the class folder is simlab's: beside it, so that it is no entry of the class.
+    const std::string mark = (fs::path(classDir).parent_path() / ("." + fs::path(classDir).filename().string() + "-intake")).string();
+    if (fs::exists(fs::symlink_status(classDir, ignored)) && !fs::exists(mark)) {
         throw UsageError(printable(classDir) + " exists and is not a class simlab took in: move it, or choose another --out");
     }
     fs::remove_all(classDir, ignored);
     fs::create_directories(classDir);
-    writeFileAtomically(classDir + "/.simlab-intake", "a class simlab took in from " + printable(folder) + "\n");
+    writeFileAtomically(mark, "a class simlab took in from " + printable(folder) + "\n");
     std::vector<IntakeStudent> students;
     if (layout == "canvas") students = canvas(folder, classDir, limitBytes);
     else if (layout == "gradescope") students = gradescope(folder, classDir, limitBytes);
     else if (layout == "moodle") students = moodle(folder, classDir, limitBytes);
-    else if (layout == "classroom") students = classroom(folder, classDir, expectedFile, limitBytes);
+    else if (layout == "classroom") students = classroom(folder, classDir, handedIn, limitBytes);
     else throw UsageError("unknown platform '" + printable(layout) + "' (gradescope, canvas, moodle or classroom)");
     if (students.empty()) {
         throw UsageError(printable(folder) + " is not a " + layout + " download: no submission in it is laid out as " +
@@ -363,10 +411,11 @@ std::vector<IntakeStudent> takeIn(const std::string& layout, const std::string& 
 }
 
 std::string intakeRosterCsv(const std::vector<IntakeStudent>& students) {
-    std::string out = "Student,ID,SIS User ID,SIS Login ID,Section,simlab id,Email,Late,Group,Note\n";
+    std::string out = "Student,ID,SIS User ID,SIS Login ID,Section,simlab id,Platform ID,Email,Late,Group,Note\n";
     for (const IntakeStudent& s : students) {
-        out += csvCell(s.name) + "," + csvCell(s.canvasId) + "," + csvCell(s.sid) + ",,," + csvCell(s.id) + "," + csvCell(s.email) + "," +
-               (s.late ? "late" : "") + "," + csvCell(s.group) + "," + csvCell(s.note) + "\n";
+        out += csvCell(s.name) + "," + csvCell(s.canvasId) + "," + csvCell(s.sid) + ",,," + csvCell(s.id) + "," +
+               csvCell(s.platformId) + "," + csvCell(s.email) + "," + (s.late ? "late" : "") + "," + csvCell(s.group) +
+               "," + csvCell(s.note) + "\n";
     }
     return out;
 }

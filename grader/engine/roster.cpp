@@ -92,7 +92,8 @@ std::vector<RosterEntry> readRoster(const std::string& text, const std::string& 
     }
     auto cellOf = [&](const std::vector<std::string>& row, const std::string& key) {
         const auto found = column.find(key);
-        return found == column.end() || found->second >= row.size() ? std::string() : trimmed(row[found->second]);
+        return found == column.end() || found->second >= row.size() ? std::string()
+                                                                     : csvCellValue(trimmed(row[found->second]));
     };
     std::vector<RosterEntry> entries;
     for (std::size_t r = 1; r < rows.size(); ++r) {

@@ -39,7 +39,9 @@ double medianOf(std::vector<double> values) {
 
 }  // namespace
 
-double similarityThreshold(double median) { return std::max(50.0, 3 * median); }
+double similarityThreshold(double median, double spread) {
+    return std::clamp(median + 3 * spread, 50.0, 100.0);
+}
 
 std::string withoutStarter(const std::string& text, const std::string& starter) {
     const std::set<std::string> given = linesOf(starter);
@@ -104,7 +106,12 @@ SimilarityReport compareSubmissions(const std::map<std::string, std::string>& fi
         return x.percent != y.percent ? x.percent > y.percent : std::tie(x.a, x.b) < std::tie(y.a, y.b);
     });
     report.median = medianOf(all);
-    report.threshold = similarityThreshold(report.median);
+    // The spread: the median absolute deviation, scaled to a standard deviation's size (1.4826 for a normal
+    // class), robust to the few pairs that matter here.
+    std::vector<double> deviations;
+    for (double v : all) deviations.push_back(std::abs(v - report.median));
+    report.spread = 1.4826 * medianOf(deviations);
+    report.threshold = similarityThreshold(report.median, report.spread);
     for (const SimilarPair& p : report.pairs) {
         if (p.percent >= report.threshold) report.flagged.push_back(p);
     }
@@ -134,9 +141,12 @@ std::string similarityHtml(const std::string& title, const SimilarityReport& rep
     out << "<style>.pair{display:flex;gap:1em}.side{flex:1;min-width:0}.side pre{overflow-x:auto;font-size:85%}</style>\n";
     out << "<header>\n<h1>" << htmlText(title) << ": similar submissions</h1>\n<p>"
         << report.ids.size() << " files compared in pairs by sim_c++ (similarity-tester), the starter's lines removed. ";
-    std::snprintf(figure, sizeof figure, "%.0f %% (the class's median pair: %.0f %%)", report.threshold, report.median);
+    char spread[96];
+    std::snprintf(figure, sizeof figure, "%.0f %%", report.threshold);
+    std::snprintf(spread, sizeof spread, "the class's median pair, %.0f %%, and three times its spread, %.0f %%",
+                  report.median, report.spread);
     out << "A pair is listed when one file holds at least " << figure
-        << " of the other in shared runs of tokens: at least 50 % and three times the median.</p>\n</header>\n";
+        << " of the other in shared runs of tokens: " << spread << ", at least 50 %.</p>\n</header>\n";
     out << "<section>\n<h2>Far more alike than the class</h2>\n";
     if (report.flagged.empty()) out << "<p>No pair.</p>\n";
     else {

@@ -107,6 +107,13 @@ std::string trimmed(const std::string& s) {
     return s.substr(first, s.find_last_not_of(" \t") - first + 1);
 }
 
+std::string csvCellValue(const std::string& cell) {
+    const std::size_t first = cell.find_first_not_of(' ', 1);
+    const bool neutralized = cell.size() > 1 && cell[0] == '\'' && first != std::string::npos &&
+                             std::string_view("=+-@\t\r").find(cell[first]) != std::string_view::npos;
+    return neutralized ? cell.substr(1) : cell;
+}
+
 std::string csvCell(const std::string& text) {
     std::string cell = printable(text);
     const std::size_t first = text.find_first_not_of(' ');

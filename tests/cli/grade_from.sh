@@ -32,8 +32,8 @@ check "and the first student's file (100)" test "$(score_of canvas-grades lovela
 check "a student who handed in no C++ file is a missing file, not a silent row" \
   test "$(score_of canvas-grades hoppergrace_103)" = "0 missing file"
 check "the roster has Canvas's ID and the late flag" \
-  bash -c "grep -q '^babbagecharles,102,,,,babbagecharles_102,,late,' canvas-grades/roster.csv &&
-           grep -q '^lovelaceada,101,,,,lovelaceada_101,,,' canvas-grades/roster.csv"
+  bash -c "grep -q '^babbagecharles,102,,,,babbagecharles_102,,,late,' canvas-grades/roster.csv &&
+           grep -q '^lovelaceada,101,,,,lovelaceada_101,,,,' canvas-grades/roster.csv"
 
 # Gradescope: submission_metadata.yml beside submission_<id>/ folders; a group of two.
 mkdir -p gradescope/submission_901 gradescope/submission_902
@@ -68,7 +68,7 @@ check "Gradescope: a row per submission, ids from the SIDs, a group's joined" \
            test '$(score_of gs-grades 101)' = '100 graded' && test '$(score_of gs-grades 201+202)' = '0 graded'"
 check "the roster names each member, with e-mail and group" \
   bash -c "test $(rows gs-grades/roster.csv) -eq 3 &&
-           grep -q '^Gus Team,,202,,,201+202,gus@example.edu,,\"Fay Team, Gus Team\",' gs-grades/roster.csv"
+           grep -q '^Gus Team,,202,,,201+202,,gus@example.edu,,\"Fay Team, Gus Team\",' gs-grades/roster.csv"
 run_capture gs-canvas "$SIMLAB" export canvas apple --grades gs-grades --roster gs-grades/roster.csv -o gs-canvas.csv
 check "exported to Canvas with that roster, each member gets the group's grade" \
   bash -c "test $(status_of gs-canvas) -eq 0 && test '$(cell gs-canvas.csv 2 5)' = 100 &&
@@ -101,6 +101,34 @@ run_capture classroom-graded "$SIMLAB" grade apple classroom -o classroom-grades
 check "Classroom: ids are the logins, the file found deep in each repository" \
   bash -c "test $(status_of classroom-graded) -eq 0 && test '$(score_of classroom-grades ada)' = '100 graded' &&
            test '$(score_of classroom-grades bob)' = '0 graded'"
+
+# Hostile or careless downloads: two students whose ids would be alike stay apart; a submission key that is not a
+# plain folder name takes nothing; a YAML alias is refused; an old attempt in a subfolder does not win over the
+# file handed in; an --out inside the download, and a class folder simlab did not make, are refused.
+mkdir -p odd/s1 odd/s2 odd/s3/Attempt1
+cp "$starter" odd/s1/NewtonsApple.cpp && cp "$reference" odd/s2/NewtonsApple.cpp
+echo '// the old attempt' >odd/s3/Attempt1/NewtonsApple.cpp && cp "$reference" odd/s3/NewtonsApple.cpp
+printf '%s\n' 's1:' '  :submitters:' '  - {":name": Jo, ":email": jsmith@gmail.com}' 's2:' '  :submitters:' \
+  '  - {":name": Jane, ":email": jsmith@uni.edu}' 's3:' '  :submitters:' '  - {":sid": "3"}' '".":' '  :submitters:' \
+  '  - {":sid": "dot"}' >odd/submission_metadata.yml
+run_capture odd "$SIMLAB" grade apple odd -o odd-grades --from gradescope -j 2
+check "two students whose e-mails share a name are two rows, each graded on their own file" \
+  bash -c "test '$(score_of odd-grades jsmith)' = '0 graded' && test '$(score_of odd-grades jsmith-s2)' = '100 graded'"
+check "a submission key '.' takes nothing of the download (a missing file, said in the roster)" \
+  bash -c "test '$(score_of odd-grades dot)' = '0 missing file' && grep -q 'no folder . in the download' odd-grades/roster.csv"
+check "the file handed in wins over an old attempt in a subfolder, and the roster says so" \
+  bash -c "test '$(score_of odd-grades 3)' = '100 graded' && grep -q 'another NewtonsApple.cpp nearer the top was taken' odd-grades/roster.csv"
+printf '%s\n' 's1: &a' '  :submitters: [{":sid": "1"}]' 's2: *a' >odd/submission_metadata.yml
+run_capture alias "$SIMLAB" grade apple odd -o alias-grades --from gradescope
+check "a YAML alias: refused in one line" \
+  bash -c "test $(status_of alias) -eq 2 && test \$(wc -l <alias.err) -eq 1 && grep -q 'an alias' alias.err"
+run_capture inside "$SIMLAB" grade apple classroom -o classroom/grades --from classroom
+check "an --out inside the download: refused in one line" \
+  bash -c "test $(status_of inside) -eq 2 && grep -q 'lies in the download' inside.err && ! test -e classroom/grades/class"
+mkdir -p mine/class && echo "my own notes" >mine/class/notes.txt
+run_capture mine "$SIMLAB" grade apple classroom -o mine --from classroom
+check "a class folder simlab did not make is refused, and kept" \
+  bash -c "test $(status_of mine) -eq 2 && grep -q 'is not a class simlab took in' mine.err && test -f mine/class/notes.txt"
 
 # Loose files are no one's folder: refused, with what to do.
 mkdir loose && cp "$reference" loose/ada.cpp && cp "$starter" loose/bob.cpp

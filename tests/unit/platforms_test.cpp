@@ -8,6 +8,7 @@
 #include "simlab/engine/manual.h"
 #include "simlab/engine/report.h"
 #include "simlab/engine/roster.h"
+#include "simlab/engine/similarity.h"
 #include "simlab/engine/text.h"
 #include "simlab/engine/writers.h"
 
@@ -211,6 +212,14 @@ TEST_CASE("Gradescope: a test with points is never hidden, so the student always
     CHECK(doc["tests"][4]["visibility"] == "after_published");
 }
 
+TEST_CASE("Similarity: the starter's lines removed; flagged above the class by three spreads, 50 to 100 %", "[platforms]") {
+    CHECK(withoutStarter("int main() {\n  double p_GA = 1;\n  // TODO: step\n}\n", "int main() {\n// TODO: step\n}\n") ==
+          "  double p_GA = 1;\n");
+    CHECK(similarityThreshold(10, 5) == 50);    // a class of distinct files: 50 %
+    CHECK(similarityThreshold(40, 10) == 70);   // one that shares more: above its median by three spreads
+    CHECK(similarityThreshold(88, 10) == 100);  // a class made from one file: its identical copies still show
+}
+
 TEST_CASE("CSV: quoted cells, doubled quotes, line breaks inside, CRLF, a byte order mark", "[platforms]") {
     const auto rows = readCsv("\xEF\xBB\xBFStudent,ID\r\n\"Lovelace, Ada\",\"1\"\"2\"\r\n\"two\nlines\",3");
     REQUIRE(rows.size() == 3);
@@ -340,9 +349,24 @@ TEST_CASE("manual.csv: rows for every student and item, what a person typed kept
         return std::string("(no error)");
     };
     CHECK_THAT(error("name,item,points\n"), Catch::Contains("the first line must be student,item,points,comment"));
-    CHECK_THAT(error("student,item,points\nada,the schematic,eight\n"), Catch::Contains("row 2: the points 'eight' are not a number"));
+    CHECK_THAT(error("student,item,points\nada,the schematic,eight\n"), Catch::Contains("row 2: the points 'eight' are not a decimal number"));
     CHECK_THAT(error("student,item,points\nada,the schematic,11\n"), Catch::Contains("worth 0 to 10"));
-    CHECK_THAT(error("student,item,points\nada,the schematic,-1\n"), Catch::Contains("worth 0 to 10"));
+    CHECK_THAT(error("student,item,points\nada,the schematic,-1\n"), Catch::Contains("not a decimal number"));
     CHECK_THAT(error("student,item,points\nada,the schematic,1\nada,the schematic,2\n"), Catch::Contains("row 3"));
+    for (const char* notDecimal : {"0x10", "1e1", "+5", ".5", "5.", "inf", "nan", "5 points"}) {
+        CHECK_THAT(error(std::string("student,item,points\nada,the schematic,") + notDecimal + "\n"),
+                   Catch::Contains("are not a decimal number"));
+    }
+    CHECK_THAT(error("student,item,points,comment\nada,the schematic,5,tr\xe8s bien\n"), Catch::Contains("not UTF-8"));
+    // An id with spaces at its end, or that looks like a formula, reads back as the same student.
+    StudentRecord spaced;
+    spaced.id = "bob ";
+    const std::string written = manualCsv({}, {"bob ", "'=x"}, rubric);
+    ManualSheet back = readManualCsv(written, "manual.csv", rubric);
+    back.entries.at({manualKey("bob "), "the schematic"}).points = 4;
+    applyManual(spaced, back, rubric);
+    CHECK(spaced.total() == 4);
+    CHECK(manualCsv(back, {"bob ", "'=x"}, rubric).size() == written.size() + 1);  // the 4, and no second row
+    CHECK(strayManualRows(sheet, {"ada", "bob", "cy"}, rubric) == std::vector<std::string>{"gone / the schematic"});
     CHECK(error("") == "(no error)");
 }

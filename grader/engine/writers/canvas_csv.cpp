@@ -33,6 +33,7 @@ CanvasExport canvasCsv(const std::string& column, double pointsPossible, const s
         } else {
             out.csv += points(found->second->total());
             ++out.scored;
+            if (e.canvasId.empty() && e.sisUserId.empty() && e.sisLoginId.empty()) out.unmatched.push_back(e.folder);
         }
         out.csv += "\n";
     }

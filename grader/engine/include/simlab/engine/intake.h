@@ -21,7 +21,8 @@ struct IntakeStudent {
     std::string id;       ///< simlab's id: the folder graded (shared by a group's members)
     std::string name;     ///< as the platform spells it
     std::string canvasId; ///< Canvas's user id (a Canvas download)
-    std::string sid;      ///< the platform's own id: Gradescope's SID, Moodle's participant number, GitHub login
+    std::string sid;      ///< Gradescope's SID (most schools' student number: Canvas's SIS User ID)
+    std::string platformId;  ///< Moodle's participant number, the GitHub login: no id Canvas knows
     std::string email;
     bool late = false;    ///< the platform marked the submission late
     std::string group;    ///< the members' names, for a group submission
@@ -35,14 +36,16 @@ const std::vector<std::string>& downloadLayouts();
 /// platform's layout, or "" for a class folder (a folder per student).
 std::string layoutOf(const std::string& folder);
 
-/// Takes the download `folder` of platform `layout` into `classDir` (made empty first): a folder per id holding
-/// the student's files, read as untrusted data (regular files only, at most `limitBytes` each). Returns every
-/// student, in the download's order. Throws UsageError, in one line, if `folder` is not such a download.
+/// Takes the download `folder` of platform `layout` into `classDir` (remade: simlab marks it as its own beside it,
+/// and refuses a folder of that name it did not make, or one inside the download): a folder per id holding the
+/// student's files, read as untrusted data (regular files only, at most `limitBytes` each). `handedIn` is the
+/// file graded, then the rubric's extra files. Returns every student, in the download's order. Throws UsageError,
+/// in one line, if `folder` is not such a download.
 std::vector<IntakeStudent> takeIn(const std::string& layout, const std::string& folder, const std::string& classDir,
-                                  const std::string& expectedFile, std::size_t limitBytes);
+                                  const std::vector<std::string>& handedIn, std::size_t limitBytes);
 
 /// The roster of a download: Canvas's columns (Student, ID, SIS User ID, SIS Login ID, Section), simlab id, then
-/// Email, Late, Group and Note, as CSV (what `simlab export canvas --roster` reads).
+/// Platform ID, Email, Late, Group and Note, as CSV (what `simlab export canvas --roster` reads).
 std::string intakeRosterCsv(const std::vector<IntakeStudent>& students);
 
 }  // namespace simlab::engine

@@ -31,8 +31,18 @@ struct ManualSheet {
     std::map<std::pair<std::string, std::string>, ManualEntry> entries;
 };
 
+/// A student id or item name as the sheet keys it: printable, without spaces at its ends or the apostrophe that
+/// neutralizes a formula (so that what simlab writes reads back the same).
+std::string manualKey(const std::string& cell);
+
+/// The rows of `sheet` that count for nothing: their student is not in `students`, or their item is not the
+/// rubric's ("ada / writeup"), to warn of a typo.
+std::vector<std::string> strayManualRows(const ManualSheet& sheet, const std::vector<std::string>& students,
+                                         const Rubric& rubric);
+
 /// Reads manual.csv. Throws UsageError, in one line naming `name` and the row, for a header other than
-/// student,item,points[,comment], a row twice, or points that are not a number from 0 to the item's points.
+/// student,item,points[,comment], a row twice, text that is not UTF-8, or points that are not a decimal number
+/// from 0 to the item's points.
 ManualSheet readManualCsv(const std::string& text, const std::string& name, const Rubric& rubric);
 
 /// The sheet with a row for each of `students` and each manual item of `rubric` (new rows pending), the rows

@@ -18,12 +18,14 @@ struct SimilarityReport {
     std::vector<std::string> ids;     ///< the students compared (those with a file)
     std::vector<SimilarPair> pairs;   ///< every pair sim_c++ found anything in, most alike first
     double median = 0;                ///< of every pair of the class (pairs with nothing shared count as 0)
-    double threshold = 0;             ///< a pair at or above it is flagged: max(50 %, 3 x the median)
+    double spread = 0;                ///< of every pair: 1.4826 x the median absolute deviation from the median
+    double threshold = 0;             ///< a pair at or above it is flagged (similarityThreshold)
     std::vector<SimilarPair> flagged; ///< far more alike than the class
 };
 
-/// The percent at or above which a pair is flagged, given the class's median pair.
-double similarityThreshold(double median);
+/// The percent at or above which a pair is flagged: the class's median pair and three times its spread, at least
+/// 50 % and at most 100 % (a class made from one file still shows its identical copies).
+double similarityThreshold(double median, double spread);
 
 /// `text` without the lines the starter has (compared without the spaces at their ends; blank lines dropped).
 std::string withoutStarter(const std::string& text, const std::string& starter);

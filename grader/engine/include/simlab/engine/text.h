@@ -41,6 +41,10 @@ std::string csvCell(const std::string& text);
 /// `s` without the spaces and tabs at either end (a cell as a person typed it).
 std::string trimmed(const std::string& s);
 
+/// A cell of a CSV file simlab wrote, as it was before csvCell neutralized it: without the apostrophe put before a
+/// cell a spreadsheet would read as a formula.
+std::string csvCellValue(const std::string& cell);
+
 /// Inline Markdown text for a table cell, a heading or a line after a label ("- " + markdownText(x)): printable on
 /// one line (a newline shows as "\n": in Markdown it would end the cell or start a block), then escaped so it
 /// renders as the same characters and cannot change the document's structure: '\', '`', '|', '*', '_', '[' and

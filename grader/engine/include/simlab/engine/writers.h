@@ -107,6 +107,7 @@ struct CanvasExport {
     std::vector<std::string> missingFile;  ///< their folder holds no file to grade: left blank, not a 0
     std::vector<std::string> manualPending;  ///< items graded by hand still pending: left blank
     std::vector<std::string> notOnRoster;  ///< graded, but not on the roster: not in the file
+    std::vector<std::string> unmatched;    ///< scored, on a row with no ID, SIS User ID or SIS Login ID for Canvas
 };
 /// One row per roster student, in the roster's order: Student, ID, SIS User ID, SIS Login ID, Section, then the
 /// score (the tests' points and the points given by hand) under the header `column` ("Newton's apple (1234)":
