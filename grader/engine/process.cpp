@@ -544,7 +544,14 @@ ProcessResult runProcess(const ProcessRequest& r) {
         result.exitCode < 128 + 65) {
         result.signal = result.exitCode - 128;
         result.exitCode = -1;
-        if (result.signal == SIGXCPU) result.cpuTimeout = true;
+        // As launchProcess judges a child of its own: SIGXCPU is the CPU limit, and so is a SIGKILL simlab did not
+        // send once the CPU time reached the limit (the hard limit, after a program that catches SIGXCPU - clang
+        // prints a stack dump - went on).
+        const bool simlabStopped = result.memoryLimit || result.wallTimeout || result.outputLimit || result.interrupted;
+        if (result.signal == SIGXCPU ||
+            (result.signal == SIGKILL && !simlabStopped && result.cpuSeconds >= std::ceil(r.limits.cpuSeconds))) {
+            result.cpuTimeout = true;
+        }
     }
     return result;
 }
