@@ -27,7 +27,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <sstream>
 #include <mutex>
@@ -72,6 +71,7 @@ struct Launch {
     int ruleset = -1;               // a Landlock ruleset to restrict the child to (sandboxed without bubblewrap)
     const std::string* filter = nullptr;  // the system-call filter to load (sandboxed without bubblewrap)
     rlim_t tasks = 0;               // RLIMIT_NPROC; 0 leaves it alone
+    bool ownPids = false;           // in a pid namespace of its own (bubblewrap): all it starts is in its tree
     pid_t parent = 0;
 };
 
@@ -159,9 +159,27 @@ void setLimit(int resource, rlim_t value) {
     ::setrlimit(resource, &limit);
 }
 
-// The child between fork and exec: only async-signal-safe calls, no allocation.
+// Whether the child may borrow simlab's memory until it execs (vfork: no copy of simlab's page tables, which
+// costs a millisecond or more per process): not when it may have to make a user namespace of its own, which a
+// process sharing its memory cannot.
+bool mayShareMemory(const Launch& launch) { return !(launch.newNetwork && !launch.dropUser); }
+
+// The child between fork (or vfork) and exec: only async-signal-safe calls, no allocation, nothing written that
+// simlab reads (the memory may be simlab's own), and user and group ids changed by the system calls themselves,
+// never by the C library's wrappers, which would change them in every thread of simlab too. Signals arrive
+// blocked (`mask` is what to restore for the program).
 [[noreturn]] void becomeChild(const ProcessRequest& r, const Launch& launch, char* const* argv, char* const* envp,
-                              int outWrite, int reportWrite) {
+                              int outWrite, int reportWrite, const sigset_t& mask) {
+    // simlab's handlers are not the child's: every caught signal back to its default before any is let in.
+    for (int signal = 1; signal < NSIG; ++signal) {
+        struct sigaction current {};
+        if (::sigaction(signal, nullptr, &current) == 0 && current.sa_handler != SIG_DFL &&
+            current.sa_handler != SIG_IGN) {
+            struct sigaction reset {};
+            reset.sa_handler = SIG_DFL;
+            ::sigaction(signal, &reset, nullptr);
+        }
+    }
     // A session of its own: a process group simlab ends as a whole, and no controlling terminal, so that nothing
     // it runs can open /dev/tty or type into the terminal simlab was started from.
     ::setsid();
@@ -218,7 +236,8 @@ void setLimit(int resource, rlim_t value) {
         if (::unshare(CLONE_NEWNET) != 0 && !launch.dropUser) ::unshare(CLONE_NEWUSER | CLONE_NEWNET);
     }
     if (launch.dropUser) {
-        if (::setgroups(0, nullptr) != 0 || ::setgid(launch.uid) != 0 || ::setuid(launch.uid) != 0) {
+        if (::syscall(SYS_setgroups, 0, nullptr) != 0 || ::syscall(SYS_setresgid, launch.uid, launch.uid, launch.uid) != 0 ||
+            ::syscall(SYS_setresuid, launch.uid, launch.uid, launch.uid) != 0) {
             const char message[] = "simlab: cannot switch to the sandbox user\n";
             (void)!::write(2, message, sizeof message - 1);
             ::_exit(127);
@@ -229,6 +248,7 @@ void setLimit(int resource, rlim_t value) {
         (void)!::write(2, message, sizeof message - 1);
         ::_exit(127);
     }
+    ::sigprocmask(SIG_SETMASK, &mask, nullptr);
     // A program simlab has just written can be busy for a moment: a process another thread forked while it was
     // open for writing holds it until that process execs or exits (microseconds). Try again, briefly.
     for (int attempt = 0; attempt < 50; ++attempt) {
@@ -249,23 +269,7 @@ void setLimit(int resource, rlim_t value) {
 rlim_t taskLimitFor(long processes) {
     const uid_t uid = ::getuid();
     if (uid == 0) return 0;
-    rlim_t tasks = 0;
-    if (DIR* proc = ::opendir("/proc")) {
-        while (const struct dirent* entry = ::readdir(proc)) {
-            if (entry->d_name[0] < '0' || entry->d_name[0] > '9') continue;
-            std::ifstream status(std::string("/proc/") + entry->d_name + "/status");
-            std::string key;
-            long owner = -1, threads = 0;
-            while (status >> key) {
-                if (key == "Uid:") status >> owner;
-                else if (key == "Threads:") status >> threads;
-                std::getline(status, key);
-            }
-            if (owner == static_cast<long>(uid)) tasks += static_cast<rlim_t>(threads);
-        }
-        ::closedir(proc);
-    }
-    return tasks + static_cast<rlim_t>(processes);
+    return static_cast<rlim_t>(sandbox::tasksOf(uid)) + static_cast<rlim_t>(processes);
 }
 
 // Reads what `fd` holds now into `keep` (up to keepLimit), counting it; with `lines`, also hands each complete
@@ -511,6 +515,7 @@ ProcessResult runProcess(const ProcessRequest& r) {
                 ::close(filter[1]);
             }
             launch.argv = bubblewrapArguments(support.bwrap, r, handOver ? launch.uid : 0, filter[0] >= 0);
+            launch.ownPids = true;
             launch.argv.insert(launch.argv.end(), r.argv.begin(), r.argv.end());
         } else {
             launch.newNetwork = true;
@@ -593,8 +598,14 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
     {
         // Registered before the reaper can see it exit.
         std::lock_guard<std::mutex> guard(gChildrenLock);
-        pid = ::fork();
-        if (pid == 0) becomeChild(r, launch, argv.data(), envp.data(), out[1], report[1]);
+        sigset_t all, mask;
+        ::sigfillset(&all);
+        ::pthread_sigmask(SIG_SETMASK, &all, &mask);
+        pid = mayShareMemory(launch) ? ::vfork() : ::fork();
+        if (pid == 0) becomeChild(r, launch, argv.data(), envp.data(), out[1], report[1], mask);
+        const int forkError = errno;
+        ::pthread_sigmask(SIG_SETMASK, &mask, nullptr);
+        errno = forkError;
         if (pid > 0) gChildren.insert(pid);
     }
     if (pid < 0) {
@@ -670,7 +681,10 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
         // wherever it went. Their CPU time and their memory are the test's.
         if (!reaped && !killed && Clock::now() >= nextCpuCheck) {
             nextCpuCheck = Clock::now() + std::chrono::milliseconds(100);
-            const sandbox::Usage usage = sandbox::usageOf(pid, launch.uid);
+            // In a pid namespace of its own, whatever the test started is below its first process (an orphan goes
+            // to the namespace's first process, bubblewrap's): the tree is all of it, and no look at every process
+            // of the machine is needed.
+            const sandbox::Usage usage = sandbox::usageOf(pid, launch.ownPids ? 0 : launch.uid);
             ownPeakKiB = std::max(ownPeakKiB, sandbox::peakResidentOf(pid));
             treeCpu = std::max(treeCpu, usage.cpuSeconds);
             peakResidentKiB = std::max(peakResidentKiB, usage.residentKiB);

@@ -19,13 +19,12 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <mutex>
 #include <random>
 #include <set>
-#include <sstream>
 
 namespace simlab::engine::sandbox {
 
@@ -159,42 +158,97 @@ bool isNumber(const char* name) {
     return true;
 }
 
-// The real user id of process `pid` (from its status, which shows it even for a process that made itself
-// non-dumpable, whose /proc folder then belongs to root), or -1.
-long realUserOf(const std::string& pid) {
-    std::ifstream status("/proc/" + pid + "/status");
-    std::string key;
-    while (status >> key) {
-        if (key == "Uid:") {
-            long uid = -1;
-            status >> uid;
-            return uid;
+// What a small /proc file holds now (up to 16 KiB: every file read here is far smaller), read with one open and
+// one or two reads. /proc is read many times a second while tests run: no stream, no locale, no allocation but
+// the string.
+std::string readProcFile(const char* path) {
+    std::string text;
+    const int fd = ::open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return text;
+    char buffer[16384];
+    std::size_t used = 0;
+    for (;;) {
+        const ssize_t n = ::read(fd, buffer + used, sizeof buffer - used);
+        if (n > 0) {
+            used += static_cast<std::size_t>(n);
+            if (used < sizeof buffer) continue;
+        } else if (n < 0 && errno == EINTR) {
+            continue;
         }
-        std::getline(status, key);
+        break;
+    }
+    ::close(fd);
+    text.assign(buffer, used);
+    return text;
+}
+
+// The number after `key` (a line's start, such as "Uid:") in a /proc status text, or -1.
+long statusField(const std::string& status, const char* key) {
+    const std::size_t length = std::strlen(key);
+    for (std::size_t at = 0; at < status.size();) {
+        if (status.compare(at, length, key) == 0) return std::strtol(status.c_str() + at + length, nullptr, 10);
+        const std::size_t next = status.find('\n', at);
+        if (next == std::string::npos) break;
+        at = next + 1;
     }
     return -1;
 }
 
-// Processes that run as `uid`, with their state ('Z' for a zombie), found by one pass over /proc.
-std::vector<std::pair<pid_t, char>> processesOf(uid_t uid) {
-    std::vector<std::pair<pid_t, char>> found;
+// "/proc/<pid>/<file>", in a buffer of the caller's.
+const char* procPath(char (&path)[320], const char* pid, const char* file) {
+    std::snprintf(path, sizeof path, "/proc/%s/%s", pid, file);
+    return path;
+}
+
+// The real user id of process `pid` (from its status, which shows it even for a process that made itself
+// non-dumpable, whose /proc folder then belongs to root), or -1.
+long realUserOf(const char* pid) {
+    char path[320];
+    return statusField(readProcFile(procPath(path, pid, "status")), "Uid:");
+}
+
+// False for a kernel thread (or a zombie), which has no program: /proc/<pid>/exe leads nowhere. Most of the
+// folders that belong to root are kernel threads', and this answers without the kernel writing out a status.
+bool mayRunAsOther(int procFd, const char* pid) {
+    char path[320], target[8];
+    std::snprintf(path, sizeof path, "%s/exe", pid);
+    return ::readlinkat(procFd, path, target, sizeof target) >= 0 || errno != ENOENT;
+}
+
+// A process's state ('Z' for a zombie) from its stat line, or '?'.
+char stateIn(const std::string& stat) {
+    const std::size_t close = stat.rfind(')');
+    return close != std::string::npos && close + 2 < stat.size() ? stat[close + 2] : '?';
+}
+
+// Calls `visit(pid)` (the pid as its /proc folder names it) for each process that runs as `uid`, found by one pass
+// over /proc: its folder belongs to the process's user, or to root for one that made itself non-dumpable, whose
+// status then tells.
+template <typename Visit>
+void visitProcessesOf(uid_t uid, Visit visit) {
     DIR* proc = ::opendir("/proc");
-    if (!proc) return found;
+    if (!proc) return;
+    const int procFd = ::dirfd(proc);
     while (const struct dirent* entry = ::readdir(proc)) {
         if (!isNumber(entry->d_name)) continue;
         struct stat info {};
-        const std::string dir = std::string("/proc/") + entry->d_name;
-        if (::stat(dir.c_str(), &info) != 0) continue;
-        // The folder belongs to the process's user, or to root for a non-dumpable one: look closer then.
-        if (info.st_uid != uid && !(info.st_uid == 0 && realUserOf(entry->d_name) == static_cast<long>(uid))) continue;
-        std::ifstream stat(dir + "/stat");
-        std::string line;
-        std::getline(stat, line);
-        const std::size_t close = line.rfind(')');
-        const char state = close != std::string::npos && close + 2 < line.size() ? line[close + 2] : '?';
-        found.emplace_back(static_cast<pid_t>(std::strtol(entry->d_name, nullptr, 10)), state);
+        if (::fstatat(procFd, entry->d_name, &info, 0) != 0) continue;
+        if (info.st_uid == uid || (info.st_uid == 0 && mayRunAsOther(procFd, entry->d_name) &&
+                                   realUserOf(entry->d_name) == static_cast<long>(uid))) {
+            visit(entry->d_name);
+        }
     }
     ::closedir(proc);
+}
+
+// Processes that run as `uid`, with their state ('Z' for a zombie).
+std::vector<std::pair<pid_t, char>> processesOf(uid_t uid) {
+    std::vector<std::pair<pid_t, char>> found;
+    visitProcessesOf(uid, [&](const char* pid) {
+        char path[320];
+        const char state = stateIn(readProcFile(procPath(path, pid, "stat")));
+        found.emplace_back(static_cast<pid_t>(std::strtol(pid, nullptr, 10)), state);
+    });
     return found;
 }
 
@@ -209,31 +263,26 @@ struct ProcessStat {
 ProcessStat statOf(pid_t pid) {
     static const double ticksPerSecond = static_cast<double>(::sysconf(_SC_CLK_TCK));
     ProcessStat s;
-    const std::string dir = "/proc/" + std::to_string(pid);
-    std::ifstream file(dir + "/stat");
-    std::string line;
-    if (!std::getline(file, line)) return s;
+    char id[24], path[320];
+    std::snprintf(id, sizeof id, "%d", static_cast<int>(pid));
+    const std::string line = readProcFile(procPath(path, id, "stat"));
     const std::size_t close = line.rfind(')');
-    if (close == std::string::npos) return s;
+    if (close == std::string::npos || close + 2 >= line.size()) return s;
     // The fields after the command's closing parenthesis: state is field 3, utime 14 ... cstime 17.
-    std::istringstream fields(line.substr(close + 2));
-    std::string field;
+    const char* at = line.c_str() + close + 2;
     double ticks = 0;
-    for (int index = 3; index <= 17 && fields >> field; ++index) {
-        if (index >= 14) ticks += std::strtod(field.c_str(), nullptr);
+    for (int index = 3; index <= 17 && *at; ++index) {
+        char* end = nullptr;
+        const double value = std::strtod(at, &end);
+        if (index >= 14) ticks += value;
+        at = std::strchr(at, ' ');
+        if (!at) break;
+        ++at;
     }
     s.alive = true;
     s.cpuSeconds = ticks / ticksPerSecond;
-    std::ifstream status(dir + "/status");
-    std::string key;
-    while (status >> key) {
-        if (key == "RssAnon:" || key == "RssShmem:") {
-            long kib = 0;
-            status >> kib;
-            s.residentKiB += kib;
-        }
-        std::getline(status, key);
-    }
+    const std::string status = readProcFile(procPath(path, id, "status"));
+    for (const char* key : {"RssAnon:", "RssShmem:"}) s.residentKiB += std::max(0L, statusField(status, key));
     return s;
 }
 
@@ -317,7 +366,12 @@ uid_t freshUser() {
 int endProcessesOf(uid_t uid) {
     int left = 0;
     for (int round = 0; round < 10; ++round) {
-        const pid_t helper = ::fork();
+        // The helper borrows simlab's memory until it exits (vfork), with every signal blocked: it changes its ids
+        // by the system calls themselves (the C library's wrappers would change those of every thread of simlab).
+        sigset_t all, mask;
+        ::sigfillset(&all);
+        ::pthread_sigmask(SIG_SETMASK, &all, &mask);
+        const pid_t helper = ::vfork();
         if (helper == 0) {
             // Nothing simlab holds stays open in it (a program being written, say, would be busy meanwhile).
             ::close_range(3, ~0U, 0);
@@ -325,7 +379,8 @@ int endProcessesOf(uid_t uid) {
             // times over: a child whose fork was under way during one signal is listed by the next. (A zombie can
             // be signalled too, so "no process left" is never the answer while one waits to be reaped: the rounds
             // below count what is left, zombies aside.)
-            if (::setgroups(0, nullptr) != 0 || ::setresgid(uid, uid, uid) != 0 || ::setresuid(uid, uid, uid) != 0) {
+            if (::syscall(SYS_setgroups, 0, nullptr) != 0 || ::syscall(SYS_setresgid, uid, uid, uid) != 0 ||
+                ::syscall(SYS_setresuid, uid, uid, uid) != 0) {
                 ::_exit(2);
             }
             for (int i = 0; i < 8; ++i) {
@@ -333,10 +388,13 @@ int endProcessesOf(uid_t uid) {
             }
             ::_exit(1);
         }
+        ::pthread_sigmask(SIG_SETMASK, &mask, nullptr);
         if (helper < 0) return -1;
         int status = 0;
         while (::waitpid(helper, &status, __WALL) < 0 && errno == EINTR) {
         }
+        // No process of the user answered a signal, not even a zombie: nothing is left, and nothing can start one.
+        if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return 0;
         // What is left but zombies (which their parents, or simlab as the subreaper, reap).
         left = 0;
         for (const auto& [pid, state] : processesOf(uid)) left += state != 'Z' && state != 'X';
@@ -357,8 +415,14 @@ Usage usageOf(pid_t root, uid_t uid) {
         if (DIR* tasks = ::opendir(dir.c_str())) {
             while (const struct dirent* task = ::readdir(tasks)) {
                 if (task->d_name[0] == '.') continue;
-                std::ifstream children(dir + "/" + task->d_name + "/children");
-                for (pid_t child; children >> child;) pending.push_back(child);
+                const std::string children = readProcFile((dir + "/" + task->d_name + "/children").c_str());
+                for (const char* at = children.c_str(); *at;) {
+                    char* end = nullptr;
+                    const long child = std::strtol(at, &end, 10);
+                    if (end == at) break;
+                    pending.push_back(static_cast<pid_t>(child));
+                    at = end;
+                }
             }
             ::closedir(tasks);
         }
@@ -377,18 +441,19 @@ Usage usageOf(pid_t root, uid_t uid) {
     return usage;
 }
 
+long tasksOf(uid_t uid) {
+    long tasks = 0;
+    visitProcessesOf(uid, [&](const char* pid) {
+        char path[320];
+        tasks += std::max(0L, statusField(readProcFile(procPath(path, pid, "status")), "Threads:"));
+    });
+    return tasks;
+}
+
 long peakResidentOf(pid_t pid) {
-    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
-    std::string key;
-    while (status >> key) {
-        if (key == "VmHWM:") {
-            long kib = 0;
-            status >> kib;
-            return kib;
-        }
-        std::getline(status, key);
-    }
-    return 0;
+    char id[24], path[320];
+    std::snprintf(id, sizeof id, "%d", static_cast<int>(pid));
+    return std::max(0L, statusField(readProcFile(procPath(path, id, "status")), "VmHWM:"));
 }
 
 }  // namespace simlab::engine::sandbox

@@ -66,6 +66,9 @@ struct Usage {
 };
 Usage usageOf(pid_t root, uid_t uid);
 
+/// The tasks (processes and threads) that run as `uid` now, as RLIMIT_NPROC counts them.
+long tasksOf(uid_t uid);
+
 /// The peak resident memory of process `pid` itself (VmHWM, KiB), not of what it started; 0 if it is gone.
 long peakResidentOf(pid_t pid);
 
