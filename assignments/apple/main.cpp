@@ -69,6 +69,9 @@ int runOnce(const Options& o) {
     };
     tabulation.program = "apple";
     tabulation.conserved = "mechanicalEnergy";
+    tabulation.conservedScale = [&](const apple::Sample& s) {
+        return 0.5 * o.scene.mass * s.yVelocity * s.yVelocity + o.scene.mass * o.scene.gravity * std::abs(s.yLocation);
+    };
     apple::Model model;
     const auto result = simlab::runTabulated(o.scene, model, o.program, tabulation);
 
@@ -124,11 +127,11 @@ int main(int argc, char** argv) {
     CLI::App app{"Newton's apple: drop an apple from rest and compare its fall with y = h - g t^2/2.", "apple"};
     simlab::addProgramOptions(app, o.program);
     app.add_option("--drop-height", o.scene.dropHeight, "m, starting height of the apple's center")
-        ->check(CLI::Range(-1e6, 1e6))
+        ->check(simlab::between(-1e6, 1e6))
         ->capture_default_str();
     app.add_option("--mass", o.scene.mass, "kg, mass of the apple")->check(simlab::positive())->capture_default_str();
     app.add_option("--gravity", o.scene.gravity, "m/s^2, pulling along -y")
-        ->check(CLI::Range(0.0, 1e4))
+        ->check(simlab::between(0.0, 1e4))
         ->capture_default_str();
     if (const int status = simlab::parseCommandLine(app, argc, argv); status >= 0) return status;
 

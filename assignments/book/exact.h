@@ -40,6 +40,10 @@ namespace book::exact {
 
 /// The central principal moments of inertia of a uniform brick of the scene's mass and dimensions, about the
 /// book's x, y and z: m (Ly^2 + Lz^2) / 12, m (Lx^2 + Lz^2) / 12, m (Lx^2 + Ly^2) / 12.
+/// |v| without squaring its components (std::hypot): a spin of 1e-160 rad/s, or a kinetic energy of 1e-204 J, has
+/// a magnitude, where v.norm() would underflow to zero (and a ratio of two to NaN).
+inline double magnitude(const SimTK::Vec3& v) { return std::hypot(v[0], v[1], v[2]); }
+
 inline SimTK::Vec3 principalMoments(const Scene& scene) {
     const SimTK::Vec3& L = scene.dimensions;
     return scene.mass / 12 * SimTK::Vec3(L[1] * L[1] + L[2] * L[2], L[0] * L[0] + L[2] * L[2], L[0] * L[0] + L[1] * L[1]);
@@ -145,7 +149,7 @@ inline SimTK::Vec3 angularVelocity(const Scene& scene, double t) {
 inline double angularVelocityDigits(const Scene& scene, double t, const SimTK::Vec3& w_B) {
     const SimTK::Vec3 exact = angularVelocity(scene, t);
     if (!w_B.isFinite()) return 0;
-    return simlab::accuracyDigits((w_B - exact).norm(), 0.0, exact.norm());
+    return simlab::accuracyDigits(magnitude(w_B - exact), 0.0, magnitude(exact));
 }
 
 /// Euler's torque-free equations, I1 w1' = (I2 - I3) w2 w3 and cyclically, for w_B in the precision of W's values
@@ -211,7 +215,7 @@ inline simlab::OdeReference<3> eulerReference(const Scene& scene, long double to
 /// Digits of a simulated w_B against the reference's `w`, the worst component. Each passes through zero as the book
 /// tumbles: all count against the spin's size, |w_B(0)|.
 inline double spinDigits(const Scene& scene, const SimTK::Vec3& w_B, const std::array<long double, 3>& w) {
-    const double scale = scene.w_B0.norm();
+    const double scale = magnitude(scene.w_B0);
     double worst = simlab::kMaxDigits;
     for (int i = 0; i < 3; ++i) {
         worst = std::min(worst, simlab::accuracyDigits(w_B[i], static_cast<double>(w[static_cast<std::size_t>(i)]), scale));

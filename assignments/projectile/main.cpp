@@ -35,14 +35,42 @@ std::vector<double> resultsRow(const Scene& scene, const Sample& s) {
 
 struct HitDigits {
     double time = 0, range = 0;
+    double rangeScale = 0;  ///< m: what the range's digits are relative to where x* is near zero (0: x* itself)
 };
 
-// Digits of the hit's time and range; the range relative to v0 t* so that a vertical launch (x* = 0) counts too.
+// Digits of the hit's time and range. The range's are relative to x* itself, unless the launch is so near
+// vertical that x* is under a tenth of v0 t* (at 90 degrees it is zero): then relative to v0 t*, the distance
+// the ball travels, which the report states beside them.
 HitDigits hitDigits(const Scene& scene, const projectile::GroundHit& hit) {
     if (!hit.found) return {};
+    const double tStar = projectile::exact::flightTime(scene), xStar = projectile::exact::range(scene);
+    const double travelled = scene.launchSpeed * tStar;
+    const double scale = std::abs(xStar) < 0.1 * travelled ? travelled : 0.0;
+    return {simlab::accuracyDigits(hit.time, tStar), simlab::accuracyDigits(hit.x, xStar, scale), scale};
+}
+
+// Why the event machinery cannot follow this flight, or "". Simbody tells event times apart to about its
+// SignificantReal, 1.8e-14 s, near t = 0: a flight of t* s is timed to about log10(t* / 1.8e-14) digits (measured:
+// 5.1 at 1.2e-9 s, 2.1 at 1.2e-12 s, and below that a hit it may miss), so under 1e-9 s it is refused. A flight of
+// more than 1e150 s trips an assertion in its interpolation, which aborts the program (measured: 5e151 s runs,
+// 5e156 s aborts).
+std::string flightProblem(const Scene& scene) {
     const double tStar = projectile::exact::flightTime(scene);
-    return {simlab::accuracyDigits(hit.time, tStar),
-            simlab::accuracyDigits(hit.x, projectile::exact::range(scene), scene.launchSpeed * tStar)};
+    char why[240];
+    if (!(tStar <= 1e150)) {
+        std::snprintf(why, sizeof why,
+                      "the flight lasts %.3g s (2 v0 sin(theta)/g), longer than Simbody's event handling can follow "
+                      "(1e+150 s): give a larger --gravity or a smaller --speed", tStar);
+        return why;
+    }
+    if (!(tStar >= 1e-9)) {
+        std::snprintf(why, sizeof why,
+                      "the flight lasts %.3g s (2 v0 sin(theta)/g): Simbody times events to about 1.8e-14 s, so a "
+                      "flight under 1e-09 s gets fewer than 5 digits: give a larger --speed or a smaller --gravity",
+                      tStar);
+        return why;
+    }
+    return "";
 }
 
 projectile::GroundHit reportLanding(const Options& o) {
@@ -68,7 +96,12 @@ projectile::GroundHit reportLanding(const Options& o) {
                 o.scene.groundHitWindow, landing.hit.time, landing.hit.x, landing.integrator.method.c_str(),
                 landing.integrator.stepsTaken);
     std::printf("  exact t* = 2 v0 sin(theta)/g = %.12g s: %.1f accurate digits\n", tStar, digits.time);
-    std::printf("  exact x* = v0 cos(theta) t*  = %.12g m: %.1f accurate digits\n", xStar, digits.range);
+    if (digits.rangeScale > 0) {
+        std::printf("  exact x* = v0 cos(theta) t*  = %.12g m: %.1f accurate digits of v0 t* = %.6g m (x* is near 0)\n",
+                    xStar, digits.range, digits.rangeScale);
+    } else {
+        std::printf("  exact x* = v0 cos(theta) t*  = %.12g m: %.1f accurate digits\n", xStar, digits.range);
+    }
     return landing.hit;
 }
 
@@ -102,7 +135,7 @@ int runOnce(const Options& o) {
     const simlab::RunSettings& run = o.program.run;
     char banner[320];
     std::snprintf(banner, sizeof banner,
-                  "Projectile: a %g kg baseball at %g m/s, %g degrees, g = %g m/s^2; %s, accuracy %g, dt %g s, "
+                  "Projectile: a %g kg baseball at %g m/s, %.12g degrees, g = %g m/s^2; %s, accuracy %g, dt %g s, "
                   "0 <= t <= %g s",
                   o.scene.mass, o.scene.launchSpeed, o.scene.launchAngleDegrees, o.scene.gravity,
                   run.integrator.c_str(), run.accuracy, run.dt, run.finalTime);
@@ -127,6 +160,10 @@ int runOnce(const Options& o) {
     };
     tabulation.program = "projectile";
     tabulation.conserved = "mechanicalEnergy";
+    tabulation.conservedScale = [&](const projectile::Sample& s) {
+        return 0.5 * o.scene.mass * (s.xVelocity * s.xVelocity + s.yVelocity * s.yVelocity) +
+               o.scene.mass * o.scene.gravity * std::abs(s.y);
+    };
     projectile::Model model;
     const auto result = simlab::runTabulated(o.scene, model, o.program, tabulation);
 
@@ -216,6 +253,10 @@ int main(int argc, char** argv) {
     if (const int status = simlab::parseCommandLine(app, argc, argv); status >= 0) return status;
 
     if (const int status = simlab::checkRunSettings("projectile", o.program.run); status >= 0) return status;
+    if (const std::string problem = flightProblem(o.scene); !problem.empty() && o.program.from.empty()) {
+        std::cerr << "projectile: error: " << problem << '\n';
+        return 2;
+    }
     return simlab::runGuarded("projectile", [&] {
         if (!o.program.from.empty()) return drawFrom(o);
         return o.program.trade ? runTrade(o) : runOnce(o);

@@ -26,6 +26,7 @@
 #include "simlab/engine/files.h"
 #include "simlab/engine/manifest.h"
 #include "simlab/engine/process.h"
+#include "simlab/cli_checks.h"
 #include "simlab/engine/text.h"
 #include <regex>
 #include <toml++/toml.h>
@@ -436,13 +437,16 @@ struct ExtremesOptions {
     double cap = 20;
 };
 
+/// Fewer digits than these, and a run that finished is called inaccurate, not accurate.
+constexpr double kAccurateDigits = 3;
+
 /// One extreme case from the lab's extremes.toml, and what became of it.
 struct Extreme {
     std::string lab, name, expect;
     std::vector<std::string> args;
     std::vector<std::string> troubleWords;  ///< the lab's: a finished run that prints one of these names trouble
     bool slow = false;
-    std::string outcome;  ///< accurate, rejected, trouble, or SILENT: ... (a defect)
+    std::string outcome;  ///< accurate, inaccurate, rejected, trouble, or SILENT: ... (a defect)
     double digits = NAN;
     double seconds = 0;
     std::string line;     ///< the program's own words for it
@@ -573,7 +577,9 @@ void runExtreme(const std::string& program, double cap, Extreme& e) {
         } else if (std::isnan(e.digits)) {
             e.outcome = "SILENT: finished without a figure";
         } else {
-            e.outcome = "accurate";
+            // The label says what the digits say: a run that finished with fewer than kAccurateDigits is honest
+            // about its figure, and inaccurate.
+            e.outcome = e.digits >= kAccurateDigits ? "accurate" : "inaccurate";
             e.line = lineWith(r.output, "accurate digits");
         }
     }
@@ -653,11 +659,11 @@ void addStudy(CLI::App& app) {
     trade->add_flag("--quick", options->quick, "fewer step sizes, one timed repeat, a cap of 2e5 evaluations");
     trade->add_option("--max-evaluations", options->maxEvaluations,
                       "the cost cap: evaluations one point may take (default 5e5; 2e5 with --quick)")
-        ->check(CLI::Range(100.0, 1e9));
+        ->check(simlab::between(100.0, 1e9));
     trade->add_option("--cap", options->cap,
                       "seconds of CPU time one point may take (default 600): a net for a run that would not end, "
                       "never the cost cap (a point it stops is failed, and says so)")
-        ->check(CLI::Range(0.01, 3600.0));
+        ->check(simlab::between(0.01, 3600.0));
     trade->add_option("--repeats", options->repeats, "timed runs per point, the fastest kept (default 3)")
         ->check(CLI::Range(1, 100));
     trade->add_flag("!--no-plots", options->plots, "write trade.csv and the table only");
@@ -688,13 +694,14 @@ void addStudy(CLI::App& app) {
     CLI::App* extreme = study->add_subcommand(
         "extremes", "Runs the lab program on its extreme cases (assignments/LAB/extremes.toml: tiny, huge, zero and "
                     "degenerate scenes, settings at their limits), each under a time cap, and names each outcome: "
-                    "accurate (with digits), rejected or trouble (with the program's one line). Exits 1 if any "
+                    "accurate (with digits; inaccurate below 3), rejected or trouble (with the program's one line). "
+                    "Exits 1 if any "
                     "ends silently or not as the lab promises.");
     extreme->add_option("lab", extremes->lab, "apple, projectile, book or all")->required();
     extreme->add_option("--output,-o", extremes->output, "folder for extremes.csv")->capture_default_str();
     extreme->add_flag("--quick", extremes->quick, "skip the cases marked slow");
     extreme->add_option("--cap", extremes->cap, "seconds of CPU time one case may take (wall time: five times as many)")
-        ->check(CLI::Range(1.0, 3600.0))
+        ->check(simlab::between(1.0, 3600.0))
         ->capture_default_str();
     extreme->callback([extremes] { runExtremes(*extremes); });
 }

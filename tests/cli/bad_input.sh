@@ -47,6 +47,11 @@ expect_error "rubric with a syntax error" "error in the rubric: .*bad.toml:1:" \
 expect_error "apple: unknown integrator" "unknown integrator 'Euler'; choose one of: RungeKuttaMerson" \
   "$BIN_DIR/apple-reference" --integrator Euler
 expect_error "apple: negative dt" "dt: must be a positive number, got -1" "$BIN_DIR/apple-reference" --dt -1
+# A range's limits as written: 1e-15, not CLI11's six decimals ("0.000000").
+expect_error "apple: an accuracy below the range" "accuracy: must be between 1e-15 and 0.5, got 1e-20" \
+  "$BIN_DIR/apple-reference" --accuracy 1e-20
+expect_error "apple: a negative gravity" "gravity: must be between 0 and 10000, got -1" \
+  "$BIN_DIR/apple-reference" --gravity -1
 expect_error "apple: dt beyond the final time" "dt must not exceed the final time" \
   "$BIN_DIR/apple-reference" --dt 5 --final-time 4 --quiet
 expect_error "apple: results file in a missing folder" "cannot write results file" \

@@ -52,4 +52,15 @@ if command -v gnuplot >/dev/null; then
   run_capture plot gnuplot -e "out='projectile.png'" "$SOURCE_DIR/handouts/plots/projectile.gp"
   check "the handout's gnuplot script plots y(x)" test -s projectile.png -a "$(status_of plot)" -eq 0
 fi
+# Near vertical, x* is near zero: its digits are of v0 t*, and the line says so; the banner keeps the angle's digits.
+run_capture vertical "$projectile" --angle 89.9999999 --quiet --output vertical.txt
+check "a launch a tenth of a microdegree short of vertical states the scale of x*'s digits" \
+  grep -qE 'exact x\* .*accurate digits of v0 t\* = 407\.773 m \(x\* is near 0\)' vertical.out
+check "and its banner shows the angle as given, not rounded to 90" grep -q '89\.9999999 degrees' vertical.out
+check "at 35 degrees x*'s digits are its own" grep -qE 'exact x\* .*: [0-9.]+ accurate digits$' default.out
+# A tiny energy (a ball at 1e-8 m/s) whose terms cancel is no blow-up: the run ends with its ground hit.
+run_capture slow "$projectile" --speed 1e-8 --quiet --output slow.txt
+check "a ball at 1e-8 m/s runs to its ground hit (its energy's rounding is not growth)" \
+  bash -c "test $(status_of slow) -eq 0 && grep -q 'Ground hit' slow.out"
+
 finish

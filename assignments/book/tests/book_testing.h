@@ -67,10 +67,10 @@ double relativeChange(const Run& run, F f) {
     const SimTK::Vec3 first(f(run.samples.front()));
     double worst = 0;
     for (const Sample& s : run.samples) {
-        const double change = (SimTK::Vec3(f(s)) - first).norm();
+        const double change = exact::magnitude(SimTK::Vec3(f(s)) - first);
         worst = std::isnan(change) ? INFINITY : std::max(worst, change);
     }
-    return worst / first.norm();
+    return worst / exact::magnitude(first);
 }
 
 /// The student's answers file, BookAnswers.toml: each section's values as written.
@@ -108,6 +108,10 @@ inline std::string countLine(int right, std::size_t of, const std::vector<std::s
     }
     return line;
 }
+
+/// The words a stability answer may be, as a message says them: what the whole motion does, which a linear analysis
+/// ("neutrally stable") does not decide.
+inline std::string stabilityWords() { return "stable or unstable, for the whole motion, not its linearization"; }
 
 /// The quantities the answers file asks about, and how to read each from a sample.
 inline const std::vector<std::pair<std::string, SimTK::Vec3 (*)(const Sample&)>>& quantities() {

@@ -67,21 +67,21 @@ TEST_CASE("the answers say which quantities are conserved", "[book][answers]") {
 }
 
 TEST_CASE("the answers say which spins are stable", "[book][answers]") {
-    // Spin about the minimum and maximum axes is stable (a linear analysis says neutrally stable: both are
-    // accepted); about the intermediate axis it is unstable. As above, wrong answers are counted, not named.
+    // What the whole motion does, as the handout asks: spin about the minimum and maximum axes is stable (the wobble
+    // stays as small as it started, for all time: K and |H| are conserved), about the intermediate axis unstable.
+    // "Neutrally stable" is where a linear analysis stops, not an answer to the question (stabilityWords). As
+    // above, wrong answers are counted, not named.
     const Answers answers = readAnswers();
-    const std::map<std::string, std::vector<std::string>> truth = {{"minimum", {"stable", "neutrally stable"}},
-                                                                   {"intermediate", {"unstable"}},
-                                                                   {"maximum", {"stable", "neutrally stable"}}};
+    const std::map<std::string, std::string> truth = {{"minimum", "stable"}, {"intermediate", "unstable"}, {"maximum", "stable"}};
     int right = 0;
     std::vector<std::string> unreadable;
-    for (const auto& [axis, accepted] : truth) {
+    for (const auto& [axis, answer] : truth) {
         const auto given = answers.stability.find(axis);
         const std::string value = given == answers.stability.end() ? "" : given->second;
-        if (value != "stable" && value != "neutrally stable" && value != "unstable") unreadable.push_back(axis);
-        else if (std::count(accepted.begin(), accepted.end(), value)) ++right;
+        if (value != "stable" && value != "unstable") unreadable.push_back(axis);
+        else if (value == answer) ++right;
     }
-    grading::measured(right, "right", countLine(right, truth.size(), unreadable, "stable, neutrally stable or unstable"));
+    grading::measured(right, "right", countLine(right, truth.size(), unreadable, stabilityWords()));
     grading::partialCredit(right / 3.0);
     CHECK(right == 3);
 }

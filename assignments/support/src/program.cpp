@@ -38,7 +38,7 @@ void addProgramOptions(CLI::App& app, ProgramOptions& options) {
         })
         ->capture_default_str();
     app.add_option("--accuracy", run.accuracy, "relative accuracy of the error-controlled integrators")
-        ->check(CLI::Range(1e-15, 0.5).description("between 1e-15 and 0.5"))
+        ->check(between(1e-15, 0.5))
         ->capture_default_str();
     app.add_option("--dt", run.dt, "seconds between samples; also the step of fixed-step integration")
         ->check(positive())

@@ -13,6 +13,7 @@ namespace simlab {
 
 namespace {
 constexpr int kScreenWidth = 16;  // characters per column on the screen
+constexpr double kRounding = 1e-12;  // of a sum's terms: what rounding can leave of terms that cancel
 }
 
 ResultsTable::ResultsTable(std::vector<std::string> columns, const std::string& path, std::ostream* screen)
@@ -29,7 +30,7 @@ ResultsTable::~ResultsTable() {
     if (file_) std::fclose(file_);
 }
 
-void ResultsTable::add(const std::vector<double>& values) {
+void ResultsTable::add(const std::vector<double>& values, double scale) {
     if (values.size() != columns_.size()) {
         throw std::logic_error("results row has " + std::to_string(values.size()) + " values for " +
                                std::to_string(columns_.size()) + " columns");
@@ -46,7 +47,8 @@ void ResultsTable::add(const std::vector<double>& values) {
     if (watched_ >= 0) {
         const double v = values[static_cast<std::size_t>(watched_)];
         if (rows_ == 0) watchedFirst_ = v;
-        if (watchedFirst_ != 0 && std::abs(v) > watchedFactor_ * std::abs(watchedFirst_)) {
+        const double bound = std::max(std::abs(watchedFirst_), kRounding * std::abs(scale));
+        if (bound > 0 && std::abs(v) > watchedFactor_ * bound) {
             char what[240];
             std::snprintf(what, sizeof what, "the run broke at t = %g s: %s grew from %.6g to %.6g, more than %g times",
                           values[0], columns_[static_cast<std::size_t>(watched_)].c_str(), watchedFirst_, v,

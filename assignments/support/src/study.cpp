@@ -1,5 +1,7 @@
 #include "simlab/study.h"
 
+#include "simlab/cli_checks.h"
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -7,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -45,14 +48,15 @@ struct Point {
     double step = 0;   ///< s, for "fixed step"
 };
 
-/// What a point measured.
+/// What a point measured. A figure the point did not measure is NaN, an empty cell in trade.csv: a point not run
+/// reached no time, and a run that did not reach the final time has no final digits.
 struct Outcome {
     std::string status = "ok";  ///< ok, too costly, failed, blew up, no error control
     std::string message;
-    double reached = 0;        ///< s of simulated time
-    double finalDigits = 0;
-    double worstDigits = 0;
-    double drift = 0;          ///< largest |conserved - its start| / the subject's scale
+    double reached = NAN;      ///< s of simulated time
+    double finalDigits = NAN;  ///< at the final time, for a run that got there
+    double worstDigits = NAN;  ///< the fewest over the steps it took (up to `reached`)
+    double drift = NAN;        ///< largest |conserved - its start| / the subject's scale, over the same steps
     int stepsTaken = 0, stepsAttempted = 0, evaluations = 0;
     double seconds = NAN;      ///< fastest timed repeat
     int repeats = 0;
@@ -114,14 +118,15 @@ void measure(const Subject& subject, const Point& point, const Settings& setting
         [&](const SimTK::State& state, bool last) {
             out.worstDigits = first ? instance->digits(state) : std::min(out.worstDigits, instance->digits(state));
             if (first) start = instance->conserved(state);
-            first = false;
             const double drift = std::abs(instance->conserved(state) - start) / subject.conservedScale;
-            out.drift = std::max(out.drift, std::isfinite(drift) ? drift : INFINITY);
+            out.drift = first ? 0.0 : std::max(out.drift, std::isfinite(drift) ? drift : INFINITY);
+            first = false;
             if (last) out.finalDigits = instance->finalDigits(state);
         });
     out.reached = run.reached;
     out.status = run.status;
     out.message = run.message;
+    if (run.status != "ok") out.finalDigits = NAN;  // it stopped short of the final time
     if (run.status == "blew up" || run.status == "failed") return;
     out.stepsTaken = run.integrator.stepsTaken;
     out.stepsAttempted = run.integrator.stepsAttempted;
@@ -249,7 +254,8 @@ void runSubject(const std::string& lab, const Subject& subject, const Settings& 
     }
     struct Sweep {
         std::string key;
-        int points = 0, ok = 0, costly = 0, failed = 0;
+        int points = 0, ok = 0, costly = 0;
+        std::vector<std::string> failures;  // "1e-13: blew up", a point each
         double best = -INFINITY;
         long evaluations = 0;
     } sweep;
@@ -258,7 +264,11 @@ void runSubject(const std::string& lab, const Subject& subject, const Settings& 
         std::ostringstream line;
         line << "  " << subject.name << ": " << sweep.key << ": " << sweep.ok << " of " << sweep.points << " ok";
         if (sweep.costly) line << ", " << sweep.costly << " too costly";
-        if (sweep.failed) line << ", " << sweep.failed << " failed or blew up";
+        if (!sweep.failures.empty()) {
+            line << ", " << sweep.failures.size() << " failed or blew up (";
+            for (std::size_t i = 0; i < sweep.failures.size(); ++i) line << (i ? "; " : "") << sweep.failures[i];
+            line << ")";
+        }
         if (std::isfinite(sweep.best)) line << "; best " << std::fixed << std::setprecision(1) << sweep.best << " digits";
         line << "; " << sweep.evaluations << " evaluations in all\n";
         std::cerr << line.str();
@@ -288,7 +298,8 @@ void runSubject(const std::string& lab, const Subject& subject, const Settings& 
                                                                                    : " at fixed steps");
         if (sweepKey != sweep.key) {
             tell();
-            sweep = Sweep{sweepKey};
+            sweep = Sweep();
+            sweep.key = sweepKey;
         }
         if (out.status == "no error control") continue;
         ++sweep.points;
@@ -298,7 +309,9 @@ void runSubject(const std::string& lab, const Subject& subject, const Settings& 
         } else if (out.status == "too costly") {
             ++sweep.costly;
         } else {
-            ++sweep.failed;
+            char setting[32];
+            std::snprintf(setting, sizeof setting, "%g", point.mode == "accuracy" ? point.accuracy : point.step);
+            sweep.failures.push_back(std::string(setting) + (point.mode == "accuracy" ? "" : " s") + ": " + out.status);
         }
         sweep.evaluations += out.evaluations;
     }
@@ -315,12 +328,12 @@ int studyMain(int argc, char** argv, const std::string& lab, const std::vector<S
                  "`simlab study trade " + lab + "`).", lab + "-study"};
     app.add_flag("--quick", settings.quick, "fewer step sizes, one timed repeat and a cap of 2e5 evaluations");
     app.add_option("--max-evaluations", settings.maxEvaluations, "the cost cap: evaluations one point may take")
-        ->check(CLI::Range(100.0, 1e9))
+        ->check(between(100.0, 1e9))
         ->capture_default_str();
     app.add_option("--cap", settings.cap,
                    "seconds of CPU time a point may take: a net for a run that would not end (a point it stops is "
                    "failed, and says so), never the cost cap")
-        ->check(CLI::Range(0.01, 3600.0))
+        ->check(between(0.01, 3600.0))
         ->capture_default_str();
     app.add_option("--repeats", settings.repeats, "timed runs per point; the fastest is kept")
         ->check(CLI::Range(1, 100))

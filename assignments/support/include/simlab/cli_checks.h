@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace simlab {
@@ -18,6 +19,26 @@ inline CLI::Validator positive() {
             return std::string();
         },
         "POSITIVE");
+}
+
+/// For options with a range: "--accuracy: must be between 1e-15 and 0.5, got 1e-20", the limits as written
+/// (CLI::Range prints them with six decimals, so 1e-15 shows as 0.000000).
+inline CLI::Validator between(double low, double high) {
+    auto shown = [](double value) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", value);
+        return std::string(text);
+    };
+    const std::string range = "between " + shown(low) + " and " + shown(high);
+    return CLI::Validator(
+        [low, high, range](std::string& text) {
+            double value = 0;
+            if (!CLI::detail::lexical_cast(text, value) || !(value >= low && value <= high)) {
+                return "must be " + range + ", got " + text;
+            }
+            return std::string();
+        },
+        range);
 }
 
 }  // namespace simlab

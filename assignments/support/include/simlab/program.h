@@ -2,6 +2,8 @@
 // and the animation.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -147,6 +149,9 @@ struct Tabulation {
     std::string program;                                      ///< for the progress lines of a long run
     std::string conserved;       ///< a column the run should conserve (the energy), or empty
     double conservedGrowth = 1e6;  ///< the run fails if |conserved| grows past this many times its first value
+    /// The size of the terms the conserved quantity sums in a sample (for an energy, |kinetic| + |potential|), or
+    /// empty where it has no terms that cancel: near a zero, growth is judged against rounding on that scale.
+    std::function<double(const Sample&)> conservedScale;
 };
 
 /// One run of a lab program: open the results file (an unwritable path fails before anything runs), print the
@@ -177,12 +182,22 @@ RunResult<Sample> runTabulated(const Scene& scene, Model& model, const ProgramOp
     }
     RunResult<Sample> result;
     SolverChatter chatter(options.run.integrator == "CPodes");
+    // Where the conserved column sums terms that cancel, how far they outgrow it: rounding on the terms' scale
+    // leaves only so many of its digits, which the run then says.
+    const auto conservedAt = std::find(tabulation.columns.begin(), tabulation.columns.end(), tabulation.conserved);
+    double termsOverValue = 0, largestTerms = 0;
     try {
         result = run<Sample>(
             scene, model, options.run,
             [&](const Sample& s) {
                 const std::vector<double> row = tabulation.row(s);
-                table.add(row);
+                const double terms = tabulation.conservedScale ? tabulation.conservedScale(s) : 0.0;
+                if (terms > 0 && conservedAt != tabulation.columns.end()) {
+                    const double value = std::abs(row[static_cast<std::size_t>(conservedAt - tabulation.columns.begin())]);
+                    termsOverValue = std::max(termsOverValue, value > 0 ? terms / value : INFINITY);
+                    largestTerms = std::max(largestTerms, terms);
+                }
+                table.add(row, terms);
                 if (!options.replay.empty()) rows.push_back(row);
                 if (!tabulation.program.empty()) progress.at(row.front());
             },
@@ -196,6 +211,16 @@ RunResult<Sample> runTabulated(const Scene& scene, Model& model, const ProgramOp
     if (const std::string said = chatter.finish(); !said.empty()) tellUser(tabulation.program + ": " + said);
     if (result.samples.empty()) throw std::runtime_error("the simulation recorded no samples");
     std::cout << "\nResults written to " << table.path() << '\n';
+    // A double holds 15.9 digits of the terms; what they cancel to keeps 15.9 - log10(terms / value) of them.
+    const double kept = 15.9 - std::log10(termsOverValue);
+    if (termsOverValue > 0 && kept < 12) {
+        char said[320];
+        std::snprintf(said, sizeof said,
+                      "Note: %s sums terms of up to %.3g that cancel, so rounding leaves about %.1f of its digits "
+                      "(the results file prints 17; the rest are rounding).\n",
+                      tabulation.conserved.c_str(), largestTerms, std::max(0.0, kept));
+        std::cout << said;
+    }
     if (replay) {
         replay->write(options.replay, tabulation.banner, tabulation.columns, rows);
         std::cout << "Replay written to " << options.replay << " (open it in a web browser)\n";

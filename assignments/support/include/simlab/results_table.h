@@ -21,10 +21,13 @@ public:
     /// screen rounded to fit the column. A row with an infinite or NaN value, or in which the watched column (see
     /// watchGrowth) has grown past its bound, is not written: the file ends with a comment line ("# ...") saying
     /// where the run broke, and add throws std::runtime_error with the same one-line message.
-    void add(const std::vector<double>& values);
+    /// `scale` is the size of the terms the watched column sums in this row (0: none given): a value within
+    /// rounding of that scale (1e-12 of it) is no growth, however small the first value was, so that a quantity
+    /// that starts at zero and sums terms that cancel is not taken for one that blew up.
+    void add(const std::vector<double>& values, double scale = 0);
 
     /// Treat `column` (a quantity the run should conserve, such as the energy) growing to more than `factor`
-    /// times its first row's magnitude as a failure of the run.
+    /// times its first row's magnitude (or its terms' rounding, see add) as a failure of the run.
     void watchGrowth(const std::string& column, double factor);
 
     /// Ends the file with the comment line "# `text`" (once; later notes are dropped).
