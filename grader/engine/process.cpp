@@ -236,8 +236,7 @@ bool mayShareMemory(const Launch& launch) { return !(launch.newNetwork && !launc
         if (::unshare(CLONE_NEWNET) != 0 && !launch.dropUser) ::unshare(CLONE_NEWUSER | CLONE_NEWNET);
     }
     if (launch.dropUser) {
-        if (::syscall(SYS_setgroups, 0, nullptr) != 0 || ::syscall(SYS_setresgid, launch.uid, launch.uid, launch.uid) != 0 ||
-            ::syscall(SYS_setresuid, launch.uid, launch.uid, launch.uid) != 0) {
+        if (!sandbox::becomeUser(launch.uid)) {
             const char message[] = "simlab: cannot switch to the sandbox user\n";
             (void)!::write(2, message, sizeof message - 1);
             ::_exit(127);

@@ -47,8 +47,10 @@ void ResultsTable::add(const std::vector<double>& values, double scale) {
     if (watched_ >= 0) {
         const double v = values[static_cast<std::size_t>(watched_)];
         if (rows_ == 0) watchedFirst_ = v;
+        // A quantity that starts at zero has no growth to measure (as before); one that starts tiny beside the
+        // terms it sums is judged against their rounding, which can exceed it.
         const double bound = std::max(std::abs(watchedFirst_), kRounding * std::abs(scale));
-        if (bound > 0 && std::abs(v) > watchedFactor_ * bound) {
+        if (watchedFirst_ != 0 && std::abs(v) > watchedFactor_ * bound) {
             char what[240];
             std::snprintf(what, sizeof what, "the run broke at t = %g s: %s grew from %.6g to %.6g, more than %g times",
                           values[0], columns_[static_cast<std::size_t>(watched_)].c_str(), watchedFirst_, v,

@@ -21,9 +21,9 @@ public:
     /// screen rounded to fit the column. A row with an infinite or NaN value, or in which the watched column (see
     /// watchGrowth) has grown past its bound, is not written: the file ends with a comment line ("# ...") saying
     /// where the run broke, and add throws std::runtime_error with the same one-line message.
-    /// `scale` is the size of the terms the watched column sums in this row (0: none given): a value within
-    /// rounding of that scale (1e-12 of it) is no growth, however small the first value was, so that a quantity
-    /// that starts at zero and sums terms that cancel is not taken for one that blew up.
+    /// `scale` is the size of the terms the watched column sums in this row (0: none given): growth is then judged
+    /// against the larger of the first value and the terms' rounding (1e-12 of them), so that a quantity that
+    /// starts tiny and sums terms that cancel is not taken for one that blew up.
     void add(const std::vector<double>& values, double scale = 0);
 
     /// Treat `column` (a quantity the run should conserve, such as the energy) growing to more than `factor`
