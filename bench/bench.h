@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,16 @@ inline engine::ProcessResult run(const std::vector<std::string>& argv, const std
     r.limits.fileMiB = 1 << 12;
     r.limits.outputKiB = 1 << 20;
     return engine::runProcess(r);
+}
+
+/// The variables that choose how simlab sandboxes a test, passed on from the benchmark's own environment, so that
+/// each way can be measured: SIMLAB_NO_BUBBLEWRAP, SIMLAB_NO_LANDLOCK, SIMLAB_NO_TEST_SERVER.
+inline std::vector<std::string> sandboxChoices() {
+    std::vector<std::string> passed;
+    for (const char* name : {"SIMLAB_NO_BUBBLEWRAP", "SIMLAB_NO_LANDLOCK", "SIMLAB_NO_TEST_SERVER"}) {
+        if (const char* value = std::getenv(name)) passed.push_back(std::string(name) + "=" + value);
+    }
+    return passed;
 }
 
 inline double median(std::vector<double> v) {

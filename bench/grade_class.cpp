@@ -49,10 +49,12 @@ std::vector<std::string> makeClass(const Manifest& manifest, const std::string& 
 
 double gradeWithSimlab(const std::string& classDir, const std::string& work, int jobs) {
     fs::create_directories(work + "/cache");
+    std::vector<std::string> environment = sandboxChoices();
+    environment.push_back("SIMLAB_CACHE=" + work + "/cache");
     const auto start = Clock::now();
     const ProcessResult graded = run({SIMLAB_SIMLAB_PATH, "grade", "apple", classDir, "--out", work + "/grades",
                                       "--jobs", std::to_string(jobs)},
-                                     work, {"SIMLAB_CACHE=" + work + "/cache"});
+                                     work, environment);
     const double seconds = since(start);
     if (!graded.exitedCleanly()) throw std::runtime_error("simlab grade failed:\n" + graded.output);
     return seconds;
@@ -103,7 +105,9 @@ int main(int argc, char** argv) {
         TempDir work("simlab-bench-");
         std::printf("Classes of %d apple submissions (%zu kinds, each file distinct), %d jobs, %d rounds of simlab and "
                     "the floor, alternating; sandbox: %s\n\n",
-                    students, kMix.size(), jobs, rounds, sandboxSupport().summary.c_str());
+                    students, kMix.size(), jobs, rounds,
+                    (sandboxSupport().summary + (testServers() ? "; each student's probes forked from one server" : ""))
+                        .c_str());
         std::printf("%-6s %-8s %12s\n", "round", "what", "s/student");
         std::vector<double> simlab, floor;
         for (int r = 0; r < rounds; ++r) {

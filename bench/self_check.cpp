@@ -70,7 +70,7 @@ void edit(const std::string& file, const std::string& tag) {
 
 double check(const std::string& dir, const std::string& lab, const std::string& source) {
     const auto start = Clock::now();
-    const ProcessResult r = run({SIMLAB_SIMLAB_PATH, "check", lab, source}, dir);
+    const ProcessResult r = run({SIMLAB_SIMLAB_PATH, "check", lab, source}, dir, sandboxChoices());
     const double seconds = since(start);
     if (!r.exitedCleanly()) throw std::runtime_error("simlab check " + lab + " failed:\n" + r.output);
     return seconds;

@@ -56,8 +56,9 @@ set(SIMLAB_SUBMISSION_FLAGS
 if(SIMLAB_STUDENT_CXX_ID STREQUAL "GNU")
   list(APPEND SIMLAB_SUBMISSION_FLAGS -Winvalid-pch)
 else()
-  # A starter's event handler keeps the members its TODOs will use: not a warning, as with GCC.
-  list(APPEND SIMLAB_SUBMISSION_FLAGS -Wno-unused-private-field)
+  # A starter's event handler keeps the members its TODOs will use: not a warning, as with GCC. A header the
+  # precompiled one was made from whose time changed but whose bytes did not (a package upgrade) leaves it valid.
+  list(APPEND SIMLAB_SUBMISSION_FLAGS -Wno-unused-private-field -fpch-validate-input-files-content)
 endif()
 set(SIMLAB_SUBMISSION_INCLUDES -isystem ${Simbody_INCLUDE_DIR})
 set(SIMLAB_SUBMISSION_COMMAND ${SIMLAB_STUDENT_CXX} ${SIMLAB_SUBMISSION_FLAGS} ${SIMLAB_SUBMISSION_INCLUDES})
@@ -73,15 +74,23 @@ else()
   set(pch ${SIMLAB_PCH_HEADER}.gch)
   set(pch_flags "")
 endif()
+# Its inputs by content (cmake/PchInputs.cmake), looked at on every build: the header is made again when a system
+# header's bytes change, even where the package gave it a time older than the header's.
+set(pch_inputs_command ${CMAKE_COMMAND} -DDEPFILE=${pch}.d -DSTAMP=${pch}.inputs
+                       -P ${PROJECT_SOURCE_DIR}/cmake/PchInputs.cmake)
+add_custom_target(simlab_pch_inputs COMMAND ${pch_inputs_command} BYPRODUCTS ${pch}.inputs VERBATIM)
 add_custom_command(
   OUTPUT ${pch}
   COMMAND ${SIMLAB_SUBMISSION_COMMAND} ${pch_flags} -x c++-header ${SIMLAB_PCH_HEADER} -o ${pch}
           -MD -MF ${pch}.d
+  COMMAND ${pch_inputs_command}
+  COMMAND ${CMAKE_COMMAND} -E touch_nocreate ${pch}  # not older than the record of its inputs
   DEPFILE ${pch}.d
-  DEPENDS ${SIMLAB_PCH_HEADER}
+  DEPENDS ${SIMLAB_PCH_HEADER} ${pch}.inputs ${PROJECT_SOURCE_DIR}/cmake/PchInputs.cmake
   COMMENT "Precompiling Simbody's headers for student code"
   VERBATIM)
 add_custom_target(simlab_pch ALL DEPENDS ${pch})
+add_dependencies(simlab_pch simlab_pch_inputs)
 if(SIMLAB_STUDENT_CXX_ID STREQUAL "Clang")
   list(APPEND SIMLAB_SUBMISSION_COMMAND -include-pch ${pch})
 else()
@@ -163,9 +172,13 @@ endfunction()
 #   TESTS <files...>         visible grader tests (Catch2), run in the judge
 #   HIDDEN_TESTS <files...>  hidden grader tests; absent from the student bundle, so optional
 #   RUBRIC <file>            points and thresholds, one [[test]] per Catch2 test case
-#   STUDY <files...>)        the work-precision study of the reference solution (simlab/study.h); optional
+#   STUDY <files...>         the work-precision study of the reference solution (simlab/study.h); optional
+#   TRADE <file>             the trade question's scene and front (simlab/trade_question.h), in the judge as text
+#                            (trade_question.inc); optional
+#   HIDDEN_TRADE <file>)     its hidden variants (trade_hidden.inc); absent from the student bundle, so optional
 function(simlab_add_assignment id)
-  cmake_parse_arguments(A "" "TITLE;SOURCE;PROGRAM;RUBRIC;CONTRACT" "MAIN;PROBE;TESTS;HIDDEN_TESTS;STUDY" ${ARGN})
+  cmake_parse_arguments(A "" "TITLE;SOURCE;PROGRAM;RUBRIC;CONTRACT;TRADE;HIDDEN_TRADE"
+                        "MAIN;PROBE;TESTS;HIDDEN_TESTS;STUDY" ${ARGN})
   foreach(required TITLE SOURCE PROGRAM RUBRIC CONTRACT MAIN PROBE TESTS)
     if(NOT A_${required})
       message(FATAL_ERROR "simlab_add_assignment(${id}): ${required} is required")
@@ -189,6 +202,27 @@ function(simlab_add_assignment id)
     if(EXISTS ${dir}/${file})
       list(APPEND tests ${file})
       set(hidden_built true)
+    endif()
+  endforeach()
+  if(A_HIDDEN_TRADE)
+    list(APPEND hidden_paths ${dir}/${A_HIDDEN_TRADE})
+  endif()
+  # The trade question's data files, as text the tests include.
+  set(trade_dir ${CMAKE_CURRENT_BINARY_DIR}/trade)
+  set(trade_texts "")
+  foreach(kind question hidden)
+    set(file ${A_TRADE})
+    if(kind STREQUAL "hidden")
+      set(file ${A_HIDDEN_TRADE})
+    endif()
+    if(file AND EXISTS ${dir}/${file})
+      add_custom_command(
+        OUTPUT ${trade_dir}/trade_${kind}.inc
+        COMMAND ${CMAKE_COMMAND} -DIN=${dir}/${file} -DOUT=${trade_dir}/trade_${kind}.inc
+                -P ${PROJECT_SOURCE_DIR}/cmake/EmbedText.cmake
+        DEPENDS ${dir}/${file} ${PROJECT_SOURCE_DIR}/cmake/EmbedText.cmake
+        VERBATIM)
+      list(APPEND trade_texts ${trade_dir}/trade_${kind}.inc)
     endif()
   endforeach()
 
@@ -242,7 +276,8 @@ function(simlab_add_assignment id)
   # included) and decides every verdict; the probe, linked per submission from the course's objects below and the
   # student's object, answers the judge's requests for observations. The tests are an object library so that
   # every Catch2 TEST_CASE registration stays in the link (an archive would drop them).
-  add_library(${id}_grader_tests OBJECT ${tests})
+  add_library(${id}_grader_tests OBJECT ${tests} ${trade_texts})
+  target_include_directories(${id}_grader_tests PRIVATE ${trade_dir})
   target_link_libraries(${id}_grader_tests PRIVATE simlab_harness simlab_support Catch2::Catch2 ${Simbody_LIBRARIES})
   add_executable(${id}-judge $<TARGET_OBJECTS:${id}_grader_tests>)
   target_link_libraries(${id}-judge PRIVATE simlab_harness simlab_observe_remote simlab_rubric simlab_support

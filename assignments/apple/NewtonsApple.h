@@ -70,10 +70,12 @@ Sample sample(const Model& model, const SimTK::State& state);
 void simulate(const Model& model, SimTK::Integrator& integrator, const SimTK::State& initial,
               const simlab::RunSettings& run, simlab::Recorder<Sample>& recorder);
 
-/// The trade: the integrator and its accuracy (or its fixed step) that keeps 10 accurate digits of y and vy at every step of the default 4 s fall
-/// for the fewest evaluations of the equations of motion. Find it with `simlab study trade apple` (on your own file:
-/// add `--file`). The grader reads integrator, accuracy, and fixedStep with dt as the step, measures the choice on
-/// your model as the study measures a setting, and compares its cost with the cheapest the study finds.
+/// The trade: with explicit Euler at fixed steps, the largest step - the fewest evaluations - that keeps 3 accurate
+/// digits of y and vy at every step of the trade question's fall, which is not the lab's default one: `simlab study
+/// trade apple --question` says which it is and studies it (in the student bundle, add `--file NewtonsApple.cpp`).
+/// Return ExplicitEuler with fixedStep set and the step in dt. The grader measures the step on your model from three
+/// starts a hair apart, keeps the worst, and holds its evaluations to the fewest that keep the digits there: full
+/// credit up to twice as many. Hidden tests hold the same step to other falls like the question's.
 simlab::RunSettings cheapestSettings();
 
 }  // namespace apple

@@ -10,7 +10,7 @@ namespace {
 
 class Fall : public simlab::study::Instance {
 public:
-    Fall(double finalTime, bool free) : finalTime_(finalTime) {
+    Fall(const apple::Scene& scene, double finalTime, bool free) : scene_(scene), finalTime_(finalTime) {
         if (!free) {
             apple::buildModel(scene_, model_);
             initial_ = apple::initialState(scene_, model_);
@@ -38,21 +38,27 @@ private:
     double finalTime_;
 };
 
+simlab::study::Subject fallOf(const apple::Scene& scene, double finalTime) {
+    simlab::study::Subject fall;
+    fall.name = "apple";
+    fall.finalTime = finalTime;
+    fall.figure = "y and vy of the falling apple (scales: the height the fall spans, g T)";
+    fall.conservedName = "mechanical energy (relative to the energy the fall exchanges)";
+    fall.conservedScale = 0.5 * scene.mass * SimTK::square(scene.gravity * finalTime);
+    fall.reference = "the exact fall, y = h - g t^2/2, vy = -g t";
+    fall.referenceDigits = [] { return simlab::kMaxDigits; };
+    fall.make = [scene, finalTime] { return std::make_unique<Fall>(scene, finalTime, false); };
+    fall.makeOverModelled = [scene, finalTime] { return std::make_unique<Fall>(scene, finalTime, true); };
+    fall.minimal = "Slider (1 dof)";
+    fall.overModelled = "Free (6 dof)";
+    return fall;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    const apple::Scene scene;
-    simlab::study::Subject fall;
-    fall.name = "apple";
-    fall.finalTime = apple::defaultRunSettings().finalTime;
-    fall.figure = "y and vy of the falling apple (scales: the height the fall spans, g T)";
-    fall.conservedName = "mechanical energy (relative to the energy the fall exchanges)";
-    fall.conservedScale = 0.5 * scene.mass * SimTK::square(scene.gravity * fall.finalTime);
-    fall.reference = "the exact fall, y = h - g t^2/2, vy = -g t";
-    fall.referenceDigits = [] { return simlab::kMaxDigits; };
-    fall.make = [T = fall.finalTime] { return std::make_unique<Fall>(T, false); };
-    fall.makeOverModelled = [T = fall.finalTime] { return std::make_unique<Fall>(T, true); };
-    fall.minimal = "Slider (1 dof)";
-    fall.overModelled = "Free (6 dof)";
-    return simlab::study::studyMain(argc, argv, "apple", {fall});
+    return simlab::study::studyMain(argc, argv, "apple", {fallOf(apple::Scene{}, apple::defaultRunSettings().finalTime)},
+                                    [](const nlohmann::json& scene, double finalTime) {
+                                        return fallOf(simlab::wire::readOver(apple::Scene{}, scene, "scene"), finalTime);
+                                    });
 }

@@ -221,17 +221,37 @@ Observed observe(const Declaration& declaration, const Parameters& parameters, c
         observed.rows.push_back(std::move(row));
     };
 
+    // The integrator returns at each of its own steps as well as at the samples (its steps are the same either
+    // way), so that the energy is followed where the motion is computed, however far apart the samples are.
+    integrator->setReturnEveryInternalStep(true);
     TimeStepper stepper(model.system, *integrator);
+    stepper.setReportAllSignificantStates(true);  // the stepper hands each step back only with this set
     try {
         stepper.initialize(initial);
     } catch (const std::exception& e) {
         throw std::runtime_error("the integrator could not start from the initial state: " + simlab::oneLineMessage(e.what()));
     }
     record(stepper.getState());
+    const double potential0 = observed.potential.front(), energy0 = observed.kinetic.front() + potential0;
+    auto atStep = [&](const State& state) {
+        if (std::isnan(observed.stepDrift)) return;
+        model.system.realize(state, Stage::Dynamics);
+        const double kinetic = model.system.calcKineticEnergy(state), potential = builtInPotentialEnergy(model, state);
+        if (!std::isfinite(kinetic + potential)) {
+            observed.stepDrift = NAN;
+            return;
+        }
+        observed.stepExchanged = std::max({observed.stepExchanged, kinetic, std::abs(potential - potential0)});
+        observed.stepDrift = std::max(observed.stepDrift, std::abs(kinetic + potential - energy0));
+    };
     for (int k = 1; k <= settings.sampleCount(); ++k) {
         const double target = settings.sampleTime(k);
         try {
-            stepper.stepTo(target);
+            while (true) {
+                stepper.stepTo(target);
+                if (stepper.getState().getTime() >= target || integrator->isSimulationOver()) break;
+                atStep(stepper.getState());
+            }
         } catch (const std::exception& e) {
             throw std::runtime_error("the integrator failed between t = " + show(stepper.getState().getTime()) +
                                      " s and " + show(target) + " s: " + simlab::oneLineMessage(e.what()));

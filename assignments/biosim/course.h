@@ -51,6 +51,11 @@ struct Observed {
     int customForces = 0;     ///< Force::Custom elements in model.forces
     int addedSubsystems = 0;  ///< subsystems buildModel added beside the course's matter and forces
     simlab::IntegratorStats integrator;
+    /// J, over the integrator's own steps between the samples, which alone can miss the largest exchange of
+    /// energy, or a change of it, when they are far apart: the largest kinetic energy or change of potential
+    /// energy, and the largest |E - E(0)| (NaN where the energy was not finite). energyBalance counts them.
+    double stepExchanged = 0;
+    double stepDrift = 0;
 };
 
 /// Digits to which two runs of one model agree at their last samples, in every generalized coordinate and speed:
@@ -60,7 +65,7 @@ double agreementDigits(const Observed& a, const Observed& b);
 
 /// The mechanical energy over a run, measured where a relative error means something: its largest departure from
 /// the value at t = 0, against the energy the motion exchanges (the largest kinetic energy or change of potential
-/// energy in the run).
+/// energy in the run), both over the samples and the integrator's steps between them.
 struct EnergyBalance {
     double initial = 0;    ///< J, kinetic plus potential at t = 0
     double drift = 0;      ///< J, the largest |E(t) - E(0)|
@@ -74,6 +79,12 @@ inline EnergyBalance energyBalance(const Observed& run) {
     for (std::size_t k = 0; k < run.time.size(); ++k) {
         b.exchanged = std::max({b.exchanged, run.kinetic[k], std::abs(run.potential[k] - run.potential.front())});
         b.drift = std::max(b.drift, std::abs(run.kinetic[k] + run.potential[k] - b.initial));
+    }
+    if (std::isnan(run.stepExchanged) || std::isnan(run.stepDrift)) {
+        b.drift = NAN;  // the energy broke between samples: no figure stands
+    } else {
+        b.exchanged = std::max(b.exchanged, run.stepExchanged);
+        b.drift = std::max(b.drift, run.stepDrift);
     }
     return b;
 }

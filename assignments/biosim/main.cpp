@@ -115,10 +115,20 @@ void reportEnergy(const Declaration& d, const Parameters& p, const biosim::Obser
         }
         return;
     }
-    const double digits = b.drift > 0 ? std::min(simlab::kMaxDigits, -std::log10(b.drift / scale)) : simlab::kMaxDigits;
+    // The energy sums kinetic and potential terms of up to |V(0)| + the exchange: where they dwarf the scale, a
+    // double's 15.9 digits of them leave fewer of the change, and no figure can claim more than that.
+    const double terms = std::abs(observed.potential.front()) + observed.kinetic.front() + b.exchanged;
+    const double kept = std::max(0.0, 15.9 - std::log10(terms / scale));
+    const double measured = b.drift > 0 ? -std::log10(b.drift / scale) : simlab::kMaxDigits;
+    const double digits = std::min({simlab::kMaxDigits, measured, kept});
     std::printf("Energy conserved to %.1f accurate digits: its largest change, %.3g J, against %s, %.3g J\n",
                 std::max(0.0, digits), b.drift, moved ? "the energy the motion exchanges" : "the energy (nothing moved)",
                 scale);
+    if (kept < 12) {
+        std::printf("Note: the energy sums terms of up to %.3g J that cancel, so rounding leaves about %.1f of its "
+                    "digits against that scale%s\n",
+                    terms, kept, measured > kept ? " (a smaller change cannot be seen)" : "");
+    }
 }
 
 // Every declared column against time, one panel per unit (angles together, speeds together, the energy), `how`

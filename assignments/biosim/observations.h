@@ -15,7 +15,7 @@ SIMLAB_WIRE(Conserved, column, when)
 SIMLAB_WIRE(Claims, degreesOfFreedom, energyConserved, energyWhen, conserved, atRest)
 SIMLAB_WIRE(Declaration, program, title, parameters, columns, claims, run)
 SIMLAB_WIRE(Observed, time, rows, q, u, kinetic, potential, model, integrator, auxiliaryStates, customForces,
-            addedSubsystems)
+            addedSubsystems, stepExchanged, stepDrift)
 SIMLAB_WIRE(ColumnTraits, repeatable, state, time, parameters)
 SIMLAB_WIRE(Mutation, damping, gravityScale, nudge)
 SIMLAB_WIRE(SchematicBody, name, index, parent, mass, com, moments, products, joint, dof, axes, jointLocation, origin,

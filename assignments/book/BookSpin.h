@@ -70,10 +70,12 @@ Sample sample(const Model& model, const SimTK::State& state);
 void simulate(const Model& model, SimTK::Integrator& integrator, const SimTK::State& initial,
               const simlab::RunSettings& run, simlab::Recorder<Sample>& recorder);
 
-/// The trade: the integrator and its accuracy (or its fixed step) that keeps 8 accurate digits of w_B at every step of the 4 s spin about the intermediate axis (the one that tumbles)
-/// for the fewest evaluations of the equations of motion. Find it with `simlab study trade book` (on your own file:
-/// add `--file`). The grader reads integrator, accuracy, and fixedStep with dt as the step, measures the choice on
-/// your model as the study measures a setting, and compares its cost with the cheapest the study finds.
+/// The trade: the integrator and its accuracy (or its fixed step) that keeps 8 accurate digits of w_B at every step
+/// of the trade question's spin about an intermediate axis (the one that tumbles) for the fewest evaluations - a book
+/// and a spin that are not the lab's default ones: `simlab study trade book --question` says which they are and
+/// studies them (in the student bundle, add `--file BookSpin.cpp`). The grader measures your choice on your model
+/// from three starts a hair apart, keeps the worst, and holds its evaluations to the work-precision front at the
+/// digits it keeps: full credit up to twice the front's cost. Hidden tests hold the same choice to other books.
 simlab::RunSettings cheapestSettings();
 
 }  // namespace book

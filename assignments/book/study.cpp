@@ -41,12 +41,12 @@ private:
     Reference reference_;
 };
 
-simlab::study::Subject spinAbout(const std::string& axis) {
-    book::Scene scene;
-    scene.w_B0 = book::exact::spin(scene, axis);
+/// The spin of `scene` (its w_B0 says about which axis) to `finalTime`, as a scene of the study named `name`.
+simlab::study::Subject spinOf(const book::Scene& scene, double finalTime, const std::string& name,
+                              const std::string& axis) {
     simlab::study::Subject s;
-    s.name = "book-" + axis;
-    s.finalTime = book::defaultRunSettings().finalTime;
+    s.name = name;
+    s.finalTime = finalTime;
     s.figure = "w_B of a spin about the " + axis + " axis (scale: |w_B(0)|)";
     s.conservedName = "kinetic energy (relative to its value)";
     s.conservedScale = book::exact::kineticEnergy(scene);
@@ -62,9 +62,29 @@ simlab::study::Subject spinAbout(const std::string& axis) {
     return s;
 }
 
+simlab::study::Subject spinAbout(const std::string& axis) {
+    book::Scene scene;
+    scene.w_B0 = book::exact::spin(scene, axis);
+    return spinOf(scene, book::defaultRunSettings().finalTime, "book-" + axis, axis);
+}
+
+/// The axis the largest component of w_B0 is about, by its moment: min, intermediate or max.
+std::string axisOf(const book::Scene& scene) {
+    int largest = 0;
+    for (int i = 1; i < 3; ++i) {
+        if (std::abs(scene.w_B0[i]) > std::abs(scene.w_B0[largest])) largest = i;
+    }
+    const std::array<int, 3> axes = book::exact::axesByMoment(scene);
+    return largest == axes[0] ? "min" : largest == axes[1] ? "intermediate" : "max";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     return simlab::study::studyMain(argc, argv, "book",
-                                    {spinAbout("min"), spinAbout("intermediate"), spinAbout("max")});
+                                    {spinAbout("min"), spinAbout("intermediate"), spinAbout("max")},
+                                    [](const nlohmann::json& given, double finalTime) {
+                                        const book::Scene scene = simlab::wire::readOver(book::Scene{}, given, "scene");
+                                        return spinOf(scene, finalTime, "book", axisOf(scene));
+                                    });
 }

@@ -78,10 +78,12 @@ Sample sample(const Model& model, const SimTK::State& state);
 void simulate(const Model& model, SimTK::Integrator& integrator, const SimTK::State& initial,
               const simlab::RunSettings& run, simlab::Recorder<Sample>& recorder);
 
-/// The trade: the integrator and its accuracy (or its fixed step) that keeps 10 accurate digits of x, y and their speeds at every step of the flight, to the ground hit
-/// for the fewest evaluations of the equations of motion. Find it with `simlab study trade projectile` (on your own file:
-/// add `--file`). The grader reads integrator, accuracy, and fixedStep with dt as the step, measures the choice on
-/// your model as the study measures a setting, and compares its cost with the cheapest the study finds.
+/// The trade: the integrator and its accuracy (or its fixed step) that keeps 10 accurate digits of x, y and their
+/// speeds at every step of the trade question's flight, to the ground hit, for the fewest evaluations - a throw that
+/// is not the lab's default one: `simlab study trade projectile --question` says which it is and studies it (in the
+/// student bundle, add `--file ProjectileMotion.cpp`). The grader measures your choice on your model from three
+/// starts a hair apart, keeps the worst, and holds its evaluations to the work-precision front at the digits it
+/// keeps: full credit up to twice the front's cost. Hidden tests hold the same choice to other throws.
 simlab::RunSettings cheapestSettings();
 
 }  // namespace projectile

@@ -13,7 +13,7 @@ namespace {
 
 class Flight : public simlab::study::Instance {
 public:
-    explicit Flight(bool free) {
+    Flight(const projectile::Scene& scene, bool free) : scene_(scene) {
         if (!free) {
             projectile::buildModel(scene_, model_);
             initial_ = projectile::initialState(scene_, model_);
@@ -48,26 +48,35 @@ private:
     SimTK::State initial_;
 };
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    const projectile::Scene scene;
+simlab::study::Subject flightOf(const projectile::Scene& scene, double finalTime) {
     simlab::study::Subject flight;
     flight.name = "projectile";
-    flight.finalTime = projectile::exact::kTradeFinalTime;
+    flight.finalTime = finalTime;
     flight.figure = "the flight against the parabola at every step; at the end, the ground hit's time and range";
     flight.conservedName = "mechanical energy (relative to the launch's kinetic energy)";
     flight.conservedScale = projectile::exact::mechanicalEnergy(scene);
     flight.reference = "the exact parabola and its hit, t* = 2 v0 sin(theta) / g, x* = v0 cos(theta) t*";
     flight.referenceDigits = [] { return simlab::kMaxDigits; };
-    flight.make = [] { return std::make_unique<Flight>(false); };
+    flight.make = [scene] { return std::make_unique<Flight>(scene, false); };
+    return flight;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const projectile::Scene scene;
+    const simlab::study::Subject flight = flightOf(scene, projectile::exact::kTradeFinalTime);
     // Side by side with the over-modelled ball, to 5.23 s (just short of the hit, which only the minimal model
     // watches for).
     simlab::study::Subject side = flight;
-    side.makeOverModelled = [] { return std::make_unique<Flight>(true); };
+    side.makeOverModelled = [scene] { return std::make_unique<Flight>(scene, true); };
     side.minimal = "two Sliders (2 dof)";
     side.overModelled = "Free (6 dof)";
     side.finalTime = projectile::defaultRunSettings().finalTime;
     const bool minimal = std::any_of(argv, argv + argc, [](const char* a) { return std::string(a) == "--minimal"; });
-    return simlab::study::studyMain(argc, argv, "projectile", {minimal ? side : flight});
+    return simlab::study::studyMain(argc, argv, "projectile", {minimal ? side : flight},
+                                    [](const nlohmann::json& given, double finalTime) {
+                                        return flightOf(simlab::wire::readOver(projectile::Scene{}, given, "scene"),
+                                                        finalTime);
+                                    });
 }

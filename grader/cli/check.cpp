@@ -73,10 +73,10 @@ void runCheck(const CheckOptions& o) {
         if (!rubric.find(name)) throw UsageError("no test named '" + name + "' in " + rubric.path);
     }
     const SubmissionFiles files = readSubmission(source, rubric, limits);
+    const Builder builder(manifest);
     if (o.format == "text") {
         std::cerr << "Building " << printable(source) << " against the " << assignment.id << " grader...\n";
     }
-    const Builder builder(manifest);
     // How long each test took in the last self-check of this lab: the judges' shares are made to end together.
     const std::string timesFile = builder.cacheDir() + "/test-seconds-" + assignment.id + ".json";
     nlohmann::json times = nlohmann::json::object();

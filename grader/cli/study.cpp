@@ -17,6 +17,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -28,6 +29,9 @@
 #include "simlab/engine/process.h"
 #include "simlab/cli_checks.h"
 #include "simlab/engine/text.h"
+#include "simlab/trade_question.h"
+#include "simlab/work_precision.h"
+#include <optional>
 #include <regex>
 #include <toml++/toml.h>
 
@@ -49,6 +53,8 @@ struct StudyOptions {
     int jobs = 2;     // labs studied at once
     bool plots = true;
     std::string file;  ///< a student file to study instead of the reference solution
+    bool question = false;  ///< the trade question's scene (tests/trade-question.json), as the grader measures it
+    bool fronts = false;    ///< measure the fronts of the question's data files and write them there
 };
 
 /// A subject's header line and its points, as the study program printed them (for `study minimal`, its rows).
@@ -270,45 +276,155 @@ void printTable(std::ostream& out, const SubjectRun& run) {
     }
 }
 
-/// `study minimal`: the scene with its minimal mobilizers and over-modelled, side by side, at each accuracy.
-void printMinimal(std::ostream& out, const std::vector<json>& rows) {
-    char line[256];
-    std::string subject;
-    double minimalSeconds = NAN, minimalEvaluations = NAN;
+/// One row of `study minimal`: a scene's two models at the same digits, each read along its own curve.
+struct EqualDigits {
+    std::string lab, subject, integrator;
+    double digits = 0;
+    work_precision::Reading minimal, over;
+};
+
+/// A scene's rows of `study minimal`, for one model (over-modelled or not).
+std::vector<work_precision::Point> curveOf(const std::vector<const json*>& rows, bool over) {
+    std::vector<work_precision::Point> points;
+    for (const json* r : rows) {
+        if ((*r)["over_modelled"].get<bool>() != over || text((*r)["status"]) != "ok") continue;
+        if (!(*r)["worst_digits"].is_number() || !(*r)["evaluations"].is_number()) continue;
+        points.push_back({(*r)["worst_digits"].get<double>(), (*r)["evaluations"].get<double>(),
+                          (*r)["seconds"].is_number() ? (*r)["seconds"].get<double>() : 0.0});
+    }
+    return work_precision::frontOf(points);
+}
+
+/// The digits at which a scene's two models are compared: whole digits from the most that either model's
+/// cheapest point keeps (but at least 1) to the fewest that either's dearest keeps, at most five of them; where the two ranges do
+/// not overlap by a digit (a motion every setting follows exactly), the digits both keep.
+std::vector<double> comparedDigits(const std::vector<work_precision::Point>& a,
+                                   const std::vector<work_precision::Point>& b) {
+    const double lo = std::max(a.front().digits, b.front().digits);
+    const double hi = std::min(a.back().digits, b.back().digits);
+    if (std::floor(hi) < std::ceil(lo)) return {std::floor(hi * 10) / 10};
+    const double first = std::max(std::ceil(lo), std::min(1.0, std::floor(hi))), last = std::floor(hi);
+    const double step = std::max(1.0, std::ceil((last - first) / 4));
+    std::vector<double> digits;
+    for (double d = first; d <= last; d += step) digits.push_back(d);
+    return digits;
+}
+
+/// The rows of `study minimal` (the study program's curves) read at equal digits, scene by scene.
+std::vector<EqualDigits> equalDigits(const std::vector<json>& rows) {
+    std::vector<std::string> order;
+    std::map<std::string, std::vector<const json*>> bySubject;
     for (const json& r : rows) {
-        if (text(r["subject"]) != subject) {
-            subject = text(r["subject"]);
-            out << '\n' << subject << " with " << text(r["integrator"]) << ", the same scene minimal and over-modelled:\n";
-            std::snprintf(line, sizeof line, "  %-9s %-20s %4s %4s %8s %12s %11s %7s %s\n", "accuracy", "model", "dof",
-                          "q", "steps", "evaluations", "seconds", "digits", "cost against minimal");
+        const std::string subject = text(r["subject"]);
+        if (!bySubject.count(subject)) order.push_back(subject);
+        bySubject[subject].push_back(&r);
+    }
+    std::vector<EqualDigits> result;
+    for (const std::string& subject : order) {
+        const std::vector<const json*>& scene = bySubject[subject];
+        const std::vector<work_precision::Point> minimal = curveOf(scene, false), over = curveOf(scene, true);
+        if (minimal.empty() || over.empty()) continue;
+        for (const double d : comparedDigits(minimal, over)) {
+            const std::optional<work_precision::Reading> m = work_precision::costAt(minimal, d);
+            const std::optional<work_precision::Reading> v = work_precision::costAt(over, d);
+            if (!m || !v) continue;
+            result.push_back({text((*scene.front())["lab"]), subject, text((*scene.front())["integrator"]), d, *m, *v});
+        }
+    }
+    return result;
+}
+
+std::string ratio(double a, double b) {
+    if (!(a > 0) || !(b > 0)) return "";
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "x%.2f", a / b);
+    return buffer;
+}
+
+/// `study minimal`: each scene's two models at equal digits, then what did not run.
+void printMinimal(std::ostream& out, const std::vector<json>& rows, const std::vector<EqualDigits>& compared) {
+    char line[256];
+    std::vector<std::string> order;
+    for (const json& r : rows) {
+        if (std::find(order.begin(), order.end(), text(r["subject"])) == order.end()) order.push_back(text(r["subject"]));
+    }
+    for (const std::string& subject : order) {
+        const json *minimal = nullptr, *over = nullptr;
+        std::vector<const json*> failed;
+        int measured = 0, timedRuns = 0;
+        for (const json& r : rows) {
+            if (text(r["subject"]) != subject) continue;
+            const bool isOver = r["over_modelled"].get<bool>();
+            const json*& first = isOver ? over : minimal;
+            if (!first) first = &r;
+            if (text(r["status"]) != "ok") failed.push_back(&r);
+            if (!isOver) ++measured;
+            if (r["repeats"].is_number()) timedRuns = std::max(timedRuns, r["repeats"].get<int>());
+        }
+        if (!minimal || !over) continue;
+        out << '\n' << subject << " with " << text((*minimal)["integrator"]) << ", the same scene minimal and "
+            << "over-modelled, at equal digits:\n";
+        auto describe = [](const json& r) {
+            const std::string q = number(r["coordinates"], "%.0f");
+            return text(r["model"]) + ": " + number(r["dof"], "%.0f") + " dof in " + q +
+                   (q == "1" ? " coordinate" : " coordinates");
+        };
+        out << "  minimal:       " << describe(*minimal) << "\n  over-modelled: " << describe(*over) << '\n';
+        std::snprintf(line, sizeof line, "  %6s  %-24s  %-24s\n", "", "minimal", "over-modelled");
+        out << line;
+        std::snprintf(line, sizeof line, "  %6s  %12s %11s  %12s %11s  %s\n", "digits", "evaluations", "s/run",
+                      "evaluations", "s/run", "over-modelled against minimal");
+        out << line;
+        bool loosest = false;
+        for (const EqualDigits& e : compared) {
+            if (e.subject != subject) continue;
+            const bool mark = !e.minimal.interpolated || !e.over.interpolated;
+            loosest = loosest || mark;
+            char d[16], me[24], ms[24], oe[24], os[24];
+            std::snprintf(d, sizeof d, "%.1f%s", e.digits, mark ? "*" : "");
+            std::snprintf(me, sizeof me, "%.0f", e.minimal.cost);
+            std::snprintf(ms, sizeof ms, "%.3g", e.minimal.seconds);
+            std::snprintf(oe, sizeof oe, "%.0f", e.over.cost);
+            std::snprintf(os, sizeof os, "%.3g", e.over.seconds);
+            std::snprintf(line, sizeof line, "  %6s  %12s %11s  %12s %11s  %s evaluations, %s time\n", d, me, ms, oe, os,
+                          ratio(e.over.cost, e.minimal.cost).c_str(), ratio(e.over.seconds, e.minimal.seconds).c_str());
             out << line;
         }
-        const bool over = r["over_modelled"].get<bool>();
-        std::string against;
-        if (text(r["status"]) != "ok") {
-            against = text(r["status"]) + ": " + text(r["message"]);
-        } else if (!over) {
-            minimalSeconds = r["seconds"].get<double>();
-            minimalEvaluations = r["evaluations"].get<double>();
-        } else if (minimalSeconds > 0) {
-            char ratio[96];
-            std::snprintf(ratio, sizeof ratio, "x%.2f time, x%.2f evaluations", r["seconds"].get<double>() / minimalSeconds,
-                          r["evaluations"].get<double>() / minimalEvaluations);
-            against = ratio;
+        out << "  Each model's cost is read along its own curve of " << measured << " accuracies (1e-1 to 1e-12):\n"
+            << "  digits kept all the way; seconds per run, the fastest of alternating batches of runs at least\n"
+            << "  0.02 s long"
+            << " (up to " << timedRuns << " runs timed per accuracy).\n";
+        if (loosest) out << "  * the loosest accuracy already keeps these digits: its cost is what they cost at most.\n";
+        for (const json* p : failed) {
+            out << "    " << text((*p)["model"]) << ", " << setting(*p) << ": " << text((*p)["status"]) << ", "
+                << engine::printable(text((*p)["message"])) << '\n';
         }
-        std::snprintf(line, sizeof line, "  %-9s %-20s %4s %4s %8s %12s %11s %7s %s\n",
-                      over ? "" : number(r["accuracy"], "%.0e").c_str(), text(r["model"]).c_str(),
-                      number(r["dof"], "%.0f").c_str(), number(r["coordinates"], "%.0f").c_str(),
-                      number(r["steps_taken"], "%.0f").c_str(), number(r["evaluations"], "%.0f").c_str(),
-                      number(r["seconds"], "%.3g").c_str(), number(r["worst_digits"], "%.1f").c_str(), against.c_str());
-        out << line;
     }
 }
 
-void writeMinimalCsv(const fs::path& path, const std::vector<json>& rows) {
+/// minimal.csv: each scene's two models at equal digits.
+void writeMinimalCsv(const fs::path& path, const std::vector<EqualDigits>& compared) {
+    std::ostringstream out;
+    out << "lab,subject,integrator,digits,read,minimal_evaluations,minimal_seconds,over_evaluations,over_seconds,"
+           "evaluations_ratio,time_ratio\n";
+    char line[512];
+    for (const EqualDigits& e : compared) {
+        const bool interpolated = e.minimal.interpolated && e.over.interpolated;
+        std::snprintf(line, sizeof line, "%.1f,%s,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f\n", e.digits,
+                      interpolated ? "along both curves" : "at a loosest accuracy", e.minimal.cost, e.minimal.seconds,
+                      e.over.cost, e.over.seconds, e.over.cost / e.minimal.cost,
+                      e.minimal.seconds > 0 ? e.over.seconds / e.minimal.seconds : NAN);
+        out << engine::csvCell(e.lab) << ',' << engine::csvCell(e.subject) << ',' << engine::csvCell(e.integrator) << ','
+            << line;
+    }
+    engine::writeFileAtomically(path.string(), out.str());
+}
+
+/// minimal-points.csv: each model's curve, a row per accuracy, as the study program measured it.
+void writeMinimalPointsCsv(const fs::path& path, const std::vector<json>& rows) {
     std::ostringstream out;
     out << "lab,subject,model,over_modelled,dof,coordinates,integrator,accuracy,status,steps_taken,evaluations,"
-           "seconds,worst_digits,final_digits,message\n";
+           "seconds,timed_runs,worst_digits,final_digits,message\n";
     for (const json& r : rows) {
         out << engine::csvCell(text(r["lab"])) << ',' << engine::csvCell(text(r["subject"])) << ','
             << engine::csvCell(text(r["model"])) << ',' << (r["over_modelled"].get<bool>() ? "yes" : "no") << ','
@@ -316,10 +432,120 @@ void writeMinimalCsv(const fs::path& path, const std::vector<json>& rows) {
             << engine::csvCell(text(r["integrator"])) << ',' << number(r["accuracy"]) << ','
             << engine::csvCell(text(r["status"])) << ',' << number(r["steps_taken"], "%.0f") << ','
             << number(r["evaluations"], "%.0f") << ',' << number(r["seconds"], "%.6g") << ','
-            << number(r["worst_digits"], "%.2f") << ',' << number(r["final_digits"], "%.2f") << ','
-            << engine::csvCell(text(r["message"])) << '\n';
+            << number(r["repeats"], "%.0f") << ',' << number(r["worst_digits"], "%.2f") << ','
+            << number(r["final_digits"], "%.2f") << ',' << engine::csvCell(text(r["message"])) << '\n';
     }
     engine::writeFileAtomically(path.string(), out.str());
+}
+
+/// A lab's trade question as its data file states it: `kind` is "question" (tests/trade-question.json) or
+/// "hidden" (tests/trade-hidden.json, absent from the student bundle).
+simlab::trade::Question tradeQuestionOf(const engine::Assignment& a, const std::string& kind) {
+    const fs::path file = fs::path(a.dir) / "tests" / ("trade-" + kind + ".json");
+    if (!fs::exists(file)) throw engine::UsageError(a.id + " has no trade question (" + file.string() + ")");
+    try {
+        return simlab::trade::parseQuestion(engine::readFile(file.string()), file.string());
+    } catch (const std::runtime_error& e) {
+        throw engine::UsageError(e.what());
+    }
+}
+
+/// The study program's arguments for scene `s` of `q`: the scene, its final time, the starts and what they move,
+/// and the integrators the question allows.
+std::vector<std::string> sceneArguments(const simlab::trade::Question& q, const simlab::trade::Scene& s) {
+    char finalTime[32];
+    std::snprintf(finalTime, sizeof finalTime, "%.17g", s.finalTime);
+    std::vector<std::string> argv = {"--scene", s.scene.dump(), "--final-time", finalTime, "--name",
+                                     s.name == "question" ? q.lab + "-question" : q.lab + ": " + s.name,
+                                     "--starts", std::to_string(q.starts)};
+    if (!q.nudge.empty()) argv.insert(argv.end(), {"--nudge", q.nudge});
+    if (!q.integrators.empty()) {
+        std::string names;
+        for (const std::string& name : q.integrators) names += (names.empty() ? "" : ",") + name;
+        argv.insert(argv.end(), {"--integrators", names});
+    }
+    if (q.fixedStepOnly) argv.push_back("--fixed-steps-only");
+    return argv;
+}
+
+/// `simlab study trade LAB --fronts`: every scene of the lab's trade question (and of its hidden variants, where the
+/// tree has them) studied on the reference solution as the grader measures an answer, and each scene's front -
+/// the points no cheaper point matches in digits - written into its data file.
+void writeFronts(const StudyOptions& o, const std::vector<const engine::Assignment*>& labs) {
+    struct Task {
+        const engine::Assignment* lab;
+        fs::path file;
+        json data;
+        std::size_t scene;
+        std::vector<work_precision::Point> points;
+        int status = 0;
+    };
+    std::vector<Task> tasks;
+    for (const engine::Assignment* a : labs) {
+        for (const std::string kind : {"question", "hidden"}) {
+            const fs::path file = fs::path(a->dir) / "tests" / ("trade-" + kind + ".json");
+            if (!fs::exists(file)) continue;
+            const json data = json::parse(engine::readFile(file.string()));
+            for (std::size_t i = 0; i < data.at("scenes").size(); ++i) tasks.push_back({a, file, data, i, {}, 0});
+        }
+    }
+    if (tasks.empty()) throw engine::UsageError("no trade question here to make fronts for");
+    std::atomic<std::size_t> next{0};
+    std::mutex told;
+    auto work = [&] {
+        for (std::size_t i = next++; i < tasks.size(); i = next++) {
+            Task& t = tasks[i];
+            const simlab::trade::Question q = simlab::trade::parseQuestion(t.data.dump(), t.file.string());
+            std::vector<std::string> argv = {t.lab->studyProgramPath};
+            const std::vector<std::string> scene = sceneArguments(q, q.scenes.at(t.scene));
+            argv.insert(argv.end(), scene.begin(), scene.end());
+            argv.insert(argv.end(), {"--repeats", "1"});
+            if (o.quick) argv.push_back("--quick");
+            if (o.maxEvaluations > 0) argv.insert(argv.end(), {"--max-evaluations", std::to_string(o.maxEvaluations)});
+            if (o.cap > 0) argv.insert(argv.end(), {"--cap", std::to_string(o.cap)});
+            {
+                std::lock_guard<std::mutex> guard(told);
+                std::cerr << "fronts: " << t.lab->id << ", " << q.scenes.at(t.scene).name << " ("
+                          << t.file.filename().string() << ")\n";
+            }
+            t.status = runStudyProgram(argv, false, [&t](const json& j) {
+                if (text(j["type"]) != "point" || text(j["status"]) != "ok") return;
+                if (!j["worst_digits"].is_number() || !j["evaluations"].is_number()) return;
+                t.points.push_back({j["worst_digits"].get<double>(), j["evaluations"].get<double>(), 0});
+            });
+        }
+    };
+    std::vector<std::thread> workers;
+    for (int k = 0; k < std::max(1, std::min<int>(o.jobs, static_cast<int>(tasks.size()))); ++k) workers.emplace_back(work);
+    for (std::thread& w : workers) w.join();
+    // Each file once, with every scene's front in it.
+    std::map<std::string, json> written;
+    for (Task& t : tasks) {
+        if (t.status != 0) {
+            throw std::runtime_error("the study of " + t.lab->id + " stopped with status " + std::to_string(t.status));
+        }
+        json& data = written.count(t.file.string()) ? written[t.file.string()] : (written[t.file.string()] = t.data);
+        json& scene = data["scenes"][t.scene];
+        const std::vector<work_precision::Point> front = work_precision::frontOf(t.points);
+        const double digits = data.at("digits").get<double>();
+        if (front.empty() || front.back().digits < digits) {
+            throw engine::UsageError(t.lab->id + ": no setting keeps " + number(data["digits"], "%g") + " digits on '" +
+                                     text(scene["name"]) + "' under the cap: the question cannot be answered there");
+        }
+        scene["front"] = json::array();
+        for (const work_precision::Point& p : front) {
+            char d[32];
+            std::snprintf(d, sizeof d, "%.4f", p.digits);
+            scene["front"].push_back({std::stod(d), p.cost});
+        }
+        std::cout << t.lab->id << ", " << text(scene["name"]) << ": " << front.size() << " points on the front; "
+                  << number(data["digits"], "%g") << " digits cost "
+                  << number(json(work_precision::costAt(front, digits)->cost), "%.0f") << " evaluations\n";
+    }
+    for (const auto& [file, data] : written) {
+        engine::writeFileAtomically(file, data.dump(2) + "\n");
+        std::cout << "Written: " << engine::printable(file) << '\n';
+    }
 }
 
 void runTrade(const StudyOptions& o) {
@@ -338,7 +564,43 @@ void runTrade(const StudyOptions& o) {
         labs.push_back(&a);
     }
     if (labs.empty()) throw engine::UsageError("no lab here has a study (their reference solutions are not in this tree)");
+    if ((o.question || o.fronts) && labs.front()->id == "biosim") {
+        throw engine::UsageError("biosim has no trade question: each project's is its own");
+    }
+    if (o.question && o.lab == "all") throw engine::UsageError("--question studies one lab: apple, projectile or book");
+    if (o.fronts && !o.file.empty()) throw engine::UsageError("--fronts measures the reference solution, not --file");
+    if (o.question) {
+        const simlab::trade::Question q = tradeQuestionOf(*labs.front(), "question");
+        std::cout << "The trade question of " << q.lab << ": " << q.digits << " digits at every step to "
+                  << q.scenes.at(0).finalTime << " s of this scene (the rest as the lab's default one)";
+        if (!q.integrators.empty() || q.fixedStepOnly) {
+            std::string names;
+            for (const std::string& name : q.integrators) names += (names.empty() ? "" : ", ") + name;
+            std::cout << ", with " << (names.empty() ? "any integrator" : names) << (q.fixedStepOnly ? " at fixed steps" : "");
+        }
+        std::cout << ":\n  " << q.scenes.at(0).scene.dump() << "\n";
+        if (q.starts > 1) {
+            // "/w_B0/0" reads w_B0[0].
+            std::string moved;
+            for (std::size_t at = 1, next; at <= q.nudge.size(); at = next + 1) {
+                next = std::min(q.nudge.find('/', at), q.nudge.size());
+                const std::string part = q.nudge.substr(at, next - at);
+                const bool index = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+                moved += index ? "[" + part + "]" : moved.empty() ? part : "." + part;
+            }
+            std::cout << "Each point is measured from " << q.starts << " starts (" << moved
+                      << " moved in its last digit) and kept at its worst, as the grader measures an answer.\n";
+        }
+    }
     ensureStudiesBuilt(manifest, labs, !o.file.empty());
+    if (o.fronts) {
+        std::vector<const engine::Assignment*> withQuestions;
+        for (const engine::Assignment* a : labs) {
+            if (a->id != "biosim" && !a->studyProgramPath.empty()) withQuestions.push_back(a);
+        }
+        writeFronts(o, withQuestions);
+        return;
+    }
 
     // A student's file: its own study program, built as `simlab build` builds its lab program, with grading's object
     // check, and run in grading's sandbox.
@@ -384,6 +646,11 @@ void runTrade(const StudyOptions& o) {
         for (std::size_t i = next++; i < labs.size(); i = next++) {
             const engine::Assignment* a = labs[i];
             std::vector<std::string> argv = {studyProgram.empty() ? a->studyProgramPath : studyProgram};
+            if (o.question) {
+                const simlab::trade::Question q = tradeQuestionOf(*a, "question");
+                const std::vector<std::string> scene = sceneArguments(q, q.scenes.at(0));
+                argv.insert(argv.end(), scene.begin(), scene.end());
+            }
             if (o.minimal) argv.push_back("--minimal");
             if (o.quick) argv.push_back("--quick");
             if (o.cap > 0) argv.insert(argv.end(), {"--cap", std::to_string(o.cap)});
@@ -409,10 +676,13 @@ void runTrade(const StudyOptions& o) {
         minimalRows.insert(minimalRows.end(), results[i].minimal.begin(), results[i].minimal.end());
     }
     if (o.minimal) {
-        writeMinimalCsv(dir / "minimal.csv", minimalRows);
-        printMinimal(std::cout, minimalRows);
+        const std::vector<EqualDigits> compared = equalDigits(minimalRows);
+        writeMinimalCsv(dir / "minimal.csv", compared);
+        writeMinimalPointsCsv(dir / "minimal-points.csv", minimalRows);
+        printMinimal(std::cout, minimalRows, compared);
         if (minimalRows.empty()) std::cout << "No over-modelled variant of this lab's scene is built.\n";
-        std::cout << "\nWritten to " << engine::printable(dir.string()) << ": minimal.csv\n";
+        std::cout << "\nWritten to " << engine::printable(dir.string()) << ": minimal.csv (equal digits), "
+                  << "minimal-points.csv (each model's curve)\n";
         return;
     }
     writeCsv(dir / "trade.csv", runs);
@@ -673,14 +943,22 @@ void addStudy(CLI::App& app) {
     trade->add_option("--file", options->file,
                       "study this student file instead of the reference solution: it is built with grading's object "
                       "check and run in grading's sandbox");
+    trade->add_flag("--question", options->question,
+                    "study the scene of the lab's graded trade question (not the lab's default one), each point from "
+                    "the starts the grader measures an answer from, with the integrators it allows");
+    trade->add_flag("--fronts", options->fronts,
+                    "for those who keep the course: measure the front of every scene of the trade question and its "
+                    "hidden variants on the reference solution and write it into tests/trade-*.json");
     trade->callback([options] { runTrade(*options); });
 
     CLI::App* minimal = study->add_subcommand(
-        "minimal", "What over-modelling costs: each scene with its minimal mobilizers and with a Free one, side by "
-                   "side (dof, steps, evaluations, time, digits) at accuracies 1e-4, 1e-7 and 1e-10.");
+        "minimal", "What over-modelling costs: each scene with its minimal mobilizers and over-modelled (a Free "
+                   "mobilizer, say), each model's work-precision curve measured with RungeKuttaMerson at accuracies "
+                   "1e-1 to 1e-12, and the two read at equal digits (evaluations, and seconds per run timed in "
+                   "batches).");
     minimal->add_option("lab", options->lab, "apple, projectile, book or all")->required();
-    minimal->add_option("--output,-o", options->output, "folder for minimal.csv")->capture_default_str();
-    minimal->add_option("--repeats", options->repeats, "timed runs per row, the fastest kept (default 3)")
+    minimal->add_option("--output,-o", options->output, "folder for minimal.csv and minimal-points.csv")->capture_default_str();
+    minimal->add_option("--repeats", options->repeats, "timed batches per accuracy, the fastest kept (default 3)")
         ->check(CLI::Range(1, 100));
     minimal->add_option("--file", options->file,
                         "study this student file's minimal model instead of the solution's (built with grading's "

@@ -5,6 +5,7 @@
 #include <ctime>
 #include <cctype>
 #include <chrono>
+#include <exception>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -332,6 +333,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
 
     std::atomic<std::size_t> next{0};
     std::atomic<bool> stop{false};
+    std::exception_ptr setupFailure;
     const int alreadyDone = progress.done;
     auto finish = [&](StudentRecord record, bool writeRecord, const GradeReport* report, const std::string& why) {
         const std::string dir = outDir + "/students/" + record.id;
@@ -390,6 +392,11 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
                 finish(recordOf(p.id, p.key, report, p.gathered.found.shown), true, &report, p.why);
             } catch (const Interrupted&) {
                 stop = true;  // this student has no outcome: the next run grades them
+            } catch (const SetupError&) {
+                // No student's fault, and every one would meet it: stop, keep what was graded, and say why.
+                std::lock_guard<std::mutex> guard(lock);
+                if (!setupFailure) setupFailure = std::current_exception();
+                stop = true;
             } catch (const std::exception& e) {
                 // simlab could not grade this one (a disk full, say): a row that says so, and a retry next run.
                 StudentRecord failed;
@@ -418,6 +425,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     }
     writeFileAtomically(outDir + "/summary.csv", summaryCsv(rubric, result.records));
     writeFileAtomically(outDir + "/report.html", classReportHtml(assignment, rubric, result));
+    if (setupFailure) std::rethrow_exception(setupFailure);
     if (childrenInterrupted()) throw Interrupted();
     return result;
 }

@@ -1,4 +1,5 @@
 #include "simlab/engine/build.h"
+#include "simlab/engine/errors.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -240,6 +241,7 @@ Builder::Builder(const Manifest& manifest) : manifest_(manifest), cacheDir_(mani
     fs::create_directories(cacheDir_, ignored);
     // Every student's source and object is kept here: simlab's alone (the linker gets a copy of the one it needs).
     fs::permissions(cacheDir_, fs::perms::owner_all, ignored);
+    checkPrecompiledHeader();  // before anything is built or said to be
 }
 
 std::string Builder::objectKey(const Assignment& assignment, const std::string& sourceText) const {
@@ -355,30 +357,14 @@ BuildResult Builder::compile(const Assignment& assignment, const std::string& na
         return result;
     }
 
-    // Compile a copy under the submission's own file name, so messages read "NewtonsApple.cpp:12:5: error".
-    writeFileAtomically(workDir + "/" + name, text);
     const std::string output = workDir + "/" + key + ".o";
-    ProcessRequest request;
-    request.argv = manifest_.compile;
-    request.argv.insert(request.argv.end(), {"-I" + assignment.contractInclude, "-c", name, "-o", output});
-    request.env = {"PATH=/usr/bin:/bin", "HOME=" + workDir, "TMPDIR=/tmp", kToolLocale};
-    request.workDir = workDir;
-    request.limits = toolLimits();
-    request.keepOutput = 64 * 1024;
-    // The compiler reads what the student's #include and .incbin lines name, and its messages come back in their
-    // report: it runs as the sandbox user and sees the system, the contract's headers and the precompiled header -
-    // nothing of the course's tests, rubrics or solutions, of other students', or of simlab's build tree.
-    request.isolate = true;
-    request.readOnlyPaths = includeFolders(manifest_.compile);
-    request.readOnlyPaths.push_back(assignment.contractInclude);
-    request.maskedPaths = {manifest_.sourceDir, manifest_.buildDir};
-    const ProcessResult run = runProcess(request);
+    const ProcessResult run = runCompiler(assignment, name, text, workDir, output);
     result.compileSeconds = run.wallSeconds;
     if (run.interrupted) {
         result.interrupted = true;
         return result;
     }
-    const std::string limit = stoppedByLimit("compiler", run, request.limits);
+    const std::string limit = stoppedByLimit("compiler", run, toolLimits());
     result.ok = limit.empty() && run.exitedCleanly() && fs::exists(output);
     std::string log = run.started ? run.output : run.error;
     if (!limit.empty()) {
@@ -404,6 +390,61 @@ BuildResult Builder::compile(const Assignment& assignment, const std::string& na
         result.log = log;
     }
     return result;
+}
+
+ProcessResult Builder::runCompiler(const Assignment& assignment, const std::string& name, const std::string& text,
+                                   const std::string& workDir, const std::string& output) const {
+    // Compile a copy under the submission's own file name, so messages read "NewtonsApple.cpp:12:5: error".
+    writeFileAtomically(workDir + "/" + name, text);
+    ProcessRequest request;
+    request.argv = manifest_.compile;
+    request.argv.insert(request.argv.end(), {"-I" + assignment.contractInclude, "-c", name, "-o", output});
+    request.env = {"PATH=/usr/bin:/bin", "HOME=" + workDir, "TMPDIR=/tmp", kToolLocale};
+    request.workDir = workDir;
+    request.limits = toolLimits();
+    request.keepOutput = 64 * 1024;
+    // The compiler reads what the student's #include and .incbin lines name, and its messages come back in their
+    // report: it runs as the sandbox user and sees the system, the contract's headers and the precompiled header -
+    // nothing of the course's tests, rubrics or solutions, of other students', or of simlab's build tree.
+    request.isolate = true;
+    request.readOnlyPaths = includeFolders(manifest_.compile);
+    request.readOnlyPaths.push_back(assignment.contractInclude);
+    request.maskedPaths = {manifest_.sourceDir, manifest_.buildDir};
+    return runProcess(request);
+}
+
+void Builder::checkPrecompiledHeader() const {
+    static std::once_flag once;
+    static std::string changed;
+    std::call_once(once, [&] {
+        std::string pch;
+        for (std::size_t i = 0; i + 1 < manifest_.compile.size(); ++i) {
+            if (manifest_.compile[i] == "-include-pch") pch = manifest_.compile[i + 1];
+            if (manifest_.compile[i] == "-include") pch = manifest_.compile[i + 1] + ".gch";
+        }
+        // What the header was made from, by content, as the build recorded it (cmake/PchInputs.cmake): a file
+        // touched since (its inode changed after the record) is read again and compared.
+        struct stat recorded {};
+        if (pch.empty() || ::stat((pch + ".inputs").c_str(), &recorded) != 0) return;
+        std::istringstream lines(readFile(pch + ".inputs"));
+        for (std::string line; std::getline(lines, line) && changed.empty();) {
+            const std::size_t space = line.find(' ');
+            if (space != 64) continue;
+            const std::string path = line.substr(space + 1);
+            struct stat now {};
+            if (::stat(path.c_str(), &now) != 0) {
+                changed = path + " has gone";
+            } else if (now.st_ctim.tv_sec > recorded.st_mtim.tv_sec ||
+                       (now.st_ctim.tv_sec == recorded.st_mtim.tv_sec && now.st_ctim.tv_nsec > recorded.st_mtim.tv_nsec)) {
+                if (sha256Hex(readFile(path)) != line.substr(0, 64)) changed = path + " has changed";
+            }
+        }
+    });
+    if (!changed.empty()) {
+        throw SetupError(changed + " since simlab was built (a package upgrade?): simlab's precompiled header for "
+                         "student files was made from it, and the compiler would refuse every file that includes it; "
+                         "rebuild simlab (cmake --build " + manifest_.buildDir + ", or scripts/setup), then grade again");
+    }
 }
 
 void Builder::link(const std::vector<std::string>& inputs, const std::vector<std::string>& flags,

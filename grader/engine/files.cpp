@@ -116,6 +116,20 @@ Hash& Hash::addFileStamp(const std::string& path) {
     return *this;
 }
 
+namespace {
+
+std::string hexOf(const unsigned char* digest, unsigned int size) {
+    static const char* digits = "0123456789abcdef";
+    std::string text;
+    for (unsigned int i = 0; i < size; ++i) {
+        text += digits[digest[i] >> 4];
+        text += digits[digest[i] & 15];
+    }
+    return text;
+}
+
+}  // namespace
+
 std::string Hash::hex() const {
     EVP_MD_CTX* copy = EVP_MD_CTX_new();
     unsigned char digest[EVP_MAX_MD_SIZE];
@@ -126,13 +140,16 @@ std::string Hash::hex() const {
         throw std::runtime_error("cannot finish a SHA-256 hash");
     }
     EVP_MD_CTX_free(copy);
-    static const char* digits = "0123456789abcdef";
-    std::string text;
-    for (unsigned int i = 0; i < size; ++i) {
-        text += digits[digest[i] >> 4];
-        text += digits[digest[i] & 15];
+    return hexOf(digest, size);
+}
+
+std::string sha256Hex(const std::string& bytes) {
+    unsigned char digest[EVP_MAX_MD_SIZE];
+    unsigned int size = 0;
+    if (EVP_Digest(bytes.data(), bytes.size(), digest, &size, EVP_sha256(), nullptr) != 1) {
+        throw std::runtime_error("cannot compute a SHA-256 hash");
     }
-    return text;
+    return hexOf(digest, size);
 }
 
 namespace {

@@ -12,8 +12,10 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <thread>
 
 #include "simlab/attachments.h"
@@ -45,6 +47,17 @@ Limits judgeLimits(const Limits& probe, std::size_t tests) {
     l.fileMiB = 16;
     l.processes = 16;
     l.observationMiB = probe.observationMiB;
+    return l;
+}
+
+// A probe's server holds each test's probe in its process tree while it runs (two at once, as one ends and the next
+// starts): its limits are its tests' together, and each test is still held to its own.
+Limits serverLimits(const Limits& probe, std::size_t tests) {
+    Limits l = probe;
+    l.wallSeconds = (probe.wallSeconds + 5) * static_cast<double>(tests) + 60;
+    l.cpuSeconds = (probe.cpuSeconds + 3) * static_cast<double>(tests) + 60;
+    l.memoryMiB = 2 * probe.memoryMiB + 256;
+    l.fileMiB = 2 * probe.fileMiB;
     return l;
 }
 
@@ -238,6 +251,32 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     std::vector<std::thread> running;
     int started = 0;
 
+    // Where the sandbox allows, the tests' probes are forked from one started probe program (TestServer): each is
+    // still a process of its own, as a user of its own. The server starts while the judge does.
+    std::unique_ptr<TestServer> probeServer;
+    const std::vector<std::string> probeEnvironment = {"PATH=/usr/bin:/bin", "TMPDIR=/tmp", "LC_ALL=C"};
+    if (testServers()) {
+        const std::string program = w.root + "/" + tag + "server";
+        const std::string home = w.root + "/" + tag + "probes";
+        fs::create_directory(program);
+        fs::create_directory(home);
+        writeFileAtomically(program + "/probe", readFile(w.probe + "/probe"));
+        fs::permissions(program + "/probe", fs::perms::owner_all);
+        // Each test's probe makes its folder there, through root's group (probe_main.cpp): nothing else of it is any
+        // test's to write or list.
+        fs::permissions(home, fs::perms::owner_all | fs::perms::group_write | fs::perms::group_exec |
+                                  fs::perms::others_exec);
+        ProcessRequest server;
+        server.argv = {program + "/probe", "--serve"};
+        server.env = probeEnvironment;
+        server.env.push_back("HOME=" + home);
+        server.workDir = home;
+        server.limits = serverLimits(limits, tests.size());
+        server.readOnlyPaths = {program};
+        server.scratchWorkDir = true;
+        probeServer = std::make_unique<TestServer>(server);
+    }
+
     // Each message from the judge is "probe <test>"; each reply carries the judge's ends of the new pipes.
     std::thread server([&] {
         char message[1024];
@@ -254,46 +293,40 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
                 }
                 break;  // the judge reads the socket's end: its tests say the process could not start
             }
-            const std::string dir = w.root + "/" + tag + "test" + std::to_string(++started);
-            fs::create_directory(dir);
-            // Each test's probe runs as a user of its own, from a copy of the program that user owns while it runs
-            // (a test's user never touches another's files, even as one test ends and the next begins).
-            const std::string program = w.root + "/" + tag + "program" + std::to_string(started);
-            fs::create_directory(program);
-            writeFileAtomically(program + "/probe", readFile(w.probe + "/probe"));
-            fs::permissions(program + "/probe", fs::perms::owner_all);
             ProcessRequest probe;
-            probe.argv = {program + "/probe"};
-            probe.env = {"PATH=/usr/bin:/bin", "HOME=" + dir, "TMPDIR=/tmp", "LC_ALL=C"};
-            probe.workDir = dir;
             probe.limits = limits;
             probe.reportChannel = true;
             probe.passFds = {{4, requests[0]}, {5, answers[1]}};
             probe.isolate = true;
-            probe.readOnlyPaths = {program};
-            probe.handOver = {program};
             probe.scratchWorkDir = true;
-            running.emplace_back([&, probe, test] {
-                ProcessResult result = runProcess(probe);
+            running.emplace_back([&, probe, test, number = ++started]() mutable {
+                std::optional<ProcessResult> result;
+                if (probeServer) result = probeServer->run(probe);
+                if (!result) {
+                    // A probe program of its own, run as a user of its own, from a copy of the program that user owns
+                    // while it runs (a test's user never touches another's files, even as one test ends and the
+                    // next begins).
+                    const std::string dir = w.root + "/" + tag + "test" + std::to_string(number);
+                    const std::string program = w.root + "/" + tag + "program" + std::to_string(number);
+                    fs::create_directory(dir);
+                    fs::create_directory(program);
+                    writeFileAtomically(program + "/probe", readFile(w.probe + "/probe"));
+                    fs::permissions(program + "/probe", fs::perms::owner_all);
+                    probe.argv = {program + "/probe"};
+                    probe.env = probeEnvironment;
+                    probe.env.push_back("HOME=" + dir);
+                    probe.workDir = dir;
+                    probe.readOnlyPaths = {program};
+                    probe.handOver = {program};
+                    result = runProcess(probe);
+                }
                 std::lock_guard<std::mutex> guard(lock);
-                probes[test] = std::move(result);
+                probes[test] = std::move(*result);
             });
             // The judge's ends: sent, then closed here, so that each pipe ends when its last holder does.
-            int ends[2] = {requests[1], answers[0]};
-            char byte = 'p';
-            struct iovec part = {&byte, 1};
-            alignas(struct cmsghdr) char control[CMSG_SPACE(sizeof ends)] = {};
-            struct msghdr m {};
-            m.msg_iov = &part;
-            m.msg_iovlen = 1;
-            m.msg_control = control;
-            m.msg_controllen = sizeof control;
-            struct cmsghdr* c = CMSG_FIRSTHDR(&m);
-            c->cmsg_level = SOL_SOCKET;
-            c->cmsg_type = SCM_RIGHTS;
-            c->cmsg_len = CMSG_LEN(sizeof ends);
-            std::memcpy(CMSG_DATA(c), ends, sizeof ends);
-            const bool sent = ::sendmsg(socket[0], &m, MSG_NOSIGNAL) == 1;
+            const int ends[2] = {requests[1], answers[0]};
+            const char byte = 'p';
+            const bool sent = sendWithDescriptors(socket[0], &byte, 1, {ends[0], ends[1]});
             ::close(ends[0]);
             ::close(ends[1]);
             if (!sent) break;
@@ -326,6 +359,7 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     ::shutdown(socket[0], SHUT_RDWR);  // ends the server's wait, should the judge have left a copy behind
     server.join();
     for (std::thread& t : running) t.join();
+    probeServer.reset();
     ::close(socket[0]);
     *graderOutput = judged.output;
 

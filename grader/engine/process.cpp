@@ -2,14 +2,17 @@
 
 #include "sandbox.h"
 #include "simlab/reproducible_math.h"
+#include "simlab/test_process.h"
 
 #include <dirent.h>
 #include <fcntl.h>
 #include <grp.h>
+#include <linux/capability.h>
 #include <poll.h>
 #include <sched.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
 #include <cstddef>
@@ -30,6 +33,7 @@
 #include <functional>
 #include <sstream>
 #include <mutex>
+#include <optional>
 #include <set>
 
 namespace simlab::engine {
@@ -68,6 +72,8 @@ struct Launch {
     bool dropUser = false;          // become `uid` (we are root)
     uid_t uid = 0;                  // the child's throwaway user, when it has one (0: none)
     bool newNetwork = false;        // unshare the network ourselves (sandboxed without bubblewrap)
+    bool switchesUsers = false;     // stay root, keeping only CAP_SETUID and CAP_SETGID (a test server, without
+                                    // bubblewrap)
     int ruleset = -1;               // a Landlock ruleset to restrict the child to (sandboxed without bubblewrap)
     const std::string* filter = nullptr;  // the system-call filter to load (sandboxed without bubblewrap)
     rlim_t tasks = 0;               // RLIMIT_NPROC; 0 leaves it alone
@@ -96,13 +102,16 @@ bool isUnder(const std::string& path, const std::string& folder) {
 // file-size limit; the working directory, writable (or a scratch one); no network, no view of other processes.
 // With `dropTo` (simlab is root), bubblewrap itself runs as root - so that it can lend paths below folders only
 // root may enter - and setpriv makes the command the throwaway user `dropTo`, without capabilities.
+// A test server (r.serveTests) stays root, with CAP_SETUID and CAP_SETGID alone, to start each test's process as
+// a user of its own.
 std::vector<std::string> bubblewrapArguments(const std::string& bwrap, const ProcessRequest& r, uid_t dropTo,
                                              bool seccomp) {
     namespace fs = std::filesystem;
     const std::vector<std::string>& system = systemFolders();
     std::vector<std::string> a = {bwrap};
-    if (dropTo) {
+    if (dropTo || r.serveTests) {
         a.insert(a.end(), {"--unshare-pid", "--unshare-net", "--unshare-ipc", "--unshare-uts", "--unshare-cgroup-try"});
+        if (r.serveTests) a.insert(a.end(), {"--cap-add", "CAP_SETUID", "--cap-add", "CAP_SETGID"});
     } else {
         a.push_back("--unshare-all");
     }
@@ -122,8 +131,15 @@ std::vector<std::string> bubblewrapArguments(const std::string& bwrap, const Pro
     // The loader's cache, and Debian's alternatives (BLAS and LAPACK, which Simbody loads, are chosen there).
     a.insert(a.end(), {"--perms", "0755", "--dir", "/etc", "--ro-bind-try", "/etc/ld.so.cache", "/etc/ld.so.cache",
                        "--ro-bind-try", "/etc/alternatives",
-                       "/etc/alternatives", "--proc", "/proc", "--dev", "/dev", "--perms", "1777", "--size", scratch,
-                       "--tmpfs", "/dev/shm", "--perms", "1777", "--size", scratch, "--tmpfs", "/tmp"});
+                       "/etc/alternatives", "--proc", "/proc", "--dev", "/dev"});
+    if (r.serveTests) {
+        // A server's tests write in their own folders alone (their TMPDIR): a shared /tmp would carry notes between
+        // them.
+        a.insert(a.end(), {"--perms", "0755", "--dir", "/dev/shm", "--perms", "0755", "--dir", "/tmp"});
+    } else {
+        a.insert(a.end(), {"--perms", "1777", "--size", scratch, "--tmpfs", "/dev/shm", "--perms", "1777", "--size",
+                           scratch, "--tmpfs", "/tmp"});
+    }
     // The folders leading to what is lent, made enterable (bubblewrap would make them for root alone).
     std::set<std::string> made;
     auto leadTo = [&](const std::string& path) {
@@ -142,8 +158,13 @@ std::vector<std::string> bubblewrapArguments(const std::string& bwrap, const Pro
         a.insert(a.end(), {"--ro-bind", path, path});
     }
     leadTo(r.workDir);
-    if (r.scratchWorkDir) a.insert(a.end(), {"--perms", "1777", "--size", scratch, "--tmpfs", r.workDir});
-    else a.insert(a.end(), {"--bind", r.workDir, r.workDir});
+    // A server's folder: root's, where only its group (root's, which the server's tests make their folders with)
+    // may add, and anyone may pass through.
+    if (r.scratchWorkDir) {
+        a.insert(a.end(), {"--perms", r.serveTests ? "0731" : "1777", "--size", scratch, "--tmpfs", r.workDir});
+    } else {
+        a.insert(a.end(), {"--bind", r.workDir, r.workDir});
+    }
     if (seccomp) a.insert(a.end(), {"--seccomp", std::to_string(kSeccompFd)});
     a.insert(a.end(), {"--chdir", r.workDir, "--"});
     if (dropTo) {
@@ -152,11 +173,6 @@ std::vector<std::string> bubblewrapArguments(const std::string& bwrap, const Pro
                            "--bounding-set=-all", "--"});
     }
     return a;
-}
-
-void setLimit(int resource, rlim_t value) {
-    const struct rlimit limit = {value, value};
-    ::setrlimit(resource, &limit);
 }
 
 // Whether the child may borrow simlab's memory until it execs (vfork: no copy of simlab's page tables, which
@@ -220,27 +236,33 @@ bool mayShareMemory(const Launch& launch) { return !(launch.newNetwork && !launc
         (void)!::write(2, message, sizeof message - 1);
         ::_exit(127);
     }
-    const Limits& l = r.limits;
     // The test's CPU time is its processes' together, which the poll loop adds up and stops at the limit; each
     // process's own limit is a backstop two seconds later, so that the loop, which names the outcome, comes first.
-    const rlim_t cpu = static_cast<rlim_t>(std::ceil(l.cpuSeconds)) + 2;
-    const struct rlimit cpuLimit = {cpu, cpu + 1};  // SIGXCPU at the soft limit, SIGKILL a second later
-    ::setrlimit(RLIMIT_CPU, &cpuLimit);
-    setLimit(RLIMIT_AS, static_cast<rlim_t>(l.memoryMiB) << 20);
-    setLimit(RLIMIT_FSIZE, static_cast<rlim_t>(l.fileMiB) << 20);
-    if (launch.tasks > 0) setLimit(RLIMIT_NPROC, launch.tasks);
-    setLimit(RLIMIT_CORE, 0);
-    setLimit(RLIMIT_NOFILE, 256);
+    const Limits& l = r.limits;
+    test_process::setLimits(l.cpuSeconds, static_cast<std::uint64_t>(l.memoryMiB) << 20,
+                            static_cast<std::uint64_t>(l.fileMiB) << 20, launch.tasks);
     if (launch.newNetwork) {
         // A network namespace of our own holds only a loopback device that is down: no connection goes anywhere.
-        if (::unshare(CLONE_NEWNET) != 0 && !launch.dropUser) ::unshare(CLONE_NEWUSER | CLONE_NEWNET);
+        if (::unshare(CLONE_NEWNET) != 0 && !launch.dropUser && !launch.switchesUsers) {
+            ::unshare(CLONE_NEWUSER | CLONE_NEWNET);
+        }
+    }
+    if (launch.switchesUsers) {
+        // Root, but only to become other users: every other capability out of the bounding set, so that the
+        // program this execs gets those two alone.
+        for (int cap = 0; cap <= 63; ++cap) {
+            if (cap != CAP_SETUID && cap != CAP_SETGID) ::prctl(PR_CAPBSET_DROP, cap, 0, 0, 0);
+        }
     }
     if (launch.dropUser) {
-        if (!sandbox::becomeUser(launch.uid)) {
+        if (!test_process::becomeUser(launch.uid)) {
             const char message[] = "simlab: cannot switch to the sandbox user\n";
             (void)!::write(2, message, sizeof message - 1);
             ::_exit(127);
         }
+        // A change of user clears the parent-death signal: set it again, and mind a parent already gone.
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (::getppid() != launch.parent) ::_exit(127);
     }
     if (launch.filter && !sandbox::installFilter(*launch.filter)) {
         const char message[] = "simlab: cannot load the sandbox's system-call filter\n";
@@ -269,6 +291,53 @@ rlim_t taskLimitFor(long processes) {
     const uid_t uid = ::getuid();
     if (uid == 0) return 0;
     return static_cast<rlim_t>(sandbox::tasksOf(uid)) + static_cast<rlim_t>(processes);
+}
+
+// The complete lines of a report channel: a line cut short by a crash is not a report.
+std::vector<std::string> reportLines(const std::string& buffer) {
+    std::vector<std::string> lines;
+    for (std::size_t begin = 0; begin < buffer.size();) {
+        const std::size_t end = buffer.find('\n', begin);
+        if (end == std::string::npos) break;
+        lines.push_back(buffer.substr(begin, end - begin));
+        begin = end + 1;
+    }
+    return lines;
+}
+
+// What a test's processes use together, against its limits: the CPU time (the most seen so far) and memory are
+// kept in `result`, and the limit passed first is marked there. True if one was passed: the caller ends them.
+bool overLimits(const sandbox::Usage& usage, const Limits& limits, double& treeCpu, long& peakResidentKiB,
+                ProcessResult& result) {
+    treeCpu = std::max(treeCpu, usage.cpuSeconds);
+    peakResidentKiB = std::max(peakResidentKiB, usage.residentKiB);
+    if (treeCpu > limits.cpuSeconds) {
+        result.cpuTimeout = true;
+        return true;
+    }
+    if (usage.residentKiB > static_cast<long>(limits.memoryMiB) * 1024) {
+        result.memoryLimit = true;
+        return true;
+    }
+    return false;
+}
+
+// How the process ended (`status`, as waitpid gives it), in `result`: its exit status or signal, a CPU limit the
+// kernel enforced (SIGXCPU, or a SIGKILL simlab did not send once the CPU time reached the limit), and a start
+// that failed in the child ("simlab: cannot ...", status 127); then its report channel's lines.
+void concludeResult(int status, bool killed, const ProcessRequest& r, const std::string& reportBuffer,
+                    ProcessResult& result) {
+    if (WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
+    if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
+    if (!result.memoryLimit && (result.signal == SIGXCPU ||
+                                (result.signal == SIGKILL && !killed && result.cpuSeconds >= std::ceil(r.limits.cpuSeconds)))) {
+        result.cpuTimeout = true;
+    }
+    if (result.exitCode == 127 && result.output.rfind("simlab: cannot", 0) == 0) {
+        result.started = false;
+        result.error = result.output.substr(0, result.output.find('\n'));
+    }
+    if (r.reportChannel) result.reports = reportLines(reportBuffer);
 }
 
 // Reads what `fd` holds now into `keep` (up to keepLimit), counting it; with `lines`, also hands each complete
@@ -486,7 +555,9 @@ ProcessResult runProcess(const ProcessRequest& r) {
     };
     if (r.isolate) {
         const SandboxSupport& support = sandboxSupport();
-        if (support.ownUser && r.ownUser) {
+        if (r.serveTests && !testServers()) return refuse("this sandbox (" + support.mode + ") starts each test itself");
+        launch.switchesUsers = r.serveTests && !support.bubblewrap;
+        if (support.ownUser && r.ownUser && !r.serveTests) {
             // A user never used before and never again: nothing another test left can reach this one. bubblewrap
             // run as root hands over to it itself (setpriv); otherwise we switch before the program starts.
             launch.dropUser = !(support.bubblewrap && support.rootBubblewrap);
@@ -642,7 +713,6 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
     Clock::time_point nextCpuCheck = start + std::chrono::milliseconds(50);
     double treeCpu = 0;
     long peakResidentKiB = 0, ownPeakKiB = 0;
-    const long memoryKiB = static_cast<long>(r.limits.memoryMiB) * 1024;
 
     // The child's exit wakes the loop at once through a pidfd, where the kernel has them.
     int pidfd = static_cast<int>(::syscall(SYS_pidfd_open, pid, 0));
@@ -685,15 +755,7 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
             // of the machine is needed.
             const sandbox::Usage usage = sandbox::usageOf(pid, launch.ownPids ? 0 : launch.uid);
             ownPeakKiB = std::max(ownPeakKiB, sandbox::peakResidentOf(pid));
-            treeCpu = std::max(treeCpu, usage.cpuSeconds);
-            peakResidentKiB = std::max(peakResidentKiB, usage.residentKiB);
-            if (treeCpu > r.limits.cpuSeconds) {
-                result.cpuTimeout = true;
-                killGroup();
-            } else if (usage.residentKiB > memoryKiB) {
-                result.memoryLimit = true;
-                killGroup();
-            }
+            if (overLimits(usage, r.limits, treeCpu, peakResidentKiB, result)) killGroup();
         }
         if (!reaped && !killed && Clock::now() >= deadline) {
             result.wallTimeout = true;
@@ -720,28 +782,230 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
     result.cpuSeconds = std::max(result.cpuSeconds, treeCpu);
     result.maxRssKiB = std::max(usage.ru_maxrss, peakResidentKiB);
     result.ownPeakKiB = ownPeakKiB;
-    if (WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
-    if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
-    if (!result.memoryLimit && (result.signal == SIGXCPU ||
-                                (result.signal == SIGKILL && !killed && result.cpuSeconds >= std::ceil(r.limits.cpuSeconds)))) {
-        result.cpuTimeout = true;
-    }
-    if (result.exitCode == 127 && result.output.rfind("simlab: cannot", 0) == 0) {
-        result.started = false;
-        result.error = result.output.substr(0, result.output.find('\n'));
-    }
-
-    std::size_t begin = 0;
-    while (r.reportChannel && begin < reportBuffer.size()) {
-        const std::size_t end = reportBuffer.find('\n', begin);
-        if (end == std::string::npos) break;  // a line cut short by a crash is not a report
-        result.reports.push_back(reportBuffer.substr(begin, end - begin));
-        begin = end + 1;
-    }
+    concludeResult(status, killed, r, reportBuffer, result);
     return result;
 }
 
 }  // namespace
+
+bool sendWithDescriptors(int socket, const void* data, std::size_t size, const std::vector<int>& fds) {
+    struct iovec part = {const_cast<void*>(data), size};
+    std::vector<char> control(CMSG_SPACE(sizeof(int) * fds.size()), 0);
+    struct msghdr m {};
+    m.msg_iov = &part;
+    m.msg_iovlen = 1;
+    m.msg_control = control.data();
+    m.msg_controllen = control.size();
+    struct cmsghdr* c = CMSG_FIRSTHDR(&m);
+    c->cmsg_level = SOL_SOCKET;
+    c->cmsg_type = SCM_RIGHTS;
+    c->cmsg_len = CMSG_LEN(sizeof(int) * fds.size());
+    std::memcpy(CMSG_DATA(c), fds.data(), sizeof(int) * fds.size());
+    for (;;) {
+        const ssize_t sent = ::sendmsg(socket, &m, MSG_NOSIGNAL);
+        if (sent < 0 && errno == EINTR) continue;
+        return sent == static_cast<ssize_t>(size);
+    }
+}
+
+bool testServers() {
+    static const bool can = [] {
+        const char* off = std::getenv("SIMLAB_NO_TEST_SERVER");
+        if (off && std::string(off) == "1") return false;
+        const SandboxSupport& s = sandboxSupport();
+        return s.ownUser && ((s.bubblewrap && s.rootBubblewrap) || s.landlock);
+    }();
+    return can;
+}
+
+TestServer::TestServer(ProcessRequest server) {
+    int ends[2];
+    if (::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, ends) != 0) {
+        result_.error = std::string("cannot create a socket: ") + std::strerror(errno);
+        return;
+    }
+    control_ = ends[0];
+    server.passFds.push_back({test_process::kServerFd, ends[1]});
+    server.isolate = true;
+    server.serveTests = true;
+    thread_ = std::thread([this, server] { result_ = runProcess(server); });
+}
+
+TestServer::~TestServer() {
+    // The server reads the end of its requests and leaves; its tests' probes die with it.
+    if (control_ >= 0) ::shutdown(control_, SHUT_RDWR);
+    if (thread_.joinable()) thread_.join();
+    if (control_ >= 0) ::close(control_);
+}
+
+namespace {
+
+// One message from the server on a test's socket, waiting at most until `deadline` (and no longer than an
+// interruption); false if the socket ended or nothing came.
+bool nextEvent(int fd, test_process::TestEvent& event, Clock::time_point deadline) {
+    for (;;) {
+        struct pollfd p = {fd, POLLIN, 0};
+        const int n = ::poll(&p, 1, 100);
+        if (n > 0) {
+            const ssize_t got = ::recv(fd, &event, sizeof event, 0);
+            if (got < 0 && errno == EINTR) continue;
+            return got == static_cast<ssize_t>(sizeof event);
+        }
+        if (n < 0 && errno != EINTR) return false;
+        if (Clock::now() >= deadline || gInterrupted.load()) return false;
+    }
+}
+
+}  // namespace
+
+std::optional<ProcessResult> TestServer::run(ProcessRequest& t) {
+    ProcessResult result;
+    if (control_ < 0) return std::nullopt;
+    if (gInterrupted.load()) {
+        for (const auto& fd : t.passFds) ::close(fd.second);
+        result.interrupted = true;
+        result.error = "interrupted";
+        return result;
+    }
+    // The test's own socket to the server, its output and its event channel; the judge's pipes come with the test.
+    int notify[2] = {-1, -1}, out[2] = {-1, -1}, report[2] = {-1, -1};
+    auto closeOurs = [&] {
+        for (int fd : {notify[0], notify[1], out[0], out[1], report[0], report[1]}) {
+            if (fd >= 0) ::close(fd);
+        }
+    };
+    int requests = -1, answers = -1;
+    for (const auto& [target, fd] : t.passFds) {
+        if (target == 4) requests = fd;
+        if (target == 5) answers = fd;
+    }
+    if (requests < 0 || answers < 0 || t.passFds.size() != 2 ||
+        ::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, notify) != 0 || ::pipe2(out, O_CLOEXEC) != 0 ||
+        ::pipe2(report, O_CLOEXEC) != 0) {
+        closeOurs();
+        return std::nullopt;  // runProcess starts it as a program of its own
+    }
+    const uid_t uid = sandbox::freshUser();
+    test_process::StartTest ask;
+    ask.uid = uid;
+    ask.cpuSeconds = t.limits.cpuSeconds;
+    ask.memoryBytes = static_cast<std::uint64_t>(t.limits.memoryMiB) << 20;
+    ask.fileBytes = static_cast<std::uint64_t>(t.limits.fileMiB) << 20;
+    ask.tasks = static_cast<std::uint64_t>(std::max(1L, t.limits.processes));
+    {
+        std::lock_guard<std::mutex> guard(lock_);
+        std::snprintf(ask.folder, sizeof ask.folder, "test%d", ++tests_);
+    }
+    static_assert(test_process::kStartTestFds == 5, "the server takes five descriptors with a test");
+    bool sent = false;
+    {
+        std::lock_guard<std::mutex> guard(lock_);
+        sent = sendWithDescriptors(control_, &ask, sizeof ask, {notify[1], out[1], report[1], requests, answers});
+    }
+    if (!sent) {
+        closeOurs();
+        return std::nullopt;  // the server is gone: the judge's pipes are still the caller's
+    }
+    // The server and the probe hold what they need now; a pipe ends when its last holder closes it.
+    for (int* fd : {&notify[1], &out[1], &report[1]}) {
+        ::close(*fd);
+        *fd = -1;
+    }
+
+    const auto start = Clock::now();
+    test_process::TestEvent event;
+    if (!nextEvent(notify[0], event, start + std::chrono::seconds(60)) || event.kind != test_process::TestEvent::Started) {
+        // The server could not fork, or is gone: the caller starts the probe as a program of its own, with the
+        // judge's pipes it still holds.
+        closeOurs();
+        sandbox::endProcessesOf(uid);
+        return std::nullopt;
+    }
+    for (const auto& fd : t.passFds) ::close(fd.second);
+    t.passFds.clear();
+    result.started = true;
+    int outRead = out[0], reportRead = report[0], events = notify[0];
+    out[0] = report[0] = notify[0] = -1;
+    for (int fd : {outRead, reportRead}) ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
+
+    const auto deadline = start + std::chrono::duration_cast<Clock::duration>(
+                                      std::chrono::duration<double>(std::min(t.limits.wallSeconds, 86400.0)));
+    const std::size_t outputLimit = static_cast<std::size_t>(t.limits.outputKiB) * 1024;
+    std::string reportBuffer, partialLine;
+    bool ended = false, killed = false;
+    int status = 0;
+    double treeCpu = 0, endedCpu = 0;
+    long peakResidentKiB = 0;
+    Clock::time_point endedAt, nextCpuCheck = start + std::chrono::milliseconds(50);
+    auto killAll = [&] {
+        sandbox::endProcessesOf(uid);
+        killed = true;
+    };
+    for (;;) {
+        struct pollfd p[3];
+        nfds_t n = 0;
+        if (outRead >= 0) p[n++] = {outRead, POLLIN, 0};
+        if (reportRead >= 0) p[n++] = {reportRead, POLLIN, 0};
+        if (events >= 0) p[n++] = {events, POLLIN, 0};
+        if (n > 0) ::poll(p, n, 50);
+        else ::usleep(20000);
+        if (outRead >= 0) drain(outRead, &result.output, t.keepOutput, &result.outputBytes, &t.onOutputLine, &partialLine);
+        if (reportRead >= 0) drain(reportRead, &reportBuffer, 1 << 20, nullptr);
+        if (!killed && result.outputBytes > outputLimit) {
+            result.outputLimit = true;
+            killAll();
+        }
+        if (events >= 0) {
+            struct pollfd e = {events, POLLIN, 0};
+            if (::poll(&e, 1, 0) > 0) {
+                test_process::TestEvent said;
+                const ssize_t got = ::recv(events, &said, sizeof said, MSG_DONTWAIT);
+                if (got == static_cast<ssize_t>(sizeof said) && said.kind == test_process::TestEvent::Ended) {
+                    ended = true;
+                    endedAt = Clock::now();
+                    status = said.status;
+                    endedCpu = 1e-6 * static_cast<double>(said.cpuMicroseconds);
+                    result.wallSeconds = std::chrono::duration<double>(endedAt - start).count();
+                }
+                if (got <= 0 || ended) {
+                    ::close(events);
+                    events = -1;
+                    if (!ended) {  // the server went away with the test: it ended with the server
+                        ended = true;
+                        endedAt = Clock::now();
+                        status = SIGKILL;
+                        result.wallSeconds = std::chrono::duration<double>(endedAt - start).count();
+                    }
+                    if (!killed) sandbox::endProcessesOf(uid);  // whatever it left behind
+                }
+            }
+        }
+        // The test's processes together: every process of its user, wherever it went.
+        if (!ended && !killed && Clock::now() >= nextCpuCheck) {
+            nextCpuCheck = Clock::now() + std::chrono::milliseconds(100);
+            if (overLimits(sandbox::usageOf(0, uid), t.limits, treeCpu, peakResidentKiB, result)) killAll();
+        }
+        if (!ended && !killed && Clock::now() >= deadline) {
+            result.wallTimeout = true;
+            killAll();
+        }
+        if (!ended && !killed && gInterrupted.load()) {
+            result.interrupted = true;
+            killAll();
+        }
+        if (ended && ((outRead < 0 && reportRead < 0) || Clock::now() - endedAt > std::chrono::milliseconds(500))) break;
+    }
+    for (int fd : {outRead, reportRead, events}) {
+        if (fd >= 0) ::close(fd);
+    }
+    if (t.onOutputLine && !partialLine.empty()) t.onOutputLine(partialLine);
+    result.leftBehind = sandbox::endProcessesOf(uid);
+
+    result.cpuSeconds = std::max(endedCpu, treeCpu);
+    result.maxRssKiB = peakResidentKiB;
+    concludeResult(status, killed, t, reportBuffer, result);
+    return result;
+}
 
 std::vector<std::string> readableInSandbox(const std::vector<std::string>& paths, const std::vector<std::string>& lent) {
     namespace fs = std::filesystem;

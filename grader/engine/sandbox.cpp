@@ -26,6 +26,8 @@
 #include <random>
 #include <set>
 
+#include "simlab/test_process.h"
+
 namespace simlab::engine::sandbox {
 
 namespace {
@@ -342,16 +344,6 @@ int makeRuleset(const FileRules& rules, std::string* error) {
     return ruleset;
 }
 
-bool becomeUser(uid_t uid) {
-#if defined(SYS_setresuid32)  // where the plain calls take 16-bit ids (32-bit x86 and ARM)
-    return ::syscall(SYS_setgroups32, 0, nullptr) == 0 && ::syscall(SYS_setresgid32, uid, uid, uid) == 0 &&
-           ::syscall(SYS_setresuid32, uid, uid, uid) == 0;
-#else
-    return ::syscall(SYS_setgroups, 0, nullptr) == 0 && ::syscall(SYS_setresgid, uid, uid, uid) == 0 &&
-           ::syscall(SYS_setresuid, uid, uid, uid) == 0;
-#endif
-}
-
 bool restrictSelf(int ruleset) {
     if (::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0) return false;
     return ::syscall(SYS_landlock_restrict_self, ruleset, 0) == 0;
@@ -389,7 +381,7 @@ int endProcessesOf(uid_t uid) {
             // times over: a child whose fork was under way during one signal is listed by the next. (A zombie can
             // be signalled too, so "no process left" is never the answer while one waits to be reaped: the rounds
             // below count what is left, zombies aside.)
-            if (!becomeUser(uid)) ::_exit(2);
+            if (!test_process::becomeUser(uid)) ::_exit(2);
             for (int i = 0; i < 8; ++i) {
                 if (::kill(-1, SIGKILL) != 0) ::_exit(errno == ESRCH ? 0 : 3);
             }

@@ -44,11 +44,6 @@ struct FileRules {
 /// restrictSelf, or -1 (with `error` saying why) where Landlock is missing or refuses a rule.
 int makeRuleset(const FileRules& rules, std::string* error);
 
-/// Makes the calling process `uid` (and group `uid`, with no supplementary groups) by the system calls themselves:
-/// safe between vfork and exec, where the C library's wrappers would change the ids of every thread of simlab.
-/// False if the kernel refused.
-bool becomeUser(uid_t uid);
-
 /// Restricts the calling process to `ruleset`, after PR_SET_NO_NEW_PRIVS: safe between fork and exec.
 bool restrictSelf(int ruleset);
 

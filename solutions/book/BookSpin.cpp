@@ -61,9 +61,10 @@ void simulate(const Model& model, Integrator& integrator, const State& initial, 
 }
 
 simlab::RunSettings cheapestSettings() {
-    // `simlab study trade book`: on the tumbling spin, 8 digits all the way cost CPodes 10305 evaluations at 1e-13
-    // and RungeKuttaFeldberg 11170 at 1e-12 (the wobble's growth multiplies every early error, so each step must be
-    // accurate far past 8 digits). The explicit method keeps more of a margin: 8.46 digits against 8.40.
+    // `simlab study trade book --question`: on the question's tumbling spin the table's cheapest for 8 digits is
+    // CPodes at 1e-11 (8.09 digits, 3171 evaluations), but CPodes is not monotone there (1e-12 keeps only 7.8) and
+    // another book can leave it short. RungeKuttaFeldberg at 1e-12 is on the front with a margin: 8.89 digits for
+    // 7454 evaluations, and its error shrinks steadily as its accuracy tightens.
     simlab::RunSettings choice;
     choice.integrator = "RungeKuttaFeldberg";
     choice.accuracy = 1e-12;

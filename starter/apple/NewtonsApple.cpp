@@ -73,9 +73,10 @@ void simulate(const Model& model, Integrator& integrator, const State& initial, 
 }
 
 simlab::RunSettings cheapestSettings() {
-    // 5. The trade: run `simlab study trade apple` and read its table of cheapest settings (handout, section 7).
-    //    Return a RunSettings with integrator and accuracy set (or fixedStep = true and the step in dt).
-    SIMLAB_TODO("the cheapest setting that can keep 10 digits of y and vy over the fall (simlab study trade apple)");
+    // 5. The trade (handout, section 7): explicit Euler's largest fixed step that keeps 3 digits of the trade
+    //    question's fall. Work it out from Euler's error, then measure it: `simlab study trade apple --question`
+    //    (in the student bundle, add `--file NewtonsApple.cpp`). Return ExplicitEuler, fixedStep = true, dt.
+    SIMLAB_TODO("explicit Euler's largest fixed step that keeps 3 digits of the question's fall");
 }
 
 }  // namespace apple

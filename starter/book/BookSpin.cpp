@@ -63,9 +63,11 @@ void simulate(const Model& model, Integrator& integrator, const State& initial, 
 }
 
 simlab::RunSettings cheapestSettings() {
-    // The trade: run `simlab study trade book` and read the intermediate spin's cheapest settings (handout,
-    // section 6). Return a RunSettings with integrator and accuracy set (or fixedStep = true and the step in dt).
-    SIMLAB_TODO("the cheapest setting that can keep 8 digits of w_B on the tumbling spin (simlab study trade book)");
+    // The trade (handout, section 6): the cheapest setting that keeps 8 digits of w_B on the trade question's
+    // tumbling spin. Measure it: `simlab study trade book --question` (in the student bundle, add
+    // `--file BookSpin.cpp`). Return a RunSettings with integrator and accuracy set (or fixedStep = true and the
+    // step in dt).
+    SIMLAB_TODO("the cheapest setting that keeps 8 digits of w_B on the question's tumbling spin");
 }
 
 }  // namespace book

@@ -68,6 +68,33 @@ expect_error "book: --spin with --omega" "excludes" "$BIN_DIR/book-reference" --
 expect_error "book: two components" "omega" "$BIN_DIR/book-reference" --omega 1,2
 expect_error "book: a negative dimension" "dimensions: must be a positive number, got -0.3" \
   "$BIN_DIR/book-reference" --dimensions 0.2,-0.3,0.05
+# A header the precompiled one was made from changed since the build (a package upgrade): the compiler would refuse
+# every file that includes it again, so simlab stops in one line before compiling anything, and says how to rebuild.
+# A build whose record of that header's bytes no longer matches them, as such an upgrade leaves it:
+python3 - "$BIN_DIR/../simlab-build.json" "$work" <<'PY'
+import json, os, sys, time
+manifest, work = json.load(open(sys.argv[1])), sys.argv[2]
+compile = manifest["compile"]
+for i, flag in enumerate(compile[:-1]):
+    if flag in ("-include-pch", "-include"):
+        real = compile[i + 1] + (".gch" if flag == "-include" else "")
+        os.symlink(real, work + "/course.pch")
+        compile[i + 1] = work + "/course.pch" if flag == "-include-pch" else work + "/course"
+        if flag == "-include":
+            os.symlink(real, work + "/course.gch")
+pch = work + ("/course.pch" if "-include-pch" in compile else "/course.gch")
+with open(pch + ".inputs", "w") as record:
+    record.write("0" * 64 + " " + work + "/upgraded.h\n")
+past = time.time() - 3600
+os.utime(pch + ".inputs", (past, past))
+with open(work + "/upgraded.h", "w") as header:
+    header.write("// new bytes\n")
+json.dump(manifest, open(work + "/manifest.json", "w"))
+PY
+echo 'int x;' >Upgraded.cpp
+expect_error "a system header changed since simlab was built" \
+  "upgraded.h has changed since simlab was built \(a package upgrade\?\).*rebuild simlab \(cmake --build" \
+  env SIMLAB_MANIFEST="$work/manifest.json" "$SIMLAB" check apple Upgraded.cpp
 if [[ $(id -u) -ne 0 ]]; then
   echo 'int x;' >locked.cpp && chmod 000 locked.cpp
   expect_error "unreadable source" "locked.cpp cannot be read" "$SIMLAB" check apple locked.cpp

@@ -19,7 +19,7 @@ cp "$SOURCE_DIR/starter/apple/NewtonsApple.cpp" class/bob/
 printf 'student,item,points,comment\nada,%s,,\nbob,%s,,\n' "$item" "$item" >expected-sheet.csv
 check "graded; manual.csv has a pending row per student and item" cmp -s expected-sheet.csv grades/manual.csv
 check "the gradebook says pending, and counts every point there is (120)" \
-  bash -c "test '$(cell grades/gradebook.csv 1 2)' = 120 && test '$(cell grades/gradebook.csv 1 16)' = pending"
+  bash -c "test '$(cell grades/gradebook.csv 1 2)' = 120 && test '$(cell grades/gradebook.csv 1 17)' = pending"
 check "each student's history has its first grade" \
   bash -c "test $(history_lines ada) -eq 1 && test '$(last_why ada)' = 'first graded'"
 
@@ -29,7 +29,7 @@ printf 'student,item,points,comment\nada,%s,15,"the step, not the tolerance"\nbo
 check "the regrade runs no code (both unchanged), and keeps the points typed" \
   bash -c "test \$(grep -c '(unchanged)' manual.out) -eq 2 && grep -q '^ada,$item,15,' grades/manual.csv"
 check "the gradebook counts them: ada 115/120, the item 15" \
-  bash -c "test '$(cell grades/gradebook.csv 1 1)' = 115 && test '$(cell grades/gradebook.csv 1 16)' = 15"
+  bash -c "test '$(cell grades/gradebook.csv 1 1)' = 115 && test '$(cell grades/gradebook.csv 1 17)' = 15"
 check "results.json says them beside the autograder's score" python3 -c '
 import json, sys
 d = json.load(open("grades/students/ada/results.json"))

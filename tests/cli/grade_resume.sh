@@ -49,7 +49,7 @@ check "each student has results.json and feedback.md" test "$(ls grades/students
 check "every results.json is valid" bash -c "for f in grades/students/*/results.json; do '$VALIDATE' \$f >/dev/null || exit 1; done"
 check "feedback says how to reproduce a failed test" grep -q 'Reproduce: `simlab check apple NewtonsApple.cpp --test "the integrator is the one asked for' grades/students/segfault/feedback.md
 check "feedback keeps hidden tests' details hidden" grep -q 'A hidden test' grades/students/typed-in-answer/feedback.md
-check "summary.csv has a row per test" test "$(($(wc -l <grades/summary.csv) - 1))" -eq 12
+check "summary.csv has a row per test" test "$(($(wc -l <grades/summary.csv) - 1))" -eq 13
 check "the summary gives the pass rate and the spread of digits" grep -q '^"*y at the final time has the target accuracy digits"*,visible,15,' grades/summary.csv
 check "--junit writes one test suite per student" test "$(grep -c '<testsuite ' junit.xml)" -eq "$students"
 check "with the crash as an error" grep -q 'type="crashed"' junit.xml

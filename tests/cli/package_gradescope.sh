@@ -37,12 +37,12 @@ grade_submission() {  # grade_submission NAME: run run_autograder on what is in 
 mkdir -p "$root/submission/upload"
 cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" "$root/submission/upload/"
 grade_submission reference
-check "run_autograder grades the reference: 100/100 on 12 tests" \
-  "$VALIDATE" "$root/results/results.json" --score 100 --max 100 --tests 12
+check "run_autograder grades the reference: 100/100 on 13 tests" \
+  "$VALIDATE" "$root/results/results.json" --score 100 --max 100 --tests 13
 # Gradescope's specification: a hidden test is never shown, and while any test is hidden the student cannot see
 # the total. A test with points is never hidden: simlab's hidden tests are shown after the due date.
 check "the hidden tests (points) are shown after the due date" \
-  test "$(grep -c '"visibility": "after_due_date"' "$root/results/results.json")" -eq 4
+  test "$(grep -c '"visibility": "after_due_date"' "$root/results/results.json")" -eq 5
 check "and no test that carries points is hidden" python3 -c '
 import json, sys
 tests = json.load(open(sys.argv[1]))["tests"]

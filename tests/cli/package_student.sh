@@ -35,11 +35,11 @@ check "the bundle builds with its own scripts/setup and its Catch2 header" \
   bash -c "test $? -eq 0 && grep -q 'Catch2 2.13: the header in third_party/catch2' build.log" || tail -20 build.log
 bundled=bundle/build/bin/simlab
 run_capture starter "$bundled" check apple
-check "the bundle's simlab checks its starter: 0/80" grep -q '^Score: 0/80$' starter.out
+check "the bundle's simlab checks its starter: 0/76" grep -q '^Score: 0/76$' starter.out
 cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" finished.cpp
 run_capture finished "$bundled" check apple finished.cpp
-check "a finished file scores 80/80 on the visible tests" grep -q '^Score: 80/80$' finished.out
-check "and 4 hidden tests worth 20 points are left" grep -q '4 hidden tests worth 20 points are left' finished.out
+check "a finished file scores 76/76 on the visible tests" grep -q '^Score: 76/76$' finished.out
+check "and 5 hidden tests worth 24 points are left" grep -q '5 hidden tests worth 24 points are left' finished.out
 run_capture all "$bundled" check apple finished.cpp --all
 check "--all is refused: the bundle has no hidden tests" grep -q 'does not have' all.err
 run_capture grade "$bundled" grade apple

@@ -65,6 +65,6 @@ if [[ ${#as_docker[@]} -gt 0 ]]; then
     bash -c "test \$(wc -l <refused.err) -le 2 && grep -q 'could read .*hidden.*chmod -R go-rwx' refused.err"
   run_capture visible env SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1 "${as_docker[@]}" "$SIMLAB" check apple \
     class/alice/NewtonsApple.cpp
-  check "the visible tests still run there (a self-check holds no secret): 80/80" grep -q 'Score: 80/80' visible.out
+  check "the visible tests still run there (a self-check holds no secret): 76/76" grep -q 'Score: 76/76' visible.out
 fi
 finish

@@ -82,7 +82,7 @@ for mode in bubblewrap Landlock "limits only"; do
     check "$mode: the build lies below $build_closed, closed to others: simlab refuses in one line, naming it" \
       grep -qF "in this sandbox ($mode) the tools run as throwaway users, who cannot reach" "$name.transcript"
   else
-    check "$mode: simlab graded the typist (Score: 80/80 on the visible tests)" grep -q "Score: 80/80" "$name.transcript"
+    check "$mode: simlab graded the typist (Score: 76/76 on the visible tests)" grep -q "Score: 76/76" "$name.transcript"
     check "$mode: the sandbox it names is $mode" grep -q "sandbox: $mode" "$name.transcript"
   fi
   check "$mode: nothing the submission typed ran after simlab ended" test ! -e "$marker"

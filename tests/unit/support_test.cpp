@@ -1,12 +1,20 @@
 // The rest of the support library: run settings, the recorder, the results table, SIMLAB_TODO, and the
 // apple's exact solution.
 #include <catch2/catch.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <stdexcept>
+#include <utility>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include "apple/exact.h"
+#include "simlab/program.h"
 #include "simlab/recorder.h"
 #include "simlab/results_table.h"
 #include "simlab/run_settings.h"
@@ -97,4 +105,67 @@ TEST_CASE("the apple's exact fall reaches -68.4 m at 4 s with its energy unchang
     CHECK(scene.mass * scene.gravity * y + 0.5 * scene.mass * v * v ==
           Approx(apple::exact::mechanicalEnergy(scene)).epsilon(1e-14));
     CHECK(apple::exact::mechanicalEnergy(scene) == Approx(13.916));
+}
+
+namespace {
+
+/// What `body` run under simlab::runGuarded("demo", ...) in a child process prints on stderr, and its exit status
+/// (128 + N for signal N).
+std::pair<std::string, int> guardedInChild(const std::function<int()>& body) {
+    int pipeFds[2];
+    REQUIRE(::pipe(pipeFds) == 0);
+    const pid_t child = ::fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+        ::dup2(pipeFds[1], 2);
+        ::close(pipeFds[0]);
+        ::close(pipeFds[1]);
+        std::_Exit(simlab::runGuarded("demo", body));
+    }
+    ::close(pipeFds[1]);
+    std::string text;
+    char buffer[512];
+    for (ssize_t n; (n = ::read(pipeFds[0], buffer, sizeof buffer)) > 0;) text.append(buffer, static_cast<std::size_t>(n));
+    ::close(pipeFds[0]);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    return {text, WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status)};
+}
+
+}  // namespace
+
+TEST_CASE("an abort inside a run is one line and status 1, naming the check a kept solver message held",
+          "[program]") {
+    const auto [bare, bareStatus] = guardedInChild([] {
+        std::abort();
+        return 0;
+    });
+    CHECK(bareStatus == 1);
+    CHECK(bare == "demo: error: the run stopped in an internal check of Simbody or the C++ library (the line above "
+                  "names it); the scene or setting is past what it can follow\n");
+
+    const auto [kept, keptStatus] = guardedInChild([] {
+        simlab::SolverChatter chatter(true);  // what the library prints goes to a file, not the screen
+        std::fprintf(stderr, "x.cpp:12: void f(): Assertion `t > 0' failed.\n");
+        std::fflush(stderr);
+        std::abort();
+        return 0;
+    });
+    CHECK(keptStatus == 1);
+    CHECK(kept == "demo: error: the run stopped in an internal check of Simbody or the C++ library: x.cpp:12: void "
+                  "f(): Assertion `t > 0' failed.; the scene or setting is past what it can follow\n");
+}
+
+TEST_CASE("an exception thrown where none may pass is one line and status 1", "[program]") {
+    const auto [said, status] = guardedInChild([]() -> int {
+        // Thrown from a function the compiler cannot see into, through one that promises not to throw.
+        static void (*volatile step)() = [] {
+            throw std::runtime_error("the step size fell to zero\n  (a line a solver adds)");
+        };
+        auto never = []() noexcept { step(); };
+        never();
+        return 0;
+    });
+    CHECK(status == 1);
+    CHECK(said == "demo: error: the run stopped on an exception where none may pass: the step size fell to zero\n");
 }

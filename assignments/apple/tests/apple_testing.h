@@ -33,6 +33,19 @@ inline double finalDigits(const Scene& scene, const simlab::RunSettings& setting
     return simlab::accuracyDigits(last.yLocation, exact::yLocation(scene, last.time));
 }
 
+/// The trade question (tests/trade-question.json): the scene it is asked on, the digits, and the front.
+inline const simlab::trade::Question& tradeQuestion() {
+    static const simlab::trade::Question question = simlab::trade::parseQuestion(
+#include "trade_question.inc"
+        , "the apple's trade-question.json");
+    return question;
+}
+
+/// What the trade question counts of a sample of a fall to `finalTime`: the digits of y and vy.
+inline std::function<double(const Sample&)> tradeDigits(const Scene& scene, double finalTime) {
+    return [scene, finalTime](const Sample& s) { return exact::sampleDigits(scene, s, finalTime); };
+}
+
 /// Largest relative departure of the sampled mechanical energy from m g h.
 inline double energyDrift(const Scene& scene, const Run& run) {
     const double expected = exact::mechanicalEnergy(scene);

@@ -60,4 +60,13 @@ TEST_CASE("hidden: extreme settings keep the fall accurate", "[apple][hidden]") 
     CHECK(grading::atLeast(digits, grading::param("floor"), grading::param("target"), "digits at the worst setting"));
 }
 
+TEST_CASE("hidden: the trade's step keeps its digits on other falls like the question's", "[apple][hidden][trade]") {
+    // The same answer on falls with the question's h/g and duration (on the Moon, on Jupiter): Euler's error in y
+    // is g t dt / 2 against a height that scales with g, so the same step keeps the same digits there.
+    static const simlab::trade::Question variants = simlab::trade::parseQuestion(
+#include "trade_hidden.inc"
+        , "the apple's trade-hidden.json");
+    gradeTradeVariants<Sample, Scene>(variants, tradeDigits);
+}
+
 }  // namespace apple::testing

@@ -65,15 +65,11 @@ TEST_CASE("the model has only the one degree of freedom a fall needs", "[apple][
                           "a Slider along Ground's y gives the apple exactly its one motion");
 }
 
-TEST_CASE("the trade: 10 digits for the fewest evaluations", "[apple][trade]") {
-    // cheapestSettings(), measured on the student's own model as `simlab study trade apple` measures a setting:
-    // the integrator stops only where it chooses to, and every step's y and vy count.
-    const Scene scene;
-    const double T = defaultRunSettings().finalTime;
-    const simlab::ChoiceRun<Sample> result = observeChoice<Sample>(scene, T);
-    double worst = simlab::kMaxDigits;
-    for (const Sample& s : result.samples) worst = std::min(worst, exact::sampleDigits(scene, s, T));
-    gradeTrade(result, worst);
+TEST_CASE("the trade: the fewest explicit Euler steps that keep 3 digits of the question's fall", "[apple][trade]") {
+    // cheapestSettings(), measured on the student's own model as `simlab study trade apple --question` measures a
+    // setting - every step's y and vy count - from each of the question's starts, against the front of explicit
+    // Euler's fixed steps on the question's fall (not the lab's default one).
+    gradeTrade<Sample, Scene>(tradeQuestion(), tradeQuestion().scenes.at(0), tradeDigits);
 }
 
 }  // namespace apple::testing

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <string>
 #include <toml++/toml.h>
 #include <vector>
@@ -31,6 +32,21 @@ inline Run simulateWhole(const Scene& scene) {
     Run run = simulate(scene);
     lastSample(run, defaultRunSettings().finalTime);
     return run;
+}
+
+/// The trade question (tests/trade-question.json): the scene it is asked on, the digits, and the front.
+inline const simlab::trade::Question& tradeQuestion() {
+    static const simlab::trade::Question question = simlab::trade::parseQuestion(
+#include "trade_question.inc"
+        , "the book's trade-question.json");
+    return question;
+}
+
+/// What the trade question counts of a sample of a spin: the digits of w_B against Euler's equations in long
+/// double, integrated once for the scene.
+inline std::function<double(const Sample&)> tradeDigits(const Scene& scene, double) {
+    auto reference = std::make_shared<simlab::OdeReference<3>>(exact::eulerReference(scene));
+    return [scene, reference](const Sample& s) { return exact::spinDigits(scene, s.w_B, reference->at(s.time)); };
 }
 
 inline simlab::RunSettings settingsFor(double finalTime, double dt, double accuracy = 1e-10) {

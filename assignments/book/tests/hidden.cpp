@@ -86,4 +86,13 @@ TEST_CASE("the answers say which spins are stable", "[book][answers]") {
     CHECK(right == 3);
 }
 
+TEST_CASE("hidden: the trade's answer holds on other tumbling books", "[book][hidden][trade]") {
+    // The same answer on two other books spun about their intermediate axes: a setting with a margin keeps its
+    // digits there; one that just scrapes 8 on the question's book, or that happens to land well there, does not.
+    static const simlab::trade::Question variants = simlab::trade::parseQuestion(
+#include "trade_hidden.inc"
+        , "the book's trade-hidden.json");
+    gradeTradeVariants<Sample, Scene>(variants, tradeDigits);
+}
+
 }  // namespace book::testing

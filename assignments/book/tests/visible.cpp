@@ -149,16 +149,11 @@ TEST_CASE("the model has only the three rotational degrees of freedom a spin abo
                           "a Ball mobilizer at its center gives the book exactly its three rotations");
 }
 
-TEST_CASE("the trade: 8 digits of the tumbling spin for the fewest evaluations", "[book][trade]") {
-    // cheapestSettings(), measured on the student's own model of the spin about the intermediate axis as
-    // `simlab study trade book` measures a setting: every step's w_B against Euler's equations in long double.
-    Scene scene;
-    scene.w_B0 = exact::spin(scene, "intermediate");
-    const simlab::ChoiceRun<Sample> result = observeChoice<Sample>(scene, defaultRunSettings().finalTime);
-    simlab::OdeReference<3> reference = exact::eulerReference(scene);
-    double worst = simlab::kMaxDigits;
-    for (const Sample& s : result.samples) worst = std::min(worst, exact::spinDigits(scene, s.w_B, reference.at(s.time)));
-    gradeTrade(result, worst);
+TEST_CASE("the trade: 8 digits of the question's tumbling spin for the fewest evaluations", "[book][trade]") {
+    // cheapestSettings(), measured on the student's own model as `simlab study trade book --question` measures a
+    // setting - every step's w_B against Euler's equations in long double - from each of the question's starts,
+    // against the front of the question's book and spin about its intermediate axis (not the lab's).
+    gradeTrade<Sample, Scene>(tradeQuestion(), tradeQuestion().scenes.at(0), tradeDigits);
 }
 
 }  // namespace book::testing

@@ -30,4 +30,13 @@ TEST_CASE("hidden: other speeds and gravity fly the right parabola", "[projectil
     CHECK(grading::atLeast(worst, grading::param("floor"), grading::param("target"), "digits at the worst launch"));
 }
 
+TEST_CASE("hidden: the trade's answer holds on other throws", "[projectile][hidden][trade]") {
+    // The same answer on a faster, flatter throw and a slower, steeper one: a setting near the front on one
+    // parabola is near it on the next; one tuned to land just so on the question's is not.
+    static const simlab::trade::Question variants = simlab::trade::parseQuestion(
+#include "trade_hidden.inc"
+        , "the projectile's trade-hidden.json");
+    gradeTradeVariants<Sample, Scene>(variants, tradeDigits);
+}
+
 }  // namespace projectile::testing

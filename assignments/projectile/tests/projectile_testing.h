@@ -23,6 +23,19 @@ inline Run simulate(const Scene& scene, const simlab::RunSettings& settings = de
     return simlab::testing::simulate<Sample>(scene, settings);
 }
 
+/// The trade question (tests/trade-question.json): the scene it is asked on, the digits, and the front.
+inline const simlab::trade::Question& tradeQuestion() {
+    static const simlab::trade::Question question = simlab::trade::parseQuestion(
+#include "trade_question.inc"
+        , "the projectile's trade-question.json");
+    return question;
+}
+
+/// What the trade question counts of a sample of a flight: the digits of x, y and their speeds.
+inline std::function<double(const Sample&)> tradeDigits(const Scene& scene, double) {
+    return [scene](const Sample& s) { return exact::flightDigits(scene, s); };
+}
+
 inline simlab::RunSettings settingsFor(double finalTime, double dt, double accuracy = 1e-7) {
     return simlab::testing::settingsFor(defaultRunSettings(), finalTime, dt, accuracy);
 }

@@ -126,14 +126,11 @@ TEST_CASE("the model has only the two degrees of freedom a flight in a plane nee
                           "two Sliders in series (along x, then along y) give the ball exactly x and y");
 }
 
-TEST_CASE("the trade: 10 digits for the fewest evaluations", "[projectile][trade]") {
-    // cheapestSettings(), measured on the student's own model as `simlab study trade projectile` measures a
-    // setting: the integrator stops only where it chooses to (and at the ground hit), and every step counts.
-    const Scene scene;
-    const simlab::ChoiceRun<Sample> result = observeChoice<Sample>(scene, exact::kTradeFinalTime);
-    double worst = simlab::kMaxDigits;
-    for (const Sample& s : result.samples) worst = std::min(worst, exact::flightDigits(scene, s));
-    gradeTrade(result, worst);
+TEST_CASE("the trade: 10 digits of the question's flight for the fewest evaluations", "[projectile][trade]") {
+    // cheapestSettings(), measured on the student's own model as `simlab study trade projectile --question`
+    // measures a setting - the integrator stops only where it chooses to (and at the ground hit), and every step
+    // counts - from each of the question's starts, against the front of the question's throw (not the lab's).
+    gradeTrade<Sample, Scene>(tradeQuestion(), tradeQuestion().scenes.at(0), tradeDigits);
 }
 
 }  // namespace projectile::testing

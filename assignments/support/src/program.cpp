@@ -9,7 +9,10 @@
 #include <condition_variable>
 #include <cmath>
 #include <cstdio>
+#include <csignal>
 #include <cstdlib>
+#include <cstring>
+#include <exception>
 #include <iostream>
 #include <sstream>
 #include <unistd.h>
@@ -97,7 +100,78 @@ int checkRunSettings(const std::string& program, const RunSettings& run) {
     }
 }
 
+namespace {
+
+int screenStderr = 2;  // where tellUser writes: fd 2, or the screen's stderr while a SolverChatter keeps fd 2
+char abortPrefix[256];  // "<program>: error: ", set before the run
+
+/// The line of `text` (n bytes) that names an internal check or a terminate, if any: [begin, end).
+std::pair<std::size_t, std::size_t> checkLine(const char* text, std::size_t n) {
+    std::size_t begin = 0;
+    for (std::size_t i = 0; i <= n; ++i) {
+        if (i == n || text[i] == '\n') {
+            for (std::size_t j = begin; j + 9 <= i; ++j) {
+                if (std::memcmp(text + j, "Assertion", 9) == 0 || std::memcmp(text + j, "terminate", 9) == 0) {
+                    return {begin, i};
+                }
+            }
+            begin = i + 1;
+        }
+    }
+    return {0, 0};
+}
+
+/// SIGABRT: an assert() inside Simbody or the C++ library failed, or the run was terminated. One line on the
+/// screen names it (the check's own words, if a SolverChatter kept them from the screen) and the program exits
+/// with status 1, as for any other error. Only async-signal-safe calls.
+extern "C" void onAbort(int) {
+    auto say = [](const char* text, std::size_t n) {
+        if (::write(screenStderr, text, n) < 0) return;
+    };
+    say(abortPrefix, std::strlen(abortPrefix));
+    static const char stopped[] = "the run stopped in an internal check of Simbody or the C++ library";
+    say(stopped, sizeof stopped - 1);
+    static char kept[4096];
+    std::size_t n = 0;
+    if (screenStderr != 2 && ::lseek(2, 0, SEEK_SET) == 0) {
+        const ssize_t got = ::read(2, kept, sizeof kept);
+        n = got > 0 ? static_cast<std::size_t>(got) : 0;
+    }
+    const std::pair<std::size_t, std::size_t> line = checkLine(kept, n);
+    if (line.second > line.first) {
+        say(": ", 2);
+        say(kept + line.first, std::min<std::size_t>(line.second - line.first, 300));
+    } else {
+        static const char above[] = " (the line above names it)";
+        say(above, sizeof above - 1);
+    }
+    static const char advice[] = "; the scene or setting is past what it can follow\n";
+    say(advice, sizeof advice - 1);
+    ::_exit(1);
+}
+
+}  // namespace
+
 int runGuarded(const std::string& program, const std::function<int()>& body) {
+    std::snprintf(abortPrefix, sizeof abortPrefix, "%s: error: ", program.c_str());
+    std::signal(SIGABRT, onAbort);
+    // An exception that reaches std::terminate (thrown through a noexcept function) says what it was, in one line.
+    static std::string name;
+    name = program;
+    std::set_terminate([] {
+        std::string what = "an exception of unknown type";
+        if (const std::exception_ptr e = std::current_exception()) {
+            try {
+                std::rethrow_exception(e);
+            } catch (const std::exception& x) {
+                what = x.what();
+            } catch (...) {
+            }
+        }
+        std::cout.flush();
+        tellUser(name + ": error: the run stopped on an exception where none may pass: " + oneLineMessage(what));
+        std::_Exit(1);
+    });
     try {
         return body();
     } catch (const NotDoneYet& e) {
@@ -113,9 +187,6 @@ int runGuarded(const std::string& program, const std::function<int()>& body) {
     }
 }
 
-namespace {
-int screenStderr = 2;  // where tellUser writes: fd 2, or the screen's stderr while a SolverChatter keeps fd 2
-}  // namespace
 
 void tellUser(const std::string& line) {
     std::cerr.flush();

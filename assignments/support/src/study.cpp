@@ -21,6 +21,7 @@
 #include "simlab/messages.h"
 #include "simlab/model_info.h"
 #include "simlab/reproducible_math.h"
+#include "simlab/trade_question.h"
 
 namespace simlab::study {
 
@@ -38,6 +39,8 @@ struct Settings {
     double cap = 600;
     int repeats = 3;   ///< timed runs per point; the fastest is kept
     std::string subject;
+    std::vector<std::string> integrators;  ///< only these (empty: every one)
+    bool fixedStepsOnly = false;           ///< only the fixed-step sweeps
 };
 
 /// One point of the study: an integrator at an accuracy, or at a fixed step.
@@ -136,31 +139,61 @@ void measure(const Subject& subject, const Point& point, const Settings& setting
 /// Points dearer than this are timed once: their one run is long enough to time.
 constexpr int kOneRepeatEvaluations = 100000;
 
+/// Seconds one run of `point` takes to the final time, reporting only there. Building the model is not timed.
+double timedRun(const Subject& subject, const Point& point) {
+    std::unique_ptr<Instance> instance = subject.make();
+    std::unique_ptr<SimTK::Integrator> integrator =
+        simlab::integratorFor(choiceOf(point), instance->system(), subject.finalTime);
+    SimTK::TimeStepper stepper(instance->system(), *integrator);
+    const Clock::time_point began = Clock::now();
+    stepper.initialize(instance->initial());
+    while (!integrator->isSimulationOver() && stepper.getState().getTime() < subject.finalTime) {
+        stepper.stepTo(subject.finalTime);
+    }
+    return std::chrono::duration<double>(Clock::now() - began).count();
+}
+
 /// The timed repeats: reporting only at the end; the fastest is kept. How many is decided by the point's
 /// evaluations, never by the clock, so that trade.csv's columns but the seconds are the same on every machine.
 void timeRepeats(const Subject& subject, const Point& point, const Settings& settings, Outcome& out) {
     const int repeats = out.evaluations > kOneRepeatEvaluations ? 1 : settings.repeats;
     for (int r = 0; r < repeats; ++r) {
-        std::unique_ptr<Instance> instance = subject.make();
-        std::unique_ptr<SimTK::Integrator> integrator =
-            simlab::integratorFor(choiceOf(point), instance->system(), subject.finalTime);
-        SimTK::TimeStepper stepper(instance->system(), *integrator);
-        const Clock::time_point began = Clock::now();
-        stepper.initialize(instance->initial());
-        while (!integrator->isSimulationOver() && stepper.getState().getTime() < subject.finalTime) {
-            stepper.stepTo(subject.finalTime);
-        }
-        const double seconds = std::chrono::duration<double>(Clock::now() - began).count();
+        const double seconds = timedRun(subject, point);
         out.seconds = std::isnan(out.seconds) ? seconds : std::min(out.seconds, seconds);
         out.repeats = r + 1;
     }
 }
 
-/// A point measured and, if it ran to the end, timed; whatever it throws is its outcome, in one line.
+/// `other`, the same point from another start, folded into `out` at the worse of the two: the fewest digits, the
+/// most drift, steps and evaluations, the shortest reach, and the first failure.
+void keepWorst(Outcome& out, const Outcome& other, std::size_t start) {
+    if (out.status == "ok" && other.status != "ok") {
+        out.status = other.status;
+        out.message = "from start " + std::to_string(start + 1) + ": " + other.message;
+    }
+    auto least = [](double a, double b) { return std::isnan(a) || std::isnan(b) ? NAN : std::min(a, b); };
+    out.worstDigits = least(out.worstDigits, other.worstDigits);
+    out.finalDigits = least(out.finalDigits, other.finalDigits);
+    out.reached = least(out.reached, other.reached);
+    out.drift = std::isnan(other.drift) ? out.drift : std::max(out.drift, other.drift);
+    out.stepsTaken = std::max(out.stepsTaken, other.stepsTaken);
+    out.stepsAttempted = std::max(out.stepsAttempted, other.stepsAttempted);
+    out.evaluations = std::max(out.evaluations, other.evaluations);
+}
+
+/// A point measured (from every start of its subject, kept at its worst) and, if it ran to the end, timed from
+/// the first; whatever it throws is its outcome, in one line.
 void measureAndTime(const Subject& subject, const Point& point, const Settings& settings, Outcome& out) {
     try {
         QuietStderr quiet;
         measure(subject, point, settings, out);
+        for (std::size_t k = 0; k < subject.moreStarts.size() && out.status == "ok"; ++k) {
+            Subject from = subject;
+            from.make = subject.moreStarts[k];
+            Outcome other;
+            measure(from, point, settings, other);
+            keepWorst(out, other, k + 1);
+        }
         if (out.status == "ok") timeRepeats(subject, point, settings, out);
     } catch (const std::exception& e) {
         out.status = "failed";
@@ -183,8 +216,16 @@ nlohmann::json toJson(const Subject& s, const Point& p, const Outcome& o) {
 }
 
 std::vector<Point> pointsOf(const Subject& subject, const Settings& settings) {
-    std::vector<Point> points;
+    std::vector<std::string> names;
     for (const std::string& name : integratorNames()) {
+        if (settings.integrators.empty() ||
+            std::find(settings.integrators.begin(), settings.integrators.end(), name) != settings.integrators.end()) {
+            names.push_back(name);
+        }
+    }
+    std::vector<Point> points;
+    for (const std::string& name : names) {
+        if (settings.fixedStepsOnly) break;
         for (int exponent = 1; exponent <= 14; ++exponent) {
             points.push_back({name, "accuracy", std::pow(10.0, -exponent), 0});
         }
@@ -193,41 +234,148 @@ std::vector<Point> pointsOf(const Subject& subject, const Settings& settings) {
     const std::vector<double> fractions = settings.quick ? std::vector<double>{1e-1, 1e-2, 1e-3, 1e-4}
                                                          : std::vector<double>{1e-1, 3e-2, 1e-2, 3e-3, 1e-3,
                                                                                3e-4, 1e-4, 3e-5};
-    for (const std::string& name : integratorNames()) {
+    for (const std::string& name : names) {
         if (name == "CPodes") continue;  // a multistep method: its steps are its own
         for (const double f : fractions) points.push_back({name, "fixed step", 0, f * subject.finalTime});
     }
     return points;
 }
 
-/// The same scene minimal and over-modelled, side by side, with the labs' integrator at three accuracies.
+/// A timed batch lasts at least this long, s: runs of a millisecond are timed in batches, since the clock and the
+/// scheduler blur one of them by more than the difference being measured.
+constexpr double kBatchSeconds = 0.02;
+/// Rounds of batches per repeat asked for: the fastest of many short batches finds the machine at its quietest.
+/// A run longer than a batch gets fewer rounds, as many as fit in the time of those (at least `repeats`).
+constexpr int kRoundsPerRepeat = 5;
+
+/// A point to be timed in batches beside others.
+struct Batched {
+    const Subject* subject;
+    Point point;
+    Outcome* out;
+    int batch = 1;   ///< runs per batch, enough for kBatchSeconds
+    int rounds = 1;  ///< batches timed
+};
+
+/// Seconds per run of each of `points`, timed A B A B: a run of each (warm: their measured runs came first) sets
+/// its batch, then rounds of batches time each in turn, so that a machine that slows down slows all of them
+/// alike; each keeps its fastest batch's seconds per run. Sets `out.seconds` and `out.repeats` (runs timed).
+void timeInterleaved(std::vector<Batched>& points, int repeats) {
+    int rounds = 0;
+    for (Batched& b : points) {
+        const double first = timedRun(*b.subject, b.point);
+        b.batch = static_cast<int>(std::clamp(std::ceil(kBatchSeconds / std::max(first, 1e-9)), 1.0, 1e5));
+        // As many rounds as a short run gets, but no more time than its rounds take: at least `repeats`.
+        const double share = kRoundsPerRepeat * repeats * std::min(1.0, kBatchSeconds / std::max(first, 1e-9));
+        b.rounds = std::max(repeats, static_cast<int>(std::ceil(share)));
+        rounds = std::max(rounds, b.rounds);
+        b.out->repeats = 1;
+        b.out->seconds = b.batch == 1 ? first : NAN;
+    }
+    for (int r = 0; r < rounds; ++r) {
+        for (Batched& b : points) {
+            if (r >= b.rounds) continue;
+            double total = 0;
+            for (int k = 0; k < b.batch; ++k) total += timedRun(*b.subject, b.point);
+            b.out->repeats += b.batch;
+            b.out->seconds = std::isnan(b.out->seconds) ? total / b.batch : std::min(b.out->seconds, total / b.batch);
+        }
+    }
+}
+
+/// The accuracies `study minimal` sweeps: half decades from 1e-1 to 1e-12, enough points to read each model's
+/// cost at any digits between its ends.
+std::vector<double> minimalAccuracies() {
+    std::vector<double> accuracies;
+    for (int half = 2; half <= 24; ++half) accuracies.push_back(std::pow(10.0, -0.5 * half));
+    return accuracies;
+}
+
+/// The same scene with its minimal mobilizers and over-modelled, each model's work-precision curve with the labs'
+/// integrator: digits kept all the way, evaluations and seconds per run at each accuracy. simlab reads the two
+/// curves at equal digits.
 void runMinimal(const std::string& lab, const Subject& subject, const Settings& settings) {
     if (!subject.makeOverModelled) return;
-    for (const double accuracy : {1e-4, 1e-7, 1e-10}) {
+    static const bool progress = isatty(2) || std::getenv("SIMLAB_PROGRESS") != nullptr;
+    struct Model {
+        Subject subject;
+        std::string name;
+        int dof = 0, coordinates = 0, ok = 0;
+        double best = -INFINITY;
+    };
+    std::array<Model, 2> models;
+    for (const bool over : {false, true}) {
+        Model& m = models[over];
+        m.subject = subject;
+        if (over) m.subject.make = subject.makeOverModelled;
+        m.name = over ? subject.overModelled : subject.minimal;
+        try {
+            const std::unique_ptr<Instance> instance = m.subject.make();
+            // Degrees of freedom: the mobilities less the constraints that hold some of them back.
+            m.dof = simlab::describeModel(instance->system().getMatterSubsystem(), instance->initial())
+                        .degreesOfFreedom();
+            m.coordinates = instance->initial().getNQ();
+        } catch (const std::exception&) {
+            // the measured run says what went wrong
+        }
+    }
+    const std::vector<double> accuracies = minimalAccuracies();
+    if (progress) {
+        std::cerr << "  " << subject.name << ": " << models[0].name << " and " << models[1].name << " at "
+                  << accuracies.size() << " accuracies, timed in alternating batches of at least " << kBatchSeconds
+                  << " s\n";
+    }
+    Clock::time_point told = Clock::now();
+    for (std::size_t i = 0; i < accuracies.size(); ++i) {
+        const Point point{"RungeKuttaMerson", "accuracy", accuracies[i], 0};
+        std::array<Outcome, 2> outs;
+        std::vector<Batched> timed;
         for (const bool over : {false, true}) {
-            Subject s = subject;
-            if (over) s.make = subject.makeOverModelled;
-            const Point point{"RungeKuttaMerson", "accuracy", accuracy, 0};
-            Outcome out;
-            int dof = 0, coordinates = 0;
             try {
-                const std::unique_ptr<Instance> instance = s.make();
-                // Degrees of freedom: the mobilities less the constraints that hold some of them back.
-                dof = simlab::describeModel(instance->system().getMatterSubsystem(), instance->initial())
-                          .degreesOfFreedom();
-                coordinates = instance->initial().getNQ();
-            } catch (const std::exception&) {
-                // measureAndTime says what went wrong
+                QuietStderr quiet;
+                measure(models[over].subject, point, settings, outs[over]);
+                if (outs[over].status == "ok") timed.push_back({&models[over].subject, point, &outs[over]});
+            } catch (const std::exception& e) {
+                outs[over].status = "failed";
+                outs[over].message = simlab::oneLineMessage(e.what(), 200);
             }
-            measureAndTime(s, point, settings, out);
-            nlohmann::json j = toJson(s, point, out);
+        }
+        try {
+            QuietStderr quiet;
+            timeInterleaved(timed, settings.repeats);
+        } catch (const std::exception& e) {
+            for (Batched& b : timed) {
+                b.out->status = "failed";
+                b.out->message = simlab::oneLineMessage(e.what(), 200);
+            }
+        }
+        for (const bool over : {false, true}) {
+            Model& m = models[over];
+            if (outs[over].status == "ok") {
+                ++m.ok;
+                m.best = std::max(m.best, outs[over].worstDigits);
+            }
+            nlohmann::json j = toJson(m.subject, point, outs[over]);
             j["type"] = "minimal";
             j["lab"] = lab;
-            j["model"] = over ? subject.overModelled : subject.minimal;
+            j["model"] = m.name;
             j["over_modelled"] = over;
-            j["dof"] = dof;
-            j["coordinates"] = coordinates;
+            j["dof"] = m.dof;
+            j["coordinates"] = m.coordinates;
             std::cout << j.dump() << std::endl;
+        }
+        // A line every few seconds, so that a long sweep is never silent for long.
+        if (progress && i + 1 < accuracies.size() && Clock::now() - told > std::chrono::seconds(3)) {
+            told = Clock::now();
+            std::cerr << "  " << subject.name << ": " << i + 1 << " of " << accuracies.size() << " accuracies done (to "
+                      << accuracies[i] << ")\n";
+        }
+    }
+    if (progress) {
+        for (const Model& m : models) {
+            std::cerr << "  " << subject.name << ", " << m.name << ": " << m.ok << " of " << accuracies.size() << " ok";
+            if (std::isfinite(m.best)) std::cerr << "; best " << std::fixed << std::setprecision(1) << m.best << " digits";
+            std::cerr << std::defaultfloat << '\n';
         }
     }
 }
@@ -240,7 +388,8 @@ void runSubject(const std::string& lab, const Subject& subject, const Settings& 
                                 {"conserved", subject.conservedName}, {"final_time", subject.finalTime},
                                 {"reference", subject.reference},     {"reference_digits", number(referenceDigits)},
                                 {"cap", settings.cap},     {"max_evaluations", settings.maxEvaluations},
-                                {"repeats", settings.repeats}}
+                                {"repeats", settings.repeats},
+                                {"starts", 1 + subject.moreStarts.size()}}
                      .dump()
               << std::endl;
     const std::vector<Point> points = pointsOf(subject, settings);
@@ -320,10 +469,14 @@ void runSubject(const std::string& lab, const Subject& subject, const Settings& 
 
 }  // namespace
 
-int studyMain(int argc, char** argv, const std::string& lab, const std::vector<Subject>& subjects) {
+int studyMain(int argc, char** argv, const std::string& lab, const std::vector<Subject>& subjects,
+              const SubjectForScene& forScene) {
     simlab::useReproducibleMath(argv);
     Settings settings;
     bool list = false, minimal = false;
+    std::string sceneText, sceneName = "scene", nudge;
+    double finalTime = 0;
+    int starts = 1;
     CLI::App app{"The work-precision study of the " + lab + " lab's scenes, one JSON object per line (run it with "
                  "`simlab study trade " + lab + "`).", lab + "-study"};
     app.add_flag("--quick", settings.quick, "fewer step sizes, one timed repeat and a cap of 2e5 evaluations");
@@ -341,21 +494,62 @@ int studyMain(int argc, char** argv, const std::string& lab, const std::vector<S
     app.add_option("--subject", settings.subject, "only this scene");
     app.add_flag("--list", list, "list the scenes and stop");
     app.add_flag("--minimal", minimal, "each scene with its minimal mobilizers and over-modelled, side by side");
+    app.add_option("--integrators", settings.integrators, "only these integrators")->delimiter(',');
+    app.add_flag("--fixed-steps-only", settings.fixedStepsOnly, "only the sweeps of fixed steps");
+    if (forScene) {
+        CLI::Option* scene = app.add_option("--scene", sceneText,
+                                            "study this scene instead (the lab's Scene as JSON, as the trade "
+                                            "question's data file holds it)");
+        app.add_option("--final-time", finalTime, "with --scene: its final time, s")
+            ->check(between(1e-9, 1e6))
+            ->needs(scene);
+        app.add_option("--name", sceneName, "with --scene: what to call it")->needs(scene);
+        app.add_option("--starts", starts,
+                       "with --scene: measure each point from this many starts (--nudge moved by 0, 1, ... units in "
+                       "its last place) and keep it at its worst")
+            ->check(CLI::Range(1, 10))
+            ->needs(scene);
+        app.add_option("--nudge", nudge, "with --starts: the JSON pointer of the scene's number a start moves")
+            ->needs(scene);
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e) == 0 ? 0 : 2;
+    }
+    for (const std::string& name : settings.integrators) {
+        const std::vector<std::string> known = integratorNames();
+        if (std::find(known.begin(), known.end(), name) == known.end()) {
+            std::cerr << lab << "-study: error: --integrators: no integrator named '" << name << "'\n";
+            return 2;
+        }
+    }
+    std::vector<Subject> scenes = subjects;
+    if (!sceneText.empty()) {
+        try {
+            const nlohmann::json scene = nlohmann::json::parse(sceneText);
+            if (!(finalTime > 0)) throw std::runtime_error("--scene needs --final-time");
+            Subject subject = forScene(scene, finalTime);
+            subject.name = sceneName;
+            for (int k = 1; k < starts; ++k) {
+                subject.moreStarts.push_back(forScene(simlab::trade::nudged(scene, nudge, k), finalTime).make);
+            }
+            scenes = {subject};
+        } catch (const std::exception& e) {
+            std::cerr << lab << "-study: error: --scene: " << simlab::oneLineMessage(e.what(), 200) << '\n';
+            return 2;
+        }
     }
     if (settings.quick) {
         if (app.count("--max-evaluations") == 0) settings.maxEvaluations = 2e5;
         if (app.count("--repeats") == 0) settings.repeats = 1;
     }
     if (list) {
-        for (const Subject& s : subjects) std::cout << s.name << ": " << s.figure << '\n';
+        for (const Subject& s : scenes) std::cout << s.name << ": " << s.figure << '\n';
         return 0;
     }
     bool found = settings.subject.empty();
-    for (const Subject& s : subjects) {
+    for (const Subject& s : scenes) {
         if (!settings.subject.empty() && s.name != settings.subject) continue;
         found = true;
         try {

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "Simbody.h"
+#include <nlohmann/json.hpp>
 #include "simlab/ode_reference.h"
 
 namespace simlab::study {
@@ -56,11 +57,22 @@ struct Subject {
     /// for `simlab study minimal`; empty where there is none. `overModelled` names it, e.g. "Free (6 dof)".
     std::function<std::unique_ptr<Instance>()> makeOverModelled;
     std::string minimal, overModelled;
+    /// The same scene from other starts (a number of it moved in its last place): each point is measured from
+    /// `make` and from each of these, and kept at its worst (the fewest digits, the most steps and evaluations), so
+    /// that a point that lands well from one start alone does not count as good. Empty: one start.
+    std::vector<std::function<std::unique_ptr<Instance>()>> moreStarts;
 };
 
-/// Parses the study program's command line (--quick, --cap, --repeats, --subject, --list, --minimal), runs the
-/// study of `subjects` (or, with --minimal, each scene minimal and over-modelled side by side) and prints it as JSON
-/// lines on stdout (progress goes to stderr). Returns the exit status.
-int studyMain(int argc, char** argv, const std::string& lab, const std::vector<Subject>& subjects);
+/// A lab's scene in the study from its wire form (the lab's Scene as JSON, as the trade question's data file
+/// holds it) and a final time: what `--scene` studies.
+using SubjectForScene = std::function<Subject(const nlohmann::json& scene, double finalTime)>;
+
+/// Parses the study program's command line (--quick, --cap, --repeats, --subject, --list, --minimal; with
+/// `forScene`, --scene and what goes with it: --final-time, --name, --starts, --nudge, --integrators,
+/// --fixed-steps-only), runs the study of `subjects` (or of the scene given, or, with --minimal, each scene minimal
+/// and over-modelled side by side) and prints it as JSON lines on stdout (progress goes to stderr). Returns the exit
+/// status.
+int studyMain(int argc, char** argv, const std::string& lab, const std::vector<Subject>& subjects,
+              const SubjectForScene& forScene = nullptr);
 
 }  // namespace simlab::study

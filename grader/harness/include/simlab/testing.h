@@ -6,14 +6,20 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <functional>
+#include <optional>
+#include <stdexcept>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "simlab/digits.h"
 #include "simlab/driver.h"
 #include "simlab/grading.h"
 #include "simlab/observe.h"
 #include "simlab/run_settings.h"
+#include "simlab/trade_question.h"
+#include "simlab/wire.h"
 
 namespace simlab::testing {
 
@@ -126,11 +132,9 @@ inline void checkDegreesOfFreedom(const ModelInfo& info, int dof, const std::str
 }
 
 /// The student's answer to the trade question, measured (see observe::choice) to `finalTime` and stopped past
-/// the rubric's none_past times its `cheapest` evaluations. Fails the test unless the samples start at t = 0 and
-/// run forward in time.
+/// `cap` evaluations. Fails the test unless the samples start at t = 0 and run forward in time.
 template <class Sample, class Scene>
-ChoiceRun<Sample> observeChoice(const Scene& scene, double finalTime) {
-    const double cap = grading::param("none_past") * grading::param("cheapest");
+ChoiceRun<Sample> observeChoice(const Scene& scene, double finalTime, double cap) {
     ChoiceRun<Sample> result = observe::choice<Sample>(scene, finalTime, cap);
     INFO("the choice: " << result.choice.integrator
                         << (result.choice.fixedStep ? ", fixed step " : ", accuracy ")
@@ -148,40 +152,106 @@ ChoiceRun<Sample> observeChoice(const Scene& scene, double finalTime) {
     return result;
 }
 
-/// Points for the trade question. `digits`, the worst over the run, must reach the rubric's `digits`; then the
-/// cost in evaluations earns full credit up to full_within times the study's `cheapest`, less in proportion to its
-/// logarithm up to none_past times, and nothing beyond (a run stopped there never finishes). Returns true for
-/// full credit.
-template <class Sample>
-bool gradeTrade(const ChoiceRun<Sample>& result, double digits) {
-    const double target = grading::param("digits"), cheapest = grading::param("cheapest");
-    const double fullWithin = grading::param("full_within"), nonePast = grading::param("none_past");
-    const RunSettings& c = result.choice;
-    const std::string setting = describeRun(c);
-    const double evaluations = result.run.integrator.realizations;
-    const double ratio = evaluations / cheapest;
-    // Every outcome is measured as the cost against the cheapest, so that a class's figures for this test are one
-    // quantity; the line says the rest.
-    if (result.run.status != "ok") {
-        grading::measured(ratio, "x the cheapest", setting + ": " + result.run.status + ", " + result.run.message);
-        FAIL_CHECK("the run did not finish: " << result.run.message);
-        return false;
+/// What the trade question earns on one of its scenes.
+struct TradeCredit {
+    double credit = 0;   ///< 0 to 1
+    double ratio = NAN;  ///< the answer's evaluations over the front's cost where it was read (NaN: not read)
+    std::string line;    ///< what was measured, in words
+};
+
+/// Digits of a sample of `scene`'s run to `finalTime`, the worst of what the question counts (the lab's): made once
+/// per scene, so that a reference the digits need is computed once.
+template <class Sample, class Scene>
+using TradeDigits = std::function<std::function<double(const Sample&)>(const Scene& scene, double finalTime)>;
+
+/// The trade question on scene `s` of `q`. The student's cheapestSettings() is measured from each of the question's
+/// starts (the scene's number at q.nudge moved by 0, 1, ... units in its last place) and kept at its worst: the
+/// fewest digits at any step, the most evaluations. Short of q.digits it earns nothing. Otherwise its evaluations
+/// are set against the scene's work-precision front read at the digits it keeps (counted up to the rubric's
+/// `beyond` digits more than asked: what it keeps beyond that, nobody asked for): full credit up to the rubric's
+/// full_within times the front's cost, less in proportion to the logarithm up to none_past times, and nothing
+/// beyond (the run is stopped there).
+template <class Sample, class Scene>
+TradeCredit tradeCredit(const trade::Question& q, const trade::Scene& s, const TradeDigits<Sample, Scene>& digitsOf) {
+    const double beyond = grading::param("beyond"), fullWithin = grading::param("full_within");
+    const double nonePast = grading::param("none_past");
+    if (s.front.empty()) {
+        throw std::logic_error("the trade question's scene '" + s.name + "' has no front (simlab study trade " + q.lab +
+                               " --fronts makes it)");
     }
-    if (!(digits >= target)) {
-        grading::measured(ratio, "x the cheapest", setting + " keeps " + grading::show(digits) +
-                                                       " digits over the run, need " + grading::show(target));
-        FAIL_CHECK("too few digits");
-        return false;
+    const double cap = trade::cap(s.front, q.digits, beyond, nonePast);  // the most that can earn anything
+    TradeCredit result;
+    double worst = kMaxDigits, evaluations = 0;
+    RunSettings choice;
+    for (int k = 0; k < q.starts; ++k) {
+        const Scene scene = wire::readOver(Scene{}, trade::nudged(s.scene, q.nudge, k), "the trade question's scene");
+        const ChoiceRun<Sample> run = observeChoice<Sample>(scene, s.finalTime, cap);
+        choice = run.choice;
+        const std::string setting = describeRun(choice);
+        if (!trade::allows(q, choice.integrator, choice.fixedStep)) {
+            std::string allowed;
+            for (const std::string& name : q.integrators) allowed += (allowed.empty() ? "" : " or ") + name;
+            result.line = setting + ": the question asks for " + (allowed.empty() ? "an integrator" : allowed) +
+                          (q.fixedStepOnly ? " at fixed steps" : "");
+            return result;
+        }
+        evaluations = std::max(evaluations, static_cast<double>(run.run.integrator.realizations));
+        if (run.run.status != "ok") {
+            result.line = setting + ": " + run.run.status + ", " + run.run.message;
+            return result;
+        }
+        const std::function<double(const Sample&)> digits = digitsOf(scene, s.finalTime);
+        for (const Sample& sample : run.samples) worst = std::min(worst, digits(sample));
     }
+    const std::string setting = describeRun(choice);
+    const std::string starts = q.starts > 1 ? " (the worst of " + std::to_string(q.starts) + " starts)" : "";
     std::ostringstream line;
-    line << setting << ": " << grading::show(digits) << " digits for " << static_cast<long long>(evaluations)
-         << " evaluations, " << grading::show(ratio) << " x the cheapest found (" << static_cast<long long>(cheapest)
-         << "); full credit up to " << grading::show(fullWithin) << " x";
-    grading::measured(ratio, "x the cheapest", line.str());
-    if (ratio <= fullWithin) return true;
-    if (ratio < nonePast) grading::partialCredit(1 - std::log(ratio / fullWithin) / std::log(nonePast / fullWithin));
-    FAIL_CHECK("dearer than " << fullWithin << " x the cheapest setting found");
-    return false;
+    if (!(worst >= q.digits)) {
+        line << setting << " keeps " << grading::show(worst) << " digits over the run" << starts << ", need "
+             << grading::show(q.digits);
+        result.line = line.str();
+        return result;
+    }
+    const trade::Score score = trade::score(s.front, q.digits, worst, evaluations, beyond, fullWithin, nonePast);
+    result.ratio = score.ratio;
+    result.credit = score.credit;
+    line << setting << ": " << grading::show(worst) << " digits" << starts << " for "
+         << static_cast<long long>(evaluations) << " evaluations, " << grading::show(score.ratio)
+         << " x the front at " << grading::show(score.readAt) << " digits ("
+         << static_cast<long long>(std::ceil(score.frontCost)) << "); full credit up to " << grading::show(fullWithin)
+         << " x";
+    result.line = line.str();
+    return result;
+}
+
+/// Points for the trade question on scene `s` of `q` (tradeCredit): the figure is the cost against the front.
+template <class Sample, class Scene>
+void gradeTrade(const trade::Question& q, const trade::Scene& s, const TradeDigits<Sample, Scene>& digitsOf) {
+    const TradeCredit c = tradeCredit<Sample, Scene>(q, s, digitsOf);
+    grading::measured(c.ratio, "x the front", c.line);
+    if (c.credit >= 1) return;
+    if (c.credit > 0) grading::partialCredit(c.credit);
+    FAIL_CHECK(c.line);
+}
+
+/// Points for the trade question on every scene of `q` (its hidden variants, say): the mean of their credits; the
+/// figure is the largest cost against the front among the scenes where the answer kept the digits.
+template <class Sample, class Scene>
+void gradeTradeVariants(const trade::Question& q, const TradeDigits<Sample, Scene>& digitsOf) {
+    REQUIRE_FALSE(q.scenes.empty());
+    double credit = 0, ratio = NAN;
+    std::string lines;
+    for (const trade::Scene& s : q.scenes) {
+        const TradeCredit c = tradeCredit<Sample, Scene>(q, s, digitsOf);
+        credit += c.credit / static_cast<double>(q.scenes.size());
+        if (std::isfinite(c.ratio)) ratio = std::isnan(ratio) ? c.ratio : std::max(ratio, c.ratio);
+        lines += (lines.empty() ? "" : "; ") + s.name + ": " + c.line;
+        if (c.credit < 1) grading::feedback(s.name + ": " + c.line);
+    }
+    grading::measured(ratio, "x the front", lines);
+    if (credit >= 1) return;
+    if (credit > 0) grading::partialCredit(credit);
+    FAIL_CHECK("the answer earns " << grading::show(100 * credit) << " % of the points over the scenes");
 }
 
 }  // namespace simlab::testing

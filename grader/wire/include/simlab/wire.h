@@ -116,6 +116,17 @@ nlohmann::json toJson(const std::map<std::string, T>& values) {
     return object;
 }
 
+/// A T read from `j`, which may leave fields out: those keep their values in `defaults`.
+template <class T>
+T readOver(const T& defaults, const nlohmann::json& j, const std::string& where) {
+    if (!j.is_object()) throw WireError(where + " is not an object");
+    nlohmann::json full = toJson(defaults);
+    full.merge_patch(j);
+    T value = defaults;
+    readValue(full, value, where);
+    return value;
+}
+
 /// The first null (a non-finite number) in `j`, as a path like "samples[37].yLocation"; empty if there is none.
 inline std::string firstNull(const nlohmann::json& j, const std::string& where = "") {
     if (j.is_null()) return where.empty() ? "the answer" : where;

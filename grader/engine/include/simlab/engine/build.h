@@ -5,6 +5,8 @@
 
 #include <map>
 #include <string>
+
+#include "simlab/engine/process.h"
 #include <vector>
 
 #include "simlab/engine/manifest.h"
@@ -90,6 +92,14 @@ private:
                         const std::string& workDir, std::string* object) const;
     void link(const std::vector<std::string>& inputs, const std::vector<std::string>& flags, const std::string& output,
               BuildResult& result) const;
+    /// Runs the compiler on `name` (holding `text`) in `workDir`, in the sandbox, into `output`.
+    ProcessResult runCompiler(const Assignment& assignment, const std::string& name, const std::string& text,
+                              const std::string& workDir, const std::string& output) const;
+    /// Throws SetupError if the precompiled header is older than a file it was made from (as its dependency file
+    /// lists them): a header of the system changed since simlab was built (a package upgrade), and the compiler
+    /// would refuse the header for every file that includes that one again - no fault of the file at hand. The
+    /// constructor calls it, so that simlab stops before it builds anything.
+    void checkPrecompiledHeader() const;
     /// The object check (forbiddenCode) of a compiled student file: true, with `result` saying why, if it is refused.
     bool refusedObject(const Assignment& assignment, const std::string& object, const std::string& name,
                        BuildResult& result) const;

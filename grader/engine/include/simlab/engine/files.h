@@ -44,6 +44,9 @@ private:
     void* context_;  // OpenSSL's EVP_MD_CTX
 };
 
+/// The SHA-256 of `bytes` alone, in 64 hexadecimal digits (as sha256sum prints it).
+std::string sha256Hex(const std::string& bytes);
+
 /// A file a student handed in, read as data (readHandedIn).
 struct HandedIn {
     std::string name;     ///< its name in the folder

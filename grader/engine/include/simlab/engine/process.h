@@ -11,6 +11,9 @@
 #pragma once
 
 #include <functional>
+#include <mutex>
+#include <optional>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -37,6 +40,9 @@ struct ProcessRequest {
     bool scratchWorkDir = false;    ///< with bubblewrap: the working directory is an empty memory file system
                                     ///< (nothing the child writes there comes back) instead of workDir itself
     bool ownUser = true;            ///< with isolate as root: run as a throwaway user, new for this run
+    bool serveTests = false;        ///< with isolate, where testServers(): the child stays root, able to do nothing
+                                    ///< as root but become another user (it keeps CAP_SETUID and CAP_SETGID alone),
+                                    ///< and starts each test's process as a user of its own (see TestServer)
 };
 
 struct ProcessResult {
@@ -63,6 +69,48 @@ struct ProcessResult {
 
 /// Run the request to completion. Never throws for anything the child does.
 ProcessResult runProcess(const ProcessRequest& request);
+
+/// Sends `size` bytes from `data` and the descriptors `fds` (SCM_RIGHTS) as one message on the socket `socket`;
+/// true if all of it went. The descriptors stay open here.
+bool sendWithDescriptors(int socket, const void* data, std::size_t size, const std::vector<int>& fds);
+
+/// Whether a test's processes can be forked from a program started once for them (TestServer): as root, with
+/// bubblewrap or Landlock, unless $SIMLAB_NO_TEST_SERVER=1.
+bool testServers();
+
+/// A probe's server: the probe's program, started once in the sandbox for a submission's tests, that forks each
+/// test's probe on request - so that a test pays neither for a sandbox of its own nor for loading the program and
+/// its libraries again. The server serves from the course's first constructor, before any of the student's code
+/// has run (the object check refuses what would run earlier: constructors with priorities, ifuncs, .preinit_array,
+/// definitions of what the course's code calls), and never calls it. Every test's probe goes on from there as a user
+/// of its own, never used before or again, with no capability, the test's limits and a folder of its own (its HOME
+/// and TMPDIR: nothing else is writable, so nothing one test leaves reaches the next); its CPU time and memory are
+/// its user's processes together, and every one of them ends with the test. What the server says of a probe (that
+/// it started, how it ended) comes from the kernel (waitpid), never from the probe.
+class TestServer {
+public:
+    /// Starts `server` (a request with serveTests set; its argv asks the program to serve, and its limits are the
+    /// server's own, its tests' included) on a thread of its own.
+    explicit TestServer(ProcessRequest server);
+    /// Ends the server, whatever tests it still runs, and waits for it.
+    ~TestServer();
+    TestServer(const TestServer&) = delete;
+    TestServer& operator=(const TestServer&) = delete;
+
+    /// Runs one test's probe to completion, as runProcess runs `test` (its argv and workDir are unused: the
+    /// program is the server's, and the probe makes a folder of its own in the server's; its descriptors 4 and 5
+    /// are the two it hands over, and closes). Safe from several threads at once. None where the server cannot
+    /// take the test (it is gone, never started, or could not fork): `test` still holds its descriptors, for
+    /// runProcess to run it.
+    std::optional<ProcessResult> run(ProcessRequest& test);
+
+private:
+    int control_ = -1;  // simlab's end of the server's requests
+    int tests_ = 0;
+    ProcessResult result_;  // the server's own
+    std::thread thread_;
+    std::mutex lock_;
+};
 
 /// What the sandbox can do on this machine, found once by trying it. Three modes, the first that works:
 ///  - bubblewrap: namespaces (its own filesystem of the system and what it is lent, no network, its own
