@@ -19,6 +19,7 @@
 #include "simlab/program.h"
 #include "simlab/replay.h"
 #include "simlab/results_table.h"
+#include "simlab/todo.h"
 
 namespace {
 
@@ -224,8 +225,21 @@ int main(int argc, char** argv) {
     std::string program = argc > 0 ? argv[0] : "project";
     if (const std::size_t slash = program.rfind('/'); slash != std::string::npos) program = program.substr(slash + 1);
     return simlab::runGuarded(program, [&] {
-        const Declaration d = biosim::declare();
-        biosim::checkDeclaration(d);
+        // --help (and --version) work even before declare() is written: a new project's first look at its program.
+        bool help = false;
+        for (int i = 1; i < argc; ++i) {
+            const std::string arg = argv[i];
+            help = help || arg == "--help" || arg == "-h" || arg == "--version";
+        }
+        Declaration d;
+        try {
+            d = biosim::declare();
+            biosim::checkDeclaration(d);
+        } catch (const simlab::NotDoneYet& e) {
+            if (!help) throw;
+            d.program = program;
+            d.title = program + " (declare() is not written yet: " + e.file() + ":" + std::to_string(e.line()) + ")";
+        }
         Options o;
         o.program.run = d.run;
         o.program.output = d.program + "Results.txt";

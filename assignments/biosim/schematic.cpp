@@ -131,6 +131,39 @@ std::vector<int> motionAxesInF(const std::string& kind) {
     return {};
 }
 
+/// The ends of a rod-like decoration (a cylinder's end centres, a line's points) in Ground; nothing for the
+/// other shapes. A decoration is a handle: only its own implementGeometry knows which shape it holds.
+class RodEnds : public SimTK::DecorativeGeometryImplementation {
+public:
+    explicit RodEnds(const SimTK::Transform& X_GB) : X_GB_(X_GB) {}
+    std::vector<SimTK::Vec3> ends;
+
+    void implementCylinderGeometry(const SimTK::DecorativeCylinder& g) override {
+        const SimTK::Transform X_GD = X_GB_ * g.getTransform();
+        const SimTK::Vec3 half = X_GD.R() * SimTK::Vec3(0, g.getHalfHeight(), 0);  // a cylinder's axis is D's y
+        ends = {X_GD.p() - half, X_GD.p() + half};
+    }
+    void implementLineGeometry(const SimTK::DecorativeLine& g) override {
+        const SimTK::Transform X_GD = X_GB_ * g.getTransform();
+        ends = {X_GD * g.getPoint1(), X_GD * g.getPoint2()};
+    }
+    void implementPointGeometry(const SimTK::DecorativePoint&) override {}
+    void implementBrickGeometry(const SimTK::DecorativeBrick&) override {}
+    void implementCircleGeometry(const SimTK::DecorativeCircle&) override {}
+    void implementSphereGeometry(const SimTK::DecorativeSphere&) override {}
+    void implementEllipsoidGeometry(const SimTK::DecorativeEllipsoid&) override {}
+    void implementFrameGeometry(const SimTK::DecorativeFrame&) override {}
+    void implementTextGeometry(const SimTK::DecorativeText&) override {}
+    void implementMeshGeometry(const SimTK::DecorativeMesh&) override {}
+    void implementMeshFileGeometry(const SimTK::DecorativeMeshFile&) override {}
+    void implementTorusGeometry(const SimTK::DecorativeTorus&) override {}
+    void implementArrowGeometry(const SimTK::DecorativeArrow&) override {}
+    void implementConeGeometry(const SimTK::DecorativeCone&) override {}
+
+private:
+    SimTK::Transform X_GB_;
+};
+
 SchematicBody describeBody(const SimTK::SimbodyMatterSubsystem& matter, const SimTK::State& s, int index,
                            const std::map<int, std::string>& names) {
     const SimTK::MobilizedBody& body = matter.getMobilizedBody(SimTK::MobilizedBodyIndex(index));
@@ -157,6 +190,12 @@ SchematicBody describeBody(const SimTK::SimbodyMatterSubsystem& matter, const Si
     b.jointLocation = X_GF.p();
     b.origin = body.getBodyOriginLocation(s);
     b.massCenter = body.findMassCenterLocationInGround(s);
+    const SimTK::Body& shape = body.getBody();
+    for (int k = 0; k < shape.getNumDecorations(); ++k) {
+        RodEnds rod(body.getBodyTransform(s));
+        shape.getDecoration(k).implementGeometry(rod);
+        b.ends.insert(b.ends.end(), rod.ends.begin(), rod.ends.end());
+    }
     return b;
 }
 
@@ -225,7 +264,9 @@ Frame fitFrame(const Schematic& schematic) {
     SimTK::Vec3 low(0), high(0);
     bool any = false;
     for (const SchematicBody& b : schematic.bodies) {
-        for (const SimTK::Vec3& p : {b.jointLocation, b.origin, b.massCenter}) {
+        std::vector<SimTK::Vec3> points = {b.jointLocation, b.origin, b.massCenter};
+        points.insert(points.end(), b.ends.begin(), b.ends.end());
+        for (const SimTK::Vec3& p : points) {
             const SimTK::Vec3 q = finite(p);
             for (int i = 0; i < 3; ++i) {
                 low[i] = any ? std::min(low[i], q[i]) : q[i];
@@ -290,12 +331,14 @@ void drawPanel(std::ostringstream& svg, const Schematic& schematic, const View& 
         << "\" height=\"" << px(kPanelHeight) << "\" fill=\"none\" stroke=\"#bbb\"/>\n";
     text(svg, left + kPanelWidth / 2, kPanelTop + 18, view.title, " text-anchor=\"middle\" font-weight=\"bold\"");
     const auto at = [&](const SimTK::Vec3& p) { return frame.page(view, left, p); };
-    // The links: a body from its joint to its mass center, and on from there to the joints it carries.
+    // The links: a body from its joint to its mass center, and on from there to the joints it carries and to the
+    // ends of the rods it is drawn with.
     for (const SchematicBody& b : schematic.bodies) {
         line(svg, at(b.jointLocation), at(b.massCenter));
         for (const SchematicBody& child : schematic.bodies) {
             if (child.parent == b.index) line(svg, at(b.massCenter), at(child.jointLocation));
         }
+        for (const SimTK::Vec3& end : b.ends) line(svg, at(b.massCenter), at(end));
     }
     double heaviest = 0;
     for (const SchematicBody& b : schematic.bodies) heaviest = std::max(heaviest, b.mass);
@@ -310,12 +353,30 @@ void drawPanel(std::ostringstream& svg, const Schematic& schematic, const View& 
         svg << "<circle cx=\"" << px(joint.first) << "\" cy=\"" << px(joint.second)
             << "\" r=\"5\" fill=\"#fff\" stroke=\"#000\" stroke-width=\"1.5\"/>\n";
     }
+    // Labels beside their disks; one that would cover a label already placed (mass centers that coincide in this
+    // view) goes a line further down, so that every name can be read.
+    struct Placed {
+        double x, y, width;
+    };
+    std::vector<Placed> placed;
     for (const SchematicBody& b : schematic.bodies) {
         const auto center = at(b.massCenter);
         const double r = diskRadius(b.mass, heaviest);
         svg << "<circle cx=\"" << px(center.first) << "\" cy=\"" << px(center.second) << "\" r=\"" << px(r)
             << "\" fill=\"" << (b.mass > 0 ? "#c33" : "#999") << "\"/>\n";
-        text(svg, center.first + r + 4, center.second - r - 2, b.name);
+        double x = center.first + r + 4, y = center.second - r - 2;
+        const double width = 7.5 * static_cast<double>(b.name.size());  // px, about the text's at 12 px
+        for (bool moved = true; moved;) {
+            moved = false;
+            for (const Placed& other : placed) {
+                if (std::abs(y - other.y) < 14 && x < other.x + other.width && other.x < x + width) {
+                    y = other.y + 14;
+                    moved = true;
+                }
+            }
+        }
+        placed.push_back({x, y, width});
+        text(svg, x, y, b.name);
     }
 }
 

@@ -28,6 +28,9 @@ struct SchematicBody {
     SimTK::Vec3 jointLocation;      ///< m, the joint (the inboard frame's origin) in Ground at t = 0
     SimTK::Vec3 origin;             ///< m, the body's origin in Ground at t = 0
     SimTK::Vec3 massCenter;         ///< m, the body's mass center in Ground at t = 0
+    /// m, in Ground at t = 0: the ends of the rods and lines the body is drawn with (a DecorativeCylinder's end
+    /// centres, a DecorativeLine's points), so that a rod is drawn to its end and not only to its mass center
+    std::vector<SimTK::Vec3> ends;
 };
 
 struct Schematic {

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
                  "Instructors: `simlab grade apple SUBMISSIONS` grades a class on every test.",
                  "simlab"};
     app.require_subcommand(1);
+    app.set_version_flag("--version", "simlab " SIMLAB_VERSION, "print simlab's version and exit");
     app.failure_message([](const CLI::App* failed, const CLI::Error& e) {
         const std::string name = failed ? failed->get_name() : "simlab";
         const std::string command = name == "simlab" ? "simlab" : "simlab " + name;

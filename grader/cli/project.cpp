@@ -81,12 +81,26 @@ void runNew(const ProjectOptions& o) {
 
     std::string code = readText(source / "Project.cpp");
     std::string description = readText(source / "project.toml");
+    // simlab is not on the PATH (a bundle builds it into build/bin): the project's files and the lines below name
+    // this simlab by its full path, which works from the project's folder.
+    std::error_code unknown;
+    fs::path self = fs::read_symlink("/proc/self/exe", unknown);
+    std::string simlab = unknown ? "simlab" : engine::printable(self.string());
+    if (simlab.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789/._+-") !=
+        std::string::npos) {
+        simlab = "'" + replaceAll(simlab, "'", "'\\''") + "'";  // as a shell reads it back
+    }
     if (o.from == "template") {
         code = replaceAll(replaceAll(code, "PROJECT_NAME", o.name), "PROJECT_TITLE", o.name);
         description = replaceAll(replaceAll(description, "PROJECT_NAME", o.name), "PROJECT_TITLE", o.name);
+        code = replaceAll(code, "Self-check:     simlab check", "Self-check:     " + simlab + " check");
+        description = replaceAll(description, "(simlab check biosim", "(" + simlab + " check biosim");
     } else {
         code = replaceAll(code, "d.program = \"babyboot\";", "d.program = \"" + o.name + "\";");
         description = replaceAll(description, "name = \"babyboot\"", "name = \"" + o.name + "\"");
+        // The copy's program is ./build/NAME, and it names its drawings after itself.
+        description = replaceAll(description, "`babyboot --", "`./build/" + o.name + " --");
+        description = replaceAll(description, "(babyboot-", "(" + o.name + "-");
     }
     engine::writeFileAtomically((folder / "Project.cpp").string(), code);
     engine::writeFileAtomically((folder / "project.toml").string(), description);
@@ -107,7 +121,8 @@ void runNew(const ProjectOptions& o) {
               << "  cd " << shown << "\n"
               << "  cmake -S . -B build && cmake --build build     # build the lab program ./build/" << o.name << "\n"
               << "  ./build/" << o.name << " --help\n"
-              << "  simlab check biosim Project.cpp                # what is done, and what to do next\n";
+              << "  " << simlab << " check biosim Project.cpp\n"
+              << "      (what is done, and what to do next)\n";
 }
 
 }  // namespace

@@ -117,7 +117,7 @@ void appendHistory(const std::string& dir, const StudentRecord& r, const std::st
                                  {"score", r.score},    {"max_score", r.maxScore},          {"why", why}};
     std::string lines = fs::exists(dir + "/history.jsonl") ? readFile(dir + "/history.jsonl") : "";
     lines += line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
-    writeFileAtomically(dir + "/history.jsonl", lines);
+    writeFileDurably(dir + "/history.jsonl", lines);
 }
 
 std::vector<std::string> namesOf(const std::vector<Attachment>& attached) {
@@ -211,6 +211,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
         }
     }
     fs::create_directories(outDir + "/students");
+    const OutputLock outputLock(outDir);  // one simlab at a time writes a class's grades
 
     // What every grade depends on besides the student's files.
     Hash base;
@@ -292,7 +293,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
         if (!moved && rubric.manual.empty()) continue;
         const std::string dir = outDir + "/students/" + id;
         if (moved) {
-            writeFileAtomically(dir + "/record.json", recordJson(r));
+            writeFileDurably(dir + "/record.json", recordJson(r));
             appendHistory(dir, r, "the rubric's points changed (re-scored from the recorded verdicts)");
         }
         if (fs::exists(dir + "/results.json")) {
@@ -319,7 +320,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     auto publish = [&] {
         std::vector<StudentRecord> sorted;
         for (const auto& [id, r] : records) sorted.push_back(r);
-        writeFileAtomically(outDir + "/gradebook.csv", gradebookCsv(rubric, sorted));
+        writeFileDurably(outDir + "/gradebook.csv", gradebookCsv(rubric, sorted));
     };
     publish();
     for (const auto& [id, r] : records) {
@@ -359,7 +360,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
         writeFileAtomically(dir + "/" + kFeedbackHtml, feedbackHtml(assignment, record, rubric.manual, attached));
         if (writeRecord) {
             appendHistory(dir, record, why);
-            writeFileAtomically(dir + "/record.json", recordJson(record));  // last: the commit
+            writeFileDurably(dir + "/record.json", recordJson(record));  // last: the commit
         }
 
         std::lock_guard<std::mutex> guard(lock);

@@ -3,6 +3,7 @@
 #include <dirent.h>
 #include <openssl/evp.h>
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -51,7 +52,9 @@ std::string readFile(const std::string& path) {
     return text.str();
 }
 
-void writeFileAtomically(const std::string& path, const std::string& text) {
+namespace {
+
+void writeFileThenRename(const std::string& path, const std::string& text, bool durable) {
     const std::string temporary = path + ".tmp." + std::to_string(::getpid());
     {
         // Close-on-exec: a process another thread starts meanwhile must not keep the file open for writing (a
@@ -70,6 +73,14 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
             }
             done += static_cast<std::size_t>(n);
         }
+        // Durable: the bytes are on the disk before the name points to them, so that a crash or a power cut
+        // leaves the old file or the new one, never a new name over an empty file.
+        if (durable && ::fsync(fd) != 0) {
+            const int error = errno;
+            ::close(fd);
+            std::remove(temporary.c_str());
+            throw std::runtime_error("cannot write " + temporary + ": " + std::strerror(error));
+        }
         ::close(fd);
     }
     if (std::rename(temporary.c_str(), path.c_str()) != 0) {
@@ -77,6 +88,49 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
         std::remove(temporary.c_str());
         throw std::runtime_error("cannot write " + path + ": " + std::strerror(error));
     }
+    if (durable) {
+        // And the rename itself: the folder's entry.
+        const std::string folder = fs::path(path).has_parent_path() ? fs::path(path).parent_path().string() : ".";
+        const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        if (dir >= 0) {
+            ::fsync(dir);
+            ::close(dir);
+        }
+    }
+}
+
+}  // namespace
+
+void writeFileAtomically(const std::string& path, const std::string& text) { writeFileThenRename(path, text, false); }
+
+void writeFileDurably(const std::string& path, const std::string& text) { writeFileThenRename(path, text, true); }
+
+OutputLock::OutputLock(const std::string& folder) {
+    const std::string path = folder + "/.simlab-lock";
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw std::runtime_error("cannot open " + path + ": " + std::strerror(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+        const int error = errno;
+        std::string holder = readFile(path);
+        holder = holder.substr(0, holder.find('\n'));
+        ::close(fd_);
+        fd_ = -1;
+        if (error == EWOULDBLOCK) {
+            throw UsageError("another simlab is writing into " + folder +
+                             (holder.empty() ? "" : " (process " + holder + ")") +
+                             ": wait for it to finish, or give another --out");
+        }
+        throw std::runtime_error("cannot lock " + path + ": " + std::strerror(error));
+    }
+    // Who holds it, for the message another simlab gives; the lock itself is the kernel's, and ends with us.
+    const std::string pid = std::to_string(::getpid()) + "\n";
+    if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, pid.data(), pid.size(), 0) < 0) {
+        // The lock holds all the same; only another simlab's message lacks the process number.
+    }
+}
+
+OutputLock::~OutputLock() {
+    if (fd_ >= 0) ::close(fd_);
 }
 
 Hash::Hash() : context_(EVP_MD_CTX_new()) {

@@ -85,7 +85,7 @@ std::vector<Rule> instructorOnly() {
     };
 }
 
-// Catch2 2.13's single header from this system (Boost Software License; the notice is at its top) and a main
+// Catch2 2.13's single header from this system (Boost Software License, its notice at its top) and a main
 // for it, in third_party/catch2: CMakeLists.txt builds the grader with them where the system's Catch2 is not 2.13
 // (Ubuntu 24.04 ships Catch2 3).
 void addCatch2(const Manifest& manifest, const std::string& dir, PackageSummary& summary) {
@@ -96,6 +96,13 @@ void addCatch2(const Manifest& manifest, const std::string& dir, PackageSummary&
                         "// Catch2's main, for systems without Catch2 2.13 (see CMakeLists.txt).\n"
                         "#define CATCH_CONFIG_MAIN\n#include \"catch2/catch.hpp\"\n");
     summary.files += 2;
+    // The header's notice points to the licence beside it: Debian's copyright file for the package holds it (and
+    // THIRD_PARTY_NOTICES.md, copied into the bundle with the sources, holds it too).
+    const std::string copyright = "/usr/share/doc/catch2/copyright";
+    if (fs::exists(copyright)) {
+        fs::copy_file(copyright, dir + "/third_party/catch2/LICENSE_1_0.txt", fs::copy_options::overwrite_existing);
+        ++summary.files;
+    }
 }
 
 // The handouts as pages. Each handouts/<id>.md becomes handouts/<id>.html beside it: pandoc, standalone, with its
@@ -109,6 +116,13 @@ void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSu
         return;
     }
     const std::string handouts = fs::absolute(dir).string() + "/handouts";  // the programs run elsewhere
+    // A console block keeps its lines as a terminal shows them (pandoc's default style wraps them, so a table's
+    // columns fall apart); a wide one scrolls.
+    TempDir styleDir("simlab-handout-style-");
+    const std::string style = styleDir.path() + "/style.html";
+    writeFileAtomically(style, "<style>\nbody { max-width: 48em; }\n"
+                               "pre, pre > code { white-space: pre; overflow-x: auto; line-height: 1.35; }\n"
+                               "pre { background: #f6f6f6; padding: 0.6em 0.8em; }\n</style>\n");
     int pages = 0, runs = 0;
     for (const Assignment& a : manifest.assignments) {
         const std::string markdown = handouts + "/" + a.id + ".md";
@@ -148,7 +162,11 @@ void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSu
             }
         }
         std::string title = a.title.empty() ? a.id : a.title;
-        std::vector<std::string> argv = {pandoc, a.id + ".md", "--standalone", "--self-contained", "--mathml",
+        // Read as CommonMark, as the handouts are written (and as a forge shows them): a fence's info string may
+        // carry words after the language ("console solution"), a heading needs no blank line before it, and no
+        // "smart" typography turns an option's "--" into a dash.
+        std::vector<std::string> argv = {pandoc, "--from", "commonmark_x-smart", a.id + ".md", "--standalone",
+                                         "--self-contained", "--mathml", "--include-in-header=" + style,
                                          "--metadata", "pagetitle=" + title, "--output", a.id + ".html"};
         const std::string afterFile = handouts + "/." + a.id + "-after.html";
         if (!after.empty()) {

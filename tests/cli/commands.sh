@@ -18,6 +18,16 @@ for command in "" check grade build list "package student" "package gradescope" 
   check "simlab $command --help" test "$(status_of help)" -eq 0 -a -s help.out
 done
 
+# --version on simlab and on every program a student or an instructor runs: the project's version, from CMake.
+version=$(sed -n 's/^project(simlab VERSION \([0-9.]*\).*/\1/p' "$SOURCE_DIR/CMakeLists.txt")
+run_capture version "$SIMLAB" --version
+check "simlab --version says simlab $version" bash -c "test $(status_of version) -eq 0 && test \"\$(cat version.out)\" = 'simlab $version'"
+for program in apple projectile book babyboot project apple-study; do
+  run_capture version "$BIN_DIR/$program" --version
+  check "$program --version names it and simlab $version" \
+    bash -c "test $(status_of version) -eq 0 && grep -q '^[a-z-]* (simlab $version' version.out"
+done
+
 run_capture bench "$BIN_DIR/bench-grade-class" --students 2 --rounds 1 --jobs 1
 check "the class benchmark runs and prints its ratio" grep -q 'simlab / floor = ' bench.out
 finish

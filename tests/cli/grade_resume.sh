@@ -23,7 +23,11 @@ check "the batch was killed part-way ($finished of $students finished)" test "$f
 check "the gradebook after kill -9 has one row per finished student, none twice" test "$(rows | uniq -d | wc -l)" -eq 0
 
 run_capture second "$SIMLAB" grade apple class --out grades --jobs 2
-check "the rerun succeeds" test "$(status_of second)" -eq 0
+check "the rerun succeeds (kill -9 left no lock behind)" test "$(status_of second)" -eq 0
+# While another simlab writes into the same folder (here flock(1) holds its lock), a second one stops at once.
+run_capture locked flock grades/.simlab-lock "$SIMLAB" grade apple class --out grades --jobs 2
+check "a second simlab on the same --out stops in one line, grading nothing" \
+  bash -c "test $(status_of locked) -eq 2 && test \$(wc -l <locked.err) -eq 1 && grep -q 'another simlab is writing into grades' locked.err"
 check "it reuses what had finished ($finished unchanged)" test "$(grep -c '(unchanged)' second.out)" -eq "$finished"
 check "the gradebook now has exactly one row per student" test "$(rows | wc -l)" -eq "$students" -a "$(rows | uniq -d | wc -l)" -eq 0
 for case in reference starter gravity-up infinite-loop compile-error; do

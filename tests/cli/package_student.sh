@@ -15,13 +15,15 @@ check "no line of the solution's model" bash -c "! grep -rqF 'model.apple.setOne
 check "no hidden variant's values (Jupiter's gravity, the long fall)" \
   bash -c "! grep -rqE '24\.79|50000' --exclude-dir=third_party --exclude='*-replay.html' bundle"
 check "the student README replaces the instructors'" grep -q 'Fill in the .SIMLAB_TODO' bundle/README.md
+check "it carries the licence, the third-party notices and Catch2's licence beside its header" \
+  bash -c "grep -q 'Apache License' bundle/LICENSE && grep -q 'three.js' bundle/THIRD_PARTY_NOTICES.md && grep -q 'Boost Software License' bundle/third_party/catch2/LICENSE_1_0.txt"
 check "each handout is a page too, with the reference run's plot and replay" \
   bash -c "for lab in apple projectile book biosim; do test -f bundle/handouts/\$lab.html -a -f bundle/handouts/\$lab-replay.html -a -f bundle/handouts/figures/\$lab-reference.svg || exit 1; done"
 check "  which say so" grep -q 'made: 4 handout pages (handouts/<id>.html), 4 with the reference run' package.out
 if command -v chromium >/dev/null; then
   for page in apple projectile book biosim; do
-    check "  handouts/$page.html opens offline in Chromium, every link resolving" \
-      "$SOURCE_DIR/tests/pages/page-check" "bundle/handouts/$page.html" --links
+    check "  handouts/$page.html opens offline in Chromium, every link resolving, every block rendered as written" \
+      "$SOURCE_DIR/tests/pages/page-check" "bundle/handouts/$page.html" --links --markdown "bundle/handouts/$page.md"
   done
   check "  and so does a replay" "$SOURCE_DIR/tests/pages/page-check" bundle/handouts/book-replay.html
 fi

@@ -50,9 +50,18 @@ run_capture template "$BIN_DIR/project"
 check "the template stops with status 3 at its first TODO" \
   bash -c "test $(status_of template) -eq 3 && grep -q 'not done yet (Project.cpp:' template.err"
 
+run_capture templatehelp "$BIN_DIR/project" --help
+check "and its --help shows the options all the same, saying declare() is not written yet" \
+  bash -c "test $(status_of templatehelp) -eq 0 && grep -q -- '--set NAME=VALUE' templatehelp.out && grep -q 'declare() is not written yet' templatehelp.out"
+
 run_capture new "$SIMLAB" project new myboot --from babyboot
 check "simlab project new --from babyboot makes a project folder" \
   test -f myboot/Project.cpp -a -f myboot/project.toml -a -f myboot/CMakeLists.txt
+selfcheck=$(grep ' check biosim Project.cpp$' new.out | awk '{ print $1 }')
+check "its Next: lines name this simlab by a path that runs from the project's folder (simlab is not on the PATH)" \
+  bash -c "cd myboot && test -x '$selfcheck' && '$selfcheck' --help >/dev/null"
+check "and the copy's description names its own program, ./build/myboot, and its drawings" \
+  bash -c "grep -q '\`./build/myboot --schematic\`' myboot/project.toml && grep -q '(myboot-tree.svg)' myboot/project.toml && ! grep -q babyboot myboot/project.toml"
 run_capture again "$SIMLAB" project new myboot
 check "and will not overwrite it" bash -c "test $(status_of again) -eq 2 && grep -q 'already exists' again.err"
 run_capture badname "$SIMLAB" project new 'my boot'

@@ -60,6 +60,11 @@ if command -v chromium >/dev/null && test -f /usr/share/javascript/three/three.m
   check "  showing the book's coloured faces ($faces1 coloured pixels)" awk "BEGIN { exit !($faces1 > 3000) }"
   check "  turned otherwise at t = 2.5 s than at 0.5 s ($(differing view-1.png view-2.png) pixels change)" \
     awk "BEGIN { exit !($(differing view-1.png view-2.png) > 3000) }"
+  # The projectile's x slider carries a massless frame: no matter, so the page draws only the ball.
+  run_capture projreplay "$bin/projectile-reference" --quiet --output projectile.txt --replay projectile.html
+  check "projectile --replay marks its one massless body (the x slider's frame), which the page does not draw" \
+    bash -c "test $(status_of projreplay) -eq 0 && test \$(grep -o '\"massless\":true' projectile.html | wc -l) -eq 1 && grep -q 'b.shapes === 0 && !b.massless' projectile.html"
+  check "  and opens in Chromium with nothing on the console" "$SOURCE_DIR/tests/pages/page-check" projectile.html
 else
   echo "skipped: --replay needs chromium and libjs-three (scripts/install-deps installs both)"
 fi

@@ -260,3 +260,45 @@ TEST_CASE("a large graph goes through dot's pipes without a deadlock", "[schemat
     CHECK(svg.size() > 65536);
     CHECK(svg.find(word + "49</text>") != std::string::npos);
 }
+
+TEST_CASE("a rod drawn as a cylinder or a line is drawn to its ends, not only to its mass center", "[schematic]") {
+    TwoPins t;
+    // A's rod reaches B's mass center, 0.2 m down, as the baby boot's does; B's line, 0.1 m across, is B's own.
+    MobilizedBody a = t.model->bodies.at("A");
+    a.updBody().addDecoration(Vec3(0, -0.1, 0), DecorativeCylinder(0.01, 0.1));
+    MobilizedBody b = t.model->bodies.at("B");
+    b.updBody().addDecoration(Transform(), DecorativeLine(Vec3(-0.05, 0, 0), Vec3(0.05, 0, 0)));
+    b.updBody().addDecoration(Transform(), DecorativeSphere(0.02));  // no ends: not a rod
+    t.state = t.model->system.realizeTopology();
+    const biosim::Schematic s = biosim::schematicOf(*t.model, t.state, "rods");
+    REQUIRE(s.bodies.size() == 2);
+    REQUIRE(s.bodies[0].ends.size() == 2);
+    const std::vector<Vec3>& rod = s.bodies[0].ends;
+    CHECK(((near(rod[0], Vec3(0)) && near(rod[1], Vec3(0, -0.2, 0))) ||
+           (near(rod[1], Vec3(0)) && near(rod[0], Vec3(0, -0.2, 0)))));
+    // B's frame is turned (its pin's z along A's y), so its line lies along Ground's z or x: 0.1 m long, at B.
+    REQUIRE(s.bodies[1].ends.size() == 2);
+    CHECK((s.bodies[1].ends[0] - s.bodies[1].ends[1]).norm() == Approx(0.1));
+    CHECK(near((s.bodies[1].ends[0] + s.bodies[1].ends[1]) / 2, Vec3(0, -0.15, 0)));
+    // The picture draws a link from A's mass center to its rod's far end.
+    const std::string svg = biosim::pictureSvg(s);
+    CHECK(svg.find("nan") == std::string::npos);
+}
+
+TEST_CASE("names whose mass centers coincide in a view are placed apart, each readable", "[schematic]") {
+    // A and B both hang 0.1 m below the origin, B 0.2 m further along z: one spot in the front view.
+    biosim::Model model;
+    model.bodies["A"] = MobilizedBody::Ball(model.matter.Ground(), Transform(),
+                                            rigid(1, Vec3(0, -0.1, 0), Vec3(1e-3)), Transform());
+    model.bodies["B"] = MobilizedBody::Ball(model.matter.Ground(), Transform(Vec3(0, 0, 0.2)),
+                                            rigid(1, Vec3(0, -0.1, 0), Vec3(1e-3)), Transform());
+    const std::string svg = biosim::pictureSvg(biosim::schematicOf(model, model.system.realizeTopology(), "apart"));
+    // The first label of each name is the front view's; its y is the text's baseline.
+    auto labelY = [&](const std::string& name) {
+        const std::size_t end = svg.find(">" + name + "</text>");
+        REQUIRE(end != std::string::npos);
+        const std::size_t y = svg.rfind(" y=\"", end);
+        return std::stod(svg.substr(y + 4));
+    };
+    CHECK(std::abs(labelY("A") - labelY("B")) >= 14);
+}

@@ -26,6 +26,12 @@
 namespace simlab {
 
 void addProgramOptions(CLI::App& app, ProgramOptions& options) {
+    int major = 0, minor = 0, build = 0;
+    SimTK_version_simbody(&major, &minor, &build);
+    app.set_version_flag("--version",
+                         app.get_name() + " (simlab " SIMLAB_VERSION ", Simbody " + std::to_string(major) + "." +
+                             std::to_string(minor) + ")",
+                         "print the program's version and exit");
     RunSettings& run = options.run;
     std::string names;
     for (const std::string& n : integratorNames()) names += (names.empty() ? "" : ", ") + n;

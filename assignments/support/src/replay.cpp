@@ -196,6 +196,7 @@ struct ReplayRecorder::Recording {
     std::vector<std::string> shapes;     // one JSON object each (see shapeJson)
     int skipped = 0;                     // decorations the page cannot draw
     int bodies = 0;                      // mobilized bodies other than Ground
+    std::vector<bool> massless;          // per body: no mass (a device of the joints, such as a slider), not drawn
     std::vector<double> times;           // s, one per frame
     std::vector<double> poses;           // per frame and body: p_GB (3 values), then R_GB's quaternion (x, y, z, w)
 };
@@ -242,6 +243,10 @@ private:
     void readShapes(const SimTK::State& state, Recording& r) const {
         const SimTK::SimbodyMatterSubsystem& matter = system_.getMatterSubsystem();
         r.bodies = matter.getNumBodies() - 1;
+        r.massless.clear();
+        for (int b = 1; b <= r.bodies; ++b) {
+            r.massless.push_back(matter.getMobilizedBody(SimTK::MobilizedBodyIndex(b)).getBodyMass(state) == 0);
+        }
         SimTK::Array_<SimTK::DecorativeGeometry> geometry;
         system_.calcDecorativeGeometryAndAppend(state, SimTK::Stage::Topology, geometry);
         for (const SimTK::DecorativeGeometry& g : geometry) {
@@ -313,7 +318,8 @@ void ReplayRecorder::write(const std::string& path, const std::string& title, co
             for (int i = 0; i < 3; ++i) p += (p.empty() ? "" : ",") + number(pose[i], 6, kNegligiblePose);
             for (int i = 3; i < 7; ++i) q += (q.empty() ? "" : ",") + number(pose[i], 6, kNegligiblePose);
         }
-        data += std::string(b ? "," : "") + "{\"p\":[" + p + "],\"q\":[" + q + "]}";
+        data += std::string(b ? "," : "") + "{\"p\":[" + p + "],\"q\":[" + q + "]" +
+                (r.massless[static_cast<std::size_t>(b)] ? ",\"massless\":true" : "") + "}";
     }
     data += "],\"shapes\":[";
     for (std::size_t s = 0; s < r.shapes.size(); ++s) data += (s ? ",\n" : "\n") + r.shapes[s];
@@ -541,7 +547,7 @@ const char* const kScript = R"js((function () {
     var bodies = data.bodies.map(function (b) {
       var group = new THREE.Group();
       scene.add(group);
-      return { group: group, p: b.p, q: b.q, shapes: 0 };
+      return { group: group, p: b.p, q: b.q, shapes: 0, massless: b.massless === true };
     });
     var motion = new THREE.Box3(), point = new THREE.Vector3();
     bodies.forEach(function (b) {
@@ -667,10 +673,11 @@ const char* const kScript = R"js((function () {
         bodies[s.b - 1].shapes++;
       }
     });
-    // A body that has no decoration is a small sphere, so that nothing moves unseen.
+    // A body that has no decoration is a small sphere, so that nothing moves unseen; a massless one (a slider that
+    // only carries a joint) is no matter, and is not drawn.
     var defaultRadius = motionSize > 0 ? 0.03 * motionSize : 0.05;
     bodies.forEach(function (b) {
-      if (b.shapes === 0) b.group.add(solid(new THREE.SphereBufferGeometry(defaultRadius, 24, 16), {}));
+      if (b.shapes === 0 && !b.massless) b.group.add(solid(new THREE.SphereBufferGeometry(defaultRadius, 24, 16), {}));
     });
 
     // The camera sees the whole motion: every body's reach around its origin, at every frame.

@@ -479,6 +479,7 @@ int studyMain(int argc, char** argv, const std::string& lab, const std::vector<S
     int starts = 1;
     CLI::App app{"The work-precision study of the " + lab + " lab's scenes, one JSON object per line (run it with "
                  "`simlab study trade " + lab + "`).", lab + "-study"};
+    app.set_version_flag("--version", lab + "-study (simlab " SIMLAB_VERSION ")", "print the program's version and exit");
     app.add_flag("--quick", settings.quick, "fewer step sizes, one timed repeat and a cap of 2e5 evaluations");
     app.add_option("--max-evaluations", settings.maxEvaluations, "the cost cap: evaluations one point may take")
         ->check(between(100.0, 1e9))

@@ -24,6 +24,22 @@ private:
 std::string readFile(const std::string& path);
 /// Write `text` to `path` atomically: a temporary file in the same directory, renamed over `path`.
 void writeFileAtomically(const std::string& path, const std::string& text);
+/// The same, and durable: the file's bytes and then its folder's entry are flushed to the disk (fsync), so that
+/// after a crash or a power cut `path` holds the old text or the new one. For the files that commit a grade.
+void writeFileDurably(const std::string& path, const std::string& text);
+
+/// An exclusive hold on a folder simlab writes into (`folder`/.simlab-lock, flock): a second simlab given the same
+/// folder stops with a UsageError naming the first one's process. Released when destroyed or when the process ends.
+class OutputLock {
+public:
+    explicit OutputLock(const std::string& folder);
+    ~OutputLock();
+    OutputLock(const OutputLock&) = delete;
+    OutputLock& operator=(const OutputLock&) = delete;
+
+private:
+    int fd_ = -1;
+};
 
 /// SHA-256 of the fields added, for cache and resume keys: a student must not be able to make two files share a
 /// key (with a weak hash, a crafted starter could take a finished file's cached object, or its grade).
