@@ -177,6 +177,8 @@ void writeCsv(const fs::path& path, const std::vector<SubjectRun>& runs) {
 /// Draws the subject's points from trade.csv: worst digits against evaluations and against time, one curve per
 /// integrator (dashed: its fixed-step sweep), as PNG and SVG. Returns the files made, or says why none were.
 std::vector<std::string> plot(const fs::path& dir, const std::string& subject) {
+    const std::string gnuplot = "/usr/bin/gnuplot";  // Debian's gnuplot-nox (scripts/install-deps)
+    if (!fs::exists(gnuplot)) return {};
     std::string names;
     for (const char* n : kIntegrators) names += std::string(names.empty() ? "" : " ") + n;
     std::ostringstream gp;
@@ -205,8 +207,11 @@ std::vector<std::string> plot(const fs::path& dir, const std::string& subject) {
     }
     const fs::path script = dir / (subject + ".gp");
     engine::writeFileAtomically(script.string(), gp.str());
-    const std::string command = "cd '" + dir.string() + "' && gnuplot '" + script.filename().string() + "' 2>/dev/null";
-    if (std::system(command.c_str()) != 0) return {};
+    try {
+        engine::runTool({gnuplot, script.filename().string()}, dir.string());
+    } catch (const std::runtime_error&) {
+        return {};  // the table says what was drawn; no plot is no error of the study
+    }
     return made;
 }
 

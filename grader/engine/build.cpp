@@ -5,6 +5,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <map>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
@@ -242,6 +245,52 @@ Builder::Builder(const Manifest& manifest) : manifest_(manifest), cacheDir_(mani
     // Every student's source and object is kept here: simlab's alone (the linker gets a copy of the one it needs).
     fs::permissions(cacheDir_, fs::perms::owner_all, ignored);
     checkPrecompiledHeader();  // before anything is built or said to be
+    trimObjectCache(cacheDir_);
+}
+
+std::uintmax_t objectCacheCap() {
+    if (const char* mib = std::getenv("SIMLAB_CACHE_MIB"); mib && *mib) {
+        char* end = nullptr;
+        const double value = std::strtod(mib, &end);
+        if (end && *end == '\0' && value >= 1 && value <= 1e7) return static_cast<std::uintmax_t>(value) << 20;
+        throw UsageError("SIMLAB_CACHE_MIB is '" + printable(mib) + "': a size in MiB, 1 or more");
+    }
+    return std::uintmax_t(2048) << 20;
+}
+
+void trimObjectCache(const std::string& dir) {
+    // An entry is a key's files (<key>.o, .cpp, .log, .failed); its last use is its source's time, renewed at
+    // each hit. Entries used in the last hour stay whatever the size: another simlab may be reading them.
+    struct Entry {
+        std::uintmax_t bytes = 0;
+        fs::file_time_type used = fs::file_time_type::min();
+        std::vector<fs::path> files;
+    };
+    std::map<std::string, Entry> entries;
+    std::uintmax_t total = 0;
+    std::error_code error;
+    for (fs::directory_iterator it(dir, error), end; !error && it != end; it.increment(error)) {
+        if (!it->is_regular_file(error)) continue;
+        const std::string name = it->path().filename().string();
+        Entry& e = entries[name.substr(0, name.find('.'))];
+        const std::uintmax_t bytes = it->file_size(error);
+        if (error) continue;
+        e.bytes += bytes;
+        total += bytes;
+        e.used = std::max(e.used, it->last_write_time(error));
+        e.files.push_back(it->path());
+    }
+    const std::uintmax_t cap = objectCacheCap();
+    if (total <= cap) return;
+    std::vector<const Entry*> oldest;
+    for (const auto& [key, e] : entries) oldest.push_back(&e);
+    std::sort(oldest.begin(), oldest.end(), [](const Entry* a, const Entry* b) { return a->used < b->used; });
+    const fs::file_time_type recent = fs::file_time_type::clock::now() - std::chrono::hours(1);
+    for (const Entry* e : oldest) {
+        if (total <= cap / 10 * 8 || e->used > recent) break;  // down to 80 %, so that it is not trimmed each run
+        for (const fs::path& file : e->files) fs::remove(file, error);
+        total -= e->bytes;
+    }
 }
 
 std::string Builder::objectKey(const Assignment& assignment, const std::string& sourceText) const {
@@ -350,6 +399,8 @@ BuildResult Builder::compile(const Assignment& assignment, const std::string& na
     // The key is a strong hash; the source kept beside the object makes sure all the same that it is this file's.
     const bool same = fs::exists(cachedSource) && readFile(cachedSource) == text;
     if (same && (fs::exists(cached) || fs::exists(cachedFailure))) {
+        std::error_code ignored;
+        fs::last_write_time(cachedSource, fs::file_time_type::clock::now(), ignored);  // used now (trimObjectCache)
         result.cached = true;
         result.ok = fs::exists(cached);
         const std::string log = fs::exists(cachedLog) ? readFile(cachedLog) : "";

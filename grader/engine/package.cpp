@@ -24,23 +24,6 @@ namespace {
 
 bool startsWith(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
 
-// Runs a trusted tool to completion; its output, or throws with it.
-std::string runTool(const std::vector<std::string>& argv, const std::string& dir) {
-    ProcessRequest r;
-    r.argv = argv;
-    r.env = childEnvironment({"LC_ALL=C"});
-    r.workDir = dir;
-    r.limits.wallSeconds = r.limits.cpuSeconds = 300;
-    r.limits.fileMiB = 4096;
-    r.limits.outputKiB = 64 * 1024;
-    r.keepOutput = 64 << 20;
-    const ProcessResult result = runProcess(r);
-    if (!result.exitedCleanly()) {
-        throw std::runtime_error(argv[0] + " failed: " + (result.started ? firstLines(result.output, 3) : result.error));
-    }
-    return result.output;
-}
-
 std::string relativeTo(const std::string& path, const std::string& base) {
     return fs::relative(path, base).generic_string();
 }

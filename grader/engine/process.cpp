@@ -1,5 +1,7 @@
 #include "simlab/engine/process.h"
 
+#include "simlab/engine/build.h"
+
 #include "sandbox.h"
 #include "simlab/reproducible_math.h"
 #include "simlab/test_process.h"
@@ -375,6 +377,22 @@ void drain(int& fd, std::string* keep, std::size_t keepLimit, std::size_t* count
 std::string signalName(int signal) {
     if (const char* abbrev = ::sigabbrev_np(signal)) return std::string("SIG") + abbrev;
     return "signal " + std::to_string(signal);
+}
+
+std::string runTool(const std::vector<std::string>& argv, const std::string& dir) {
+    ProcessRequest r;
+    r.argv = argv;
+    r.env = childEnvironment({"LC_ALL=C"});
+    r.workDir = dir;
+    r.limits.wallSeconds = r.limits.cpuSeconds = 300;
+    r.limits.fileMiB = 4096;
+    r.limits.outputKiB = 64 * 1024;
+    r.keepOutput = 64 << 20;
+    const ProcessResult result = runProcess(r);
+    if (!result.exitedCleanly()) {
+        throw std::runtime_error(argv[0] + " failed: " + (result.started ? firstLines(result.output, 3) : result.error));
+    }
+    return result.output;
 }
 
 std::vector<std::string> childEnvironment(const std::vector<std::string>& extra) {

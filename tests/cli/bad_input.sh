@@ -1,4 +1,5 @@
 # Bad input to every command: a one-line error on stderr, a non-zero status, nothing on stdout, no hang.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 expect_error() {  # expect_error DESCRIPTION PATTERN COMMAND...

@@ -1,4 +1,5 @@
 # simlab check --format json: valid Gradescope results.json; full marks for the reference, low for the starter.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 run_capture solution "$SIMLAB" check apple "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" --format json

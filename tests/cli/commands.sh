@@ -1,5 +1,6 @@
 # The simlab commands not covered elsewhere, run headless: build, list, --help everywhere, and the class
 # benchmark on a tiny class.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 run_capture build "$SIMLAB" build apple "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" -o apple-built
@@ -17,6 +18,20 @@ for command in "" check grade build list "package student" "package gradescope" 
   run_capture help $SIMLAB $command --help
   check "simlab $command --help" test "$(status_of help)" -eq 0 -a -s help.out
 done
+
+# The object cache keeps under its cap ($SIMLAB_CACHE_MIB): the least recently used entries go first, down to 80 %.
+mkdir cache
+for age in 3 2 1; do  # three old entries of 600 KiB each, used 3, 2 and 1 days ago: 1.8 MiB against a 1 MiB cap
+  head -c 614400 /dev/zero >"cache/old$age.o" && echo "int x;" >"cache/old$age.cpp"
+  touch -d "$age days ago" "cache/old$age.o" "cache/old$age.cpp"
+done
+run_capture trimmed env SIMLAB_CACHE="$PWD/cache" SIMLAB_CACHE_MIB=1 "$SIMLAB" check apple "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp"
+check "a cache over its cap loses its least recently used entries, whole, down to 80 % of the cap" \
+  bash -c "test $(status_of trimmed) -eq 0 && ! test -e cache/old3.o -o -e cache/old3.cpp -o -e cache/old2.o && test -e cache/old1.o -a -e cache/old1.cpp"
+check "  and keeps the entry it has just made" bash -c "ls cache/*.o | grep -qv old"
+run_capture badcap env SIMLAB_CACHE="$PWD/cache" SIMLAB_CACHE_MIB=lots "$SIMLAB" check apple
+check "a cap that is not a size is a one-line usage error" \
+  bash -c "test $(status_of badcap) -eq 2 && grep -q 'SIMLAB_CACHE_MIB is .lots.: a size in MiB' badcap.err"
 
 # --version on simlab and on every program a student or an instructor runs: the project's version, from CMake.
 version=$(sed -n 's/^project(simlab VERSION \([0-9.]*\).*/\1/p' "$SOURCE_DIR/CMakeLists.txt")

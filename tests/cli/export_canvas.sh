@@ -1,6 +1,7 @@
 # simlab export canvas: a graded class and a roster become the CSV Canvas's gradebook import takes for one
 # assignment column, with the points simlab check --all gives; who is missing on either side is said; a bad
 # roster is one line and a non-zero exit.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 points() { python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["score"])' "$1"; }
 # cell FILE ROW COLUMN: one cell of a CSV file, as a CSV reader reads it

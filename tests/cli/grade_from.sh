@@ -3,6 +3,7 @@
 # submission_metadata.yml, a group), Moodle's folders (an online text beside the file), GitHub Classroom's
 # repositories (the file deep inside) - one row per student or group, with names and flags in roster.csv; the same
 # folders without --from, and a folder of loose files, are refused in one line naming what to do.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 cell() { python3 -c 'import csv,sys; print(list(csv.reader(open(sys.argv[1])))[int(sys.argv[2])][int(sys.argv[3])])' "$@"; }
 rows() { python3 -c 'import csv,sys; print(len(list(csv.reader(open(sys.argv[1])))) - 1)' "$1"; }

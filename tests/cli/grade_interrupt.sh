@@ -1,6 +1,7 @@
 # simlab grade interrupted mid-compile - by SIGINT, by SIGTERM, by two quick Ctrl-Cs - and run again: the
 # interrupt records nothing for a student it cut short (a compiler ended by simlab's own signal is not "did not
 # compile"), and after the rerun every correct submission has full marks.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 students=16

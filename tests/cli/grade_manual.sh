@@ -3,6 +3,7 @@
 # report.html and the Canvas export, and survive a regrade, which runs no student code for them; a change of a
 # test's points re-scores the recorded verdicts without running code again; each student keeps a history of
 # grades; a manual.csv with a mistake stops simlab in one line before anything changes.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 cell() { python3 -c 'import csv,sys; print(list(csv.reader(open(sys.argv[1])))[int(sys.argv[2])][int(sys.argv[3])])' "$@"; }
 history_lines() { wc -l <"grades/students/$1/history.jsonl"; }

@@ -1,6 +1,7 @@
 # simlab grade writes report.html and each student's feedback.html: pages that open in headless Chromium from
 # disk with nothing on the console, whose links all resolve, hostile ids included; a resumed batch writes them too.
 # Skipped (77) when Chromium is not installed.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 page_check=$SOURCE_DIR/tests/pages/page-check

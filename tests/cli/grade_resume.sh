@@ -1,6 +1,7 @@
 # simlab grade on a class: killed with -9 mid-batch and run again, it regrades only what was unfinished and the
 # gradebook has exactly one row per student; a changed file is regraded alone; --only replaces one row; missing
 # and misnamed files are named statuses; JUnit, feedback and summary are written.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 cp -r "$BIN_DIR/../sample-class/apple" class

@@ -1,4 +1,5 @@
 # simlab grade apple: grades the bundled sample class and prints one score per student.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 run_capture grade "$SIMLAB" grade apple

@@ -1,5 +1,6 @@
 # A grade does not depend on load: the same class - the sample class and the hostile cases whose time matters -
 # graded on an idle machine and beside four CPU-bound processes gets identical scores and outcomes.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 mkdir class

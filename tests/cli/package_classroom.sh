@@ -2,6 +2,7 @@
 # fields as GitHub Actions and Classroom's reporter read them, and its check step run as written, with this
 # build's simlab, on the starter and on the reference: the runner result the reporter decodes, with the points of
 # simlab check on the visible tests.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 validate() { python3 "$SOURCE_DIR/tests/tools/validate_platforms.py" "$@"; }
 points() { python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["score"])' "$1"; }

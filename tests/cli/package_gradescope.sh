@@ -1,5 +1,6 @@
 # simlab package gradescope: the archive's setup.sh builds it from scratch, and its run_autograder grades a
 # submission laid out as Gradescope lays it out into a valid results.json, hidden tests marked hidden.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 run_capture package "$SIMLAB" package gradescope apple -o autograder.zip

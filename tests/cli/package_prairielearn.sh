@@ -1,6 +1,7 @@
 # simlab package prairielearn: the question folder PrairieLearn documents (info.json, question.html, tests/), its
 # image's Dockerfile, and the entry point run in a temporary /grade with this build's simlab: results.json in
 # PrairieLearn's format, with the points simlab check --all gives.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 validate() { python3 "$SOURCE_DIR/tests/tools/validate_platforms.py" "$@"; }
 # points FILE: the score of a Gradescope results.json (what simlab check --format json prints)

@@ -1,5 +1,6 @@
 # simlab package student: the bundle holds no solution, hidden test or expected value, builds from scratch with
 # its own scripts/setup, and self-checks: the starter low, a finished file full marks on the visible tests.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 run_capture package "$SIMLAB" package student -o bundle

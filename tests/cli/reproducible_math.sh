@@ -5,6 +5,7 @@
 #    without FMA, AVX2 or AVX-512 (qemu-x86_64 -cpu Nehalem), whose libm takes other code and whose x87 is QEMU's
 #    own. Skipped where qemu-user is not installed (scripts/install-deps installs it for the tests);
 #  - and the check can fail: without the mask, on a processor with FMA, the chaotic boot's run differs.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 # glibc's long double functions built on those instructions (from its x86_64 sources: e_powl.S, e_expl.S,

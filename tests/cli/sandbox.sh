@@ -2,6 +2,7 @@
 # Docker's default capabilities only (no CAP_SYS_ADMIN: the situation inside Gradescope's and PrairieLearn's
 # containers). sandbox-check runs sandbox-try in the sandbox as a probe is run and checks every rule; then simlab
 # itself refuses hidden tests where a test could read them, and says how to fix that in one line.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 docker_caps=-all,+chown,+dac_override,+fowner,+fsetid,+kill,+setgid,+setuid,+setpcap,+net_bind_service,+net_raw,+sys_chroot,+mknod,+audit_write,+setfcap

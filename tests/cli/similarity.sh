@@ -2,6 +2,7 @@
 # the reference, the reference with its names changed and its comments gone, the reference with one edit (a corpus
 # case), and two students who handed in the starter unchanged, whose files share only the starter's lines. The
 # three copies are listed, each pair side by side; the two starters are not; the page escapes an id that is markup.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 reference=$SOURCE_DIR/solutions/apple/NewtonsApple.cpp

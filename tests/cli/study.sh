@@ -1,6 +1,7 @@
 # simlab study trade: every integrator at every accuracy and fixed step, none missing, each under its cap; the
 # figures hold the physics (constant acceleration is integrated exactly by second-order methods, Euler is first
 # order); plots and the table are made; an unknown lab is a one-line error.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 run_capture apple "$SIMLAB" study trade apple --quick -o st

@@ -4,6 +4,7 @@
 # that goes on reading after simlab ends. In each sandbox mode nothing it typed may run and no escape sequence may
 # reach the screen. A control first shows that this terminal would run what is typed into it, so that the check
 # can fail.
+# shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
 marker=/tmp/simlab-typed-by-a-submission

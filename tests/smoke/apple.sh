@@ -1,5 +1,6 @@
 # The apple lab program, headless: the reference runs and is accurate, Euler is visibly less accurate,
 # the starter stops at its first SIMLAB_TODO, the trade table lists every integrator.
+# shellcheck source=lib.sh
 source "$(dirname "$0")/lib.sh"
 apple="$BIN_DIR/apple-reference"
 
@@ -39,7 +40,7 @@ if command -v xvfb-run >/dev/null; then
   run_capture animate timeout 120 xvfb-run -a "$apple" --animate --final-time 0.3 --quiet --output animate.txt
   check "--animate plays the fall in Simbody's visualizer on an off-screen display" test "$(status_of animate)" -eq 0
 fi
-DISPLAY= run_capture no_display "$apple" --animate --quiet --output no-display.txt
+DISPLAY='' run_capture no_display "$apple" --animate --quiet --output no-display.txt
 check "--animate without a display is a one-line error" grep -q 'needs a display' no_display.err
 
 run_capture help "$apple" --help

@@ -2,6 +2,7 @@
 # conserves energy to the accuracy asked for, --set changes the run and refuses unknown or out-of-range names in
 # one line, --schematic draws the tree and the model at t = 0, the trade table runs; the template stops at its first
 # SIMLAB_TODO; `simlab project new` makes a project that builds with CMake and runs.
+# shellcheck source=lib.sh
 source "$(dirname "$0")/lib.sh"
 boot="$BIN_DIR/babyboot"
 

@@ -1,6 +1,7 @@
 # The book lab program, headless: every spin's w(4) matches the elliptic solution to 8 digits at the default
 # accuracy, the intermediate spin's wobble grows at the linear rate, options are checked, the starter stops at its
 # first SIMLAB_TODO, the trade table runs, the plot is drawn.
+# shellcheck source=lib.sh
 source "$(dirname "$0")/lib.sh"
 book="$BIN_DIR/book-reference"
 

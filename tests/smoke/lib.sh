@@ -31,5 +31,7 @@ closed_to_others() {
     if (( (8#$(stat -c %a "$path") & 1) == 0 )); then echo "$path"; return 0; fi
   done
 }
+# shellcheck disable=SC2034  # read by the scripts that source this file
 build_closed=""
+# shellcheck disable=SC2034
 if [[ $(id -u) -eq 0 && -n ${BIN_DIR:-} ]]; then build_closed=$(closed_to_others "$BIN_DIR"); fi

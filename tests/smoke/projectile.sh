@@ -1,5 +1,6 @@
 # The projectile lab program, headless: the reference's trajectory and ground hit are accurate, a 20-degree
 # launch at 25 m/s too, the starter stops at its first SIMLAB_TODO, the trade table runs, the plot is drawn.
+# shellcheck source=lib.sh
 source "$(dirname "$0")/lib.sh"
 projectile="$BIN_DIR/projectile-reference"
 

@@ -2,6 +2,7 @@
 # solution, titled with its settings, and refuses other files in one line; simlab plot draws a results file later; --replay writes a page that Chromium
 # opens without a console message and that shows the book turn; --animate, under Xvfb, shows each lab's body, and
 # shows it moving (two screenshots of the visualizer's window, which differ where the body is).
+# shellcheck source=lib.sh
 source "$(dirname "$0")/lib.sh"
 bin=$BIN_DIR
 

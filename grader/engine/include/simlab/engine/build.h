@@ -3,6 +3,7 @@
 // link it after the course's objects into the probe - or into the lab program.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 
@@ -110,5 +111,11 @@ private:
 
 /// At most `maxLines` lines of a tool's output, the rest summarized as "... (N more lines)".
 std::string firstLines(const std::string& text, int maxLines);
+
+/// The object cache's size cap: $SIMLAB_CACHE_MIB MiB (default 2048); a UsageError for a value that is no size.
+std::uintmax_t objectCacheCap();
+/// Keep the object cache `dir` under its cap: past it, the entries least recently used go, oldest first, down to
+/// 80 % of the cap, never one used in the last hour. Run once per Builder, before anything is compiled.
+void trimObjectCache(const std::string& dir);
 
 }  // namespace simlab::engine

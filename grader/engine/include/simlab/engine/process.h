@@ -149,6 +149,12 @@ bool childrenInterrupted();
 /// reproducible versions (simlab/reproducible_math.h), plus `extra`.
 std::vector<std::string> childEnvironment(const std::vector<std::string>& extra = {});
 
+/// Run a trusted tool of the system (pandoc, gnuplot, zip, git, a study program): `argv` with argv[0] an absolute
+/// path, in `dir`, with childEnvironment() in the C locale, under generous nets (5 minutes, 4 GiB of files, 64 MiB
+/// of output) and no sandbox. Its standard output and error, interleaved; throws std::runtime_error naming the tool
+/// and its first lines when it fails. No shell: nothing in an argument is ever read as a command.
+std::string runTool(const std::vector<std::string>& argv, const std::string& dir);
+
 /// "SIGSEGV" for SIGSEGV, "signal 42" for what has no name.
 std::string signalName(int signal);
 
