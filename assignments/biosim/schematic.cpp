@@ -1,19 +1,8 @@
 #include "biosim/schematic.h"
 
-#include <fcntl.h>
-#include <poll.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/types.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -21,8 +10,7 @@
 #include "biosim/Project.h"
 #include "simlab/messages.h"
 #include "simlab/model_info.h"
-
-extern char** environ;
+#include "simlab/system_tool.h"
 
 namespace biosim {
 
@@ -405,137 +393,9 @@ void drawLegend(std::ostringstream& svg) {
 // ---- Running dot ----------------------------------------------------------------------------------------------
 
 constexpr std::size_t kMaxOutput = 8u << 20;  // bytes of SVG
-constexpr std::size_t kMaxErrors = 64u << 10;  // bytes of dot's stderr kept
 constexpr int kTimeLimit = 60;                 // s
 
 [[noreturn]] void fail(const std::string& what) { throw std::runtime_error(plainText(what)); }
-
-/// A file descriptor closed when it goes out of scope.
-struct Fd {
-    int fd = -1;
-    Fd() = default;
-    Fd(const Fd&) = delete;
-    Fd& operator=(const Fd&) = delete;
-    ~Fd() { close(); }
-    void close() {
-        if (fd >= 0) ::close(fd);
-        fd = -1;
-    }
-};
-
-void makePipe(Fd& readEnd, Fd& writeEnd) {
-    int ends[2];
-    if (pipe2(ends, O_CLOEXEC) != 0) fail(std::string("dot failed: cannot make a pipe: ") + std::strerror(errno));
-    readEnd.fd = ends[0];
-    writeEnd.fd = ends[1];
-}
-
-/// The child process, killed (if it still runs) and reaped when it goes out of scope.
-struct Child {
-    pid_t pid = -1;
-    Child() = default;
-    Child(const Child&) = delete;
-    Child& operator=(const Child&) = delete;
-    ~Child() {
-        if (pid > 0) {
-            ::kill(pid, SIGKILL);
-            wait();
-        }
-    }
-    int wait() {
-        int status = 0;
-        while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-        }
-        pid = -1;
-        return status;
-    }
-};
-
-/// Spawn `dot -Tsvg` with its stdin, stdout and stderr on the given pipe ends (no shell). The child gets an empty
-/// signal mask and the default SIGPIPE action whatever the caller has.
-void spawnDot(Child& child, int in, int out, int err) {
-    posix_spawn_file_actions_t actions;
-    posix_spawnattr_t attributes;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawnattr_init(&attributes);
-    posix_spawn_file_actions_adddup2(&actions, in, 0);
-    posix_spawn_file_actions_adddup2(&actions, out, 1);
-    posix_spawn_file_actions_adddup2(&actions, err, 2);
-    sigset_t none, pipeSignal;
-    sigemptyset(&none);
-    sigemptyset(&pipeSignal);
-    sigaddset(&pipeSignal, SIGPIPE);
-    posix_spawnattr_setsigmask(&attributes, &none);
-    posix_spawnattr_setsigdefault(&attributes, &pipeSignal);
-    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-    char program[] = "dot", format[] = "-Tsvg";
-    char* argv[] = {program, format, nullptr};
-    const int error = posix_spawnp(&child.pid, "dot", &actions, &attributes, argv, environ);
-    posix_spawn_file_actions_destroy(&actions);
-    posix_spawnattr_destroy(&attributes);
-    if (error == ENOENT) {
-        child.pid = -1;
-        fail("Graphviz's dot is not installed; run scripts/install-deps");
-    }
-    if (error != 0) {
-        child.pid = -1;
-        fail(std::string("dot failed: cannot start it: ") + std::strerror(error));
-    }
-}
-
-/// SIGPIPE blocked in this thread while it lives, so that writing to a pipe dot has closed is EPIPE instead of
-/// the end of the program. A SIGPIPE raised meanwhile (it goes to the writing thread) is consumed before the
-/// mask is restored; one that was already pending stays pending. No process-wide signal disposition changes.
-class SigpipeBlocked {
-public:
-    SigpipeBlocked() {
-        sigemptyset(&pipe_);
-        sigaddset(&pipe_, SIGPIPE);
-        sigset_t pending;
-        sigpending(&pending);
-        wasPending_ = sigismember(&pending, SIGPIPE) == 1;
-        pthread_sigmask(SIG_BLOCK, &pipe_, &old_);
-    }
-    SigpipeBlocked(const SigpipeBlocked&) = delete;
-    SigpipeBlocked& operator=(const SigpipeBlocked&) = delete;
-    ~SigpipeBlocked() {
-        if (!wasPending_) {
-            const timespec zero{0, 0};
-            while (sigtimedwait(&pipe_, nullptr, &zero) < 0 && errno == EINTR) {
-            }
-        }
-        pthread_sigmask(SIG_SETMASK, &old_, nullptr);
-    }
-
-private:
-    sigset_t pipe_, old_;
-    bool wasPending_ = false;
-};
-
-void setNonBlocking(int fd) { fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK); }
-
-/// Read what is there; false at end of file. What would go past `cap` bytes is dropped, and `overflow` set.
-bool drain(int fd, std::string& into, std::size_t cap, bool& overflow) {
-    char buffer[65536];
-    const ssize_t n = ::read(fd, buffer, sizeof buffer);
-    if (n == 0) return false;
-    if (n < 0) return errno == EAGAIN || errno == EINTR;
-    const std::size_t room = cap - std::min(cap, into.size());
-    into.append(buffer, std::min(room, static_cast<std::size_t>(n)));
-    if (static_cast<std::size_t>(n) > room) overflow = true;
-    return true;
-}
-
-std::string firstLine(const std::string& text) {
-    std::size_t start = text.find_first_not_of(" \t\r\n");
-    if (start == std::string::npos) return "";
-    return text.substr(start, text.find('\n', start) - start);
-}
-
-std::string exitReason(int status) {
-    if (WIFSIGNALED(status)) return "killed by signal " + std::to_string(WTERMSIG(status));
-    return "exit status " + std::to_string(WEXITSTATUS(status));
-}
 
 }  // namespace
 
@@ -595,54 +455,17 @@ std::string pictureSvg(const Schematic& schematic) {
 }
 
 std::string renderSvg(const std::string& dot) {
-    Fd inRead, inWrite, outRead, outWrite, errRead, errWrite;
-    makePipe(inRead, inWrite);
-    makePipe(outRead, outWrite);
-    makePipe(errRead, errWrite);
-    Child child;
-    spawnDot(child, inRead.fd, outWrite.fd, errWrite.fd);
-    inRead.close();
-    outWrite.close();
-    errWrite.close();
-
-    // One poll loop feeds dot's stdin and drains its stdout and stderr, so neither side waits on a full pipe.
-    std::string output, errors;
-    bool outputOverflow = false, errorsOverflow = false;
-    std::size_t written = 0;
-    {
-        const SigpipeBlocked guard;
-        setNonBlocking(inWrite.fd);
-        setNonBlocking(outRead.fd);
-        setNonBlocking(errRead.fd);
-        if (dot.empty()) inWrite.close();
-        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kTimeLimit);
-        // Until dot has read all (or stopped reading: EPIPE) and closed its outputs.
-        while (inWrite.fd >= 0 || outRead.fd >= 0 || errRead.fd >= 0) {
-            pollfd fds[3] = {{inWrite.fd, POLLOUT, 0}, {outRead.fd, POLLIN, 0}, {errRead.fd, POLLIN, 0}};
-            if (std::chrono::steady_clock::now() > deadline) fail("dot failed: it took longer than 60 s");
-            if (poll(fds, 3, 1000) < 0 && errno != EINTR) fail(std::string("dot failed: ") + std::strerror(errno));
-            if (inWrite.fd >= 0 && (fds[0].revents & (POLLOUT | POLLERR | POLLHUP))) {
-                const ssize_t n = ::write(inWrite.fd, dot.data() + written, dot.size() - written);
-                if (n > 0) written += static_cast<std::size_t>(n);
-                // Done, or dot stopped reading (EPIPE: it has failed and says why on stderr).
-                if (written == dot.size() || (n < 0 && errno != EAGAIN && errno != EINTR)) inWrite.close();
-            }
-            if (outRead.fd >= 0 && fds[1].revents && !drain(outRead.fd, output, kMaxOutput, outputOverflow)) {
-                outRead.close();
-            }
-            if (errRead.fd >= 0 && fds[2].revents && !drain(errRead.fd, errors, kMaxErrors, errorsOverflow)) {
-                errRead.close();
-            }
-            if (outputOverflow) fail("dot failed: its SVG is larger than 8 MiB");
-        }
+    simlab::SystemToolRun run;
+    try {
+        run = simlab::runSystemTool({"dot", "-Tsvg"}, dot, kTimeLimit, kMaxOutput);
+    } catch (const simlab::SystemToolMissing&) {
+        fail("Graphviz's dot is not installed; run scripts/install-deps");
+    } catch (const std::runtime_error& e) {
+        fail(e.what());  // "dot failed: ..."
     }
-    const int status = child.wait();
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        const std::string why = firstLine(errors);
-        fail("dot failed: " + (why.empty() ? exitReason(status) : why));
-    }
-    if (output.empty()) fail("dot failed: it wrote nothing");
-    return output;
+    if (!run.succeeded()) fail("dot failed: " + run.reason());
+    if (run.output.empty()) fail("dot failed: it wrote nothing");
+    return run.output;
 }
 
 }  // namespace biosim

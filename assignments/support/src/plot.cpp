@@ -1,23 +1,17 @@
 #include "simlab/plot.h"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include "simlab/messages.h"
-
-extern char** environ;
+#include "simlab/system_tool.h"
 
 namespace simlab {
 
@@ -122,43 +116,36 @@ void drawPlot(const Plot& plot, const std::string& path) {
     const fs::path target = fs::absolute(path);
     const std::string stem = target.string() + ".drawing-" + std::to_string(::getpid());
     const std::string partial = stem + (endsWith(path, ".svg") ? ".svg" : ".png");
-    const std::string scriptPath = stem + ".gp", complaints = stem + ".log";
-    {
-        std::ofstream out(scriptPath);
-        out << script(plot, endsWith(path, ".svg") ? "svg" : "pngcairo", partial);
-        if (!out) throw std::runtime_error("cannot write the plot to " + path + ": " + std::strerror(errno));
+    // gnuplot reads the script on its standard input: no file, and no name that needs quoting.
+    SystemToolRun run;
+    bool missing = false;
+    std::string failure;
+    try {
+        run = runSystemTool({"gnuplot"}, script(plot, endsWith(path, ".svg") ? "svg" : "pngcairo", partial), 120,
+                            1u << 20);
+    } catch (const SystemToolMissing&) {
+        missing = true;
+    } catch (const std::runtime_error& e) {
+        failure = e.what();
     }
-    // gnuplot, not a shell: no name needs quoting, and its complaints go to a file read back here.
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, complaints.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    char gnuplot[] = "gnuplot";
-    std::string scriptArgument = scriptPath;
-    char* argv[] = {gnuplot, scriptArgument.data(), nullptr};
-    pid_t pid = 0;
-    const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
-    posix_spawn_file_actions_destroy(&actions);
-    int status = 0;
-    if (spawned == 0) waitpid(pid, &status, 0);
+    // Its complaints: the first line with more than the spaces and carets that point into the script.
     std::string said;
     {
-        std::ifstream log(complaints);
+        std::istringstream log(run.errors);
         std::string line;
         while (said.empty() && std::getline(log, line)) {
             if (line.find_first_not_of(" \t^") != std::string::npos) said = line;
         }
     }
     std::error_code ignored;
-    fs::remove(scriptPath, ignored);
-    fs::remove(complaints, ignored);
-    const bool drawn = spawned == 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
-                       fs::is_regular_file(partial, ignored) && fs::file_size(partial, ignored) > 0;
+    const bool drawn = !missing && failure.empty() && run.succeeded() && fs::is_regular_file(partial, ignored) &&
+                       fs::file_size(partial, ignored) > 0;
     if (!drawn) {
         fs::remove(partial, ignored);
-        if (spawned == ENOENT) {
+        if (missing) {
             throw std::runtime_error("drawing " + path + " needs gnuplot (scripts/install-deps installs gnuplot-nox)");
         }
+        if (!failure.empty()) said = failure;
         throw std::runtime_error("gnuplot could not draw " + path +
                                  (said.empty() ? std::string() : ": " + oneLineMessage(said)));
     }
