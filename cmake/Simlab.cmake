@@ -347,7 +347,13 @@ function(simlab_write_manifest)
   endforeach()
   list(JOIN entries ",\n    " entries)
   _simlab_json_list(compile ${SIMLAB_SUBMISSION_COMMAND})
-  _simlab_json_list(link ${CMAKE_CXX_COMPILER} -pthread -fno-lto -fno-use-linker-plugin ${SIMLAB_LINKER_FLAGS})
+  # A sanitizer build's course objects need the sanitizers' runtimes wherever they are linked: in the probes too.
+  set(sanitizer_link "")
+  if(SIMLAB_SANITIZE)
+    set(sanitizer_link -fsanitize=address -fsanitize=undefined)
+  endif()
+  _simlab_json_list(link ${CMAKE_CXX_COMPILER} -pthread -fno-lto -fno-use-linker-plugin ${SIMLAB_LINKER_FLAGS}
+                    ${sanitizer_link})
   # Link order: the course's objects, the student's object, then libraries from most to least dependent.
   _simlab_json_list(probe_libraries
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)

@@ -93,8 +93,9 @@ void runNew(const ProjectOptions& o) {
     if (o.from == "template") {
         code = replaceAll(replaceAll(code, "PROJECT_NAME", o.name), "PROJECT_TITLE", o.name);
         description = replaceAll(replaceAll(description, "PROJECT_NAME", o.name), "PROJECT_TITLE", o.name);
-        code = replaceAll(code, "Self-check:     simlab check", "Self-check:     " + simlab + " check");
-        description = replaceAll(description, "(simlab check biosim", "(" + simlab + " check biosim");
+        // The course tree's build/bin/simlab, from the project's own folder.
+        code = replaceAll(code, "build/bin/simlab ", simlab + " ");
+        description = replaceAll(description, "build/bin/simlab ", simlab + " ");
     } else {
         code = replaceAll(code, "d.program = \"babyboot\";", "d.program = \"" + o.name + "\";");
         description = replaceAll(description, "name = \"babyboot\"", "name = \"" + o.name + "\"");

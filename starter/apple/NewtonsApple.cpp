@@ -74,8 +74,9 @@ void simulate(const Model& model, Integrator& integrator, const State& initial, 
 
 simlab::RunSettings cheapestSettings() {
     // 5. The trade (handout, section 7): explicit Euler's largest fixed step that keeps 3 digits of the trade
-    //    question's fall. Work it out from Euler's error, then measure it: `simlab study trade apple --question`
-    //    (in the student bundle, add `--file NewtonsApple.cpp`). Return ExplicitEuler, fixedStep = true, dt.
+    //    question's fall. Work it out from Euler's error, then measure it:
+    //    `build/bin/simlab study trade apple --question` (in the student bundle, add `--file NewtonsApple.cpp`).
+    //    Return ExplicitEuler, fixedStep = true, dt.
     SIMLAB_TODO("explicit Euler's largest fixed step that keeps 3 digits of the question's fall");
 }
 

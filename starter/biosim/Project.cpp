@@ -1,8 +1,8 @@
 // PROJECT_TITLE: your own biosimulation project.
 //
 // Start here, then fill in each SIMLAB_TODO in turn; the program stops at the first one it reaches and says where.
-// The contract is biosim/Project.h: read it first. The baby boot (`simlab project new boot --from babyboot`) is a
-// finished example of every function below.
+// The contract is biosim/Project.h: read it first. The baby boot (`build/bin/simlab project new boot --from
+// babyboot`) is a finished example of every function below.
 //
 //   1. declare():       your parameters (with units and ranges), the columns you sample, and your claims
 //   2. buildModel():    bodies, joints and forces, every number read from a parameter: p["name"]
@@ -12,7 +12,7 @@
 //   6. answer():        the number that answers your question, computed with simulate()
 //
 // Build and run:  cmake --build build && ./build/PROJECT_NAME          (--help lists the options)
-// Self-check:     simlab check biosim Project.cpp
+// Self-check:     build/bin/simlab check biosim Project.cpp
 #include "biosim/Project.h"
 
 #include <cmath>

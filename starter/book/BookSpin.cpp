@@ -64,7 +64,7 @@ void simulate(const Model& model, Integrator& integrator, const State& initial, 
 
 simlab::RunSettings cheapestSettings() {
     // The trade (handout, section 6): the cheapest setting that keeps 8 digits of w_B on the trade question's
-    // tumbling spin. Measure it: `simlab study trade book --question` (in the student bundle, add
+    // tumbling spin. Measure it: `build/bin/simlab study trade book --question` (in the student bundle, add
     // `--file BookSpin.cpp`). Return a RunSettings with integrator and accuracy set (or fixedStep = true and the
     // step in dt).
     SIMLAB_TODO("the cheapest setting that keeps 8 digits of w_B on the question's tumbling spin");

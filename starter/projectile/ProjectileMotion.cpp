@@ -102,7 +102,7 @@ void simulate(const Model& model, Integrator& integrator, const State& initial, 
 
 simlab::RunSettings cheapestSettings() {
     // 9. The trade (handout, section 6): the cheapest setting that keeps 10 digits of the trade question's flight.
-    //    Measure it: `simlab study trade projectile --question` (in the student bundle, add
+    //    Measure it: `build/bin/simlab study trade projectile --question` (in the student bundle, add
     //    `--file ProjectileMotion.cpp`). Return a RunSettings with integrator and accuracy set (or fixedStep = true
     //    and the step in dt).
     SIMLAB_TODO("the cheapest setting that keeps 10 digits of the question's flight to the ground hit");

@@ -61,6 +61,9 @@ check "simlab project new --from babyboot makes a project folder" \
 selfcheck=$(grep ' check biosim Project.cpp$' new.out | awk '{ print $1 }')
 check "its Next: lines name this simlab by a path that runs from the project's folder (simlab is not on the PATH)" \
   bash -c "cd myboot && test -x '$selfcheck' && '$selfcheck' --help >/dev/null"
+run_capture newtemplate "$SIMLAB" project new mine
+check "a project from the template names this simlab by its full path in its files, never build/bin/simlab" \
+  bash -c "grep -qF 'Self-check:     $selfcheck check biosim Project.cpp' mine/Project.cpp && grep -qF '($selfcheck check biosim' mine/project.toml && ! grep -qE '(^|[^/])build/bin/simlab' mine/Project.cpp mine/project.toml"
 check "and the copy's description names its own program, ./build/myboot, and its drawings" \
   bash -c "grep -q '\`./build/myboot --schematic\`' myboot/project.toml && grep -q '(myboot-tree.svg)' myboot/project.toml && ! grep -q babyboot myboot/project.toml"
 run_capture again "$SIMLAB" project new myboot
