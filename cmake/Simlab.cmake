@@ -279,7 +279,7 @@ function(simlab_add_assignment id)
   add_library(${id}_grader_tests OBJECT ${tests} ${trade_texts})
   target_include_directories(${id}_grader_tests PRIVATE ${trade_dir})
   target_link_libraries(${id}_grader_tests PRIVATE simlab_harness simlab_support Catch2::Catch2 ${Simbody_LIBRARIES})
-  add_executable(${id}-judge $<TARGET_OBJECTS:${id}_grader_tests>)
+  add_executable(${id}-judge $<TARGET_OBJECTS:${id}_grader_tests> $<TARGET_OBJECTS:simlab_sanitizer_defaults>)
   target_link_libraries(${id}-judge PRIVATE simlab_harness simlab_observe_remote simlab_rubric simlab_support
                                             Catch2::Catch2WithMain ${Simbody_LIBRARIES})
   set_target_properties(${id}-judge PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/judges)
@@ -292,7 +292,8 @@ function(simlab_add_assignment id)
   # The probe's course side: linked before the student's object, whole, so that the student can add to it but
   # never replace any of it.
   _simlab_json_list(probe_objects $<TARGET_OBJECTS:simlab_probe_main> $<TARGET_OBJECTS:simlab_probe>
-                                  $<TARGET_OBJECTS:${id}_probe> $<TARGET_OBJECTS:simlab_support_objects>)
+                                  $<TARGET_OBJECTS:${id}_probe> $<TARGET_OBJECTS:simlab_support_objects>
+                                  $<TARGET_OBJECTS:simlab_sanitizer_defaults>)
   # The benchmark's floor: the tests and the probe in one program, the student's code called directly. A course
   # source both sides compile (biosim's declaration.cpp) is linked once.
   set(shared_sources "")
@@ -359,7 +360,12 @@ function(simlab_write_manifest)
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
   # A probe exports nothing it defines (beyond the library data it must hold copies of): a function the student
   # defines can never take the place of a shared library's, whoever calls it.
-  file(WRITE ${PROJECT_BINARY_DIR}/probe-exports.map "{ local: *; };\n")
+  # A sanitizer build's probe exports AddressSanitizer's defaults too, which its runtime looks up by name.
+  if(SIMLAB_SANITIZE)
+    file(WRITE ${PROJECT_BINARY_DIR}/probe-exports.map "{ global: __asan_default_options; local: *; };\n")
+  else()
+    file(WRITE ${PROJECT_BINARY_DIR}/probe-exports.map "{ local: *; };\n")
+  endif()
   _simlab_json_list(floor_libraries
     $<TARGET_FILE:simlab_plot> $<TARGET_FILE:simlab_rubric> $<TARGET_FILE:Catch2::Catch2WithMain> $<TARGET_FILE:tomlplusplus::tomlplusplus>
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)

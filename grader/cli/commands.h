@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 
 #include "simlab/engine/grade.h"
 #include "simlab/rubric.h"
@@ -28,6 +29,15 @@ engine::SubmissionFiles readSubmission(const std::string& path, const Rubric& ru
 /// The cores this machine offers (at least 1): the default for what runs at once.
 int cores();
 
+/// This simlab's full path (from /proc/self/exe; "simlab" if it cannot be read).
+std::string selfPath();
+
+/// `word` as a POSIX shell reads it back as one word: as it is where that is safe, else in single quotes.
+std::string shellWord(const std::string& word);
+
+/// --shard's "I/N" as (I, N), 1 <= I <= N <= 10000; a UsageError in one line otherwise.
+std::pair<int, int> parseShard(const std::string& text);
+
 void addCheck(CLI::App& app);
 void addGrade(CLI::App& app);
 void addBuild(CLI::App& app);
@@ -39,5 +49,6 @@ void addProject(CLI::App& app);
 void addStudy(CLI::App& app);
 void addPlot(CLI::App& app);
 void addSimilarity(CLI::App& app);
+void addSlurm(CLI::App& app);
 
 }  // namespace simlab::cli

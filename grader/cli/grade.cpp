@@ -39,6 +39,7 @@ struct GradeCommandOptions {
     double memory = 0;
     std::string rubric;
     std::string from;
+    std::string shard;  // "I/N"
 };
 
 std::string minutesAndSeconds(double seconds) {
@@ -88,6 +89,15 @@ void runGrade(const GradeCommandOptions& o) {
                                                : "no submissions folder " + root);
     }
     const std::string out = o.out.empty() ? "grades/" + assignment.id : o.out;
+    std::pair<int, int> shard{0, 0};
+    if (!o.shard.empty()) {
+        shard = parseShard(o.shard);
+        const char* clash = !o.from.empty() ? "--from" : !o.only.empty() ? "--only" : !o.junit.empty() ? "--junit" : nullptr;
+        if (clash) {
+            throw UsageError(std::string("--shard grades a share of a class folder and leaves the class's files to the "
+                                         "whole-class run: give ") + clash + " to that run instead");
+        }
+    }
     const Rubric rubric = loadRubric(o.rubric.empty() ? assignment.rubric : o.rubric);
 
     // A platform's download is taken in as a class folder beside the gradebook, with a roster of who is who; a
@@ -126,6 +136,8 @@ void runGrade(const GradeCommandOptions& o) {
     options.only = o.only;
     options.grade.includeHidden = true;
     options.grade.limits = limitsWith(rubric.limits, o.timeout, o.memory);
+    options.shard = shard.first;
+    options.shards = shard.second;
 
     const SandboxSupport& sandbox = sandboxSupport();
     if (!sandbox.warning.empty()) std::cerr << "simlab: warning: " << sandbox.warning << "\n";
@@ -134,9 +146,9 @@ void runGrade(const GradeCommandOptions& o) {
     if (const std::string exposed = secretsExposed(manifest, assignment, {root, out}); !exposed.empty()) {
         throw UsageError(exposed);
     }
-    std::printf("Grading %s (%s) from %s into %s: %d jobs, sandbox: %s\n", assignment.id.c_str(),
-                assignment.title.c_str(), printable(root).c_str(), printable(out).c_str(), o.jobs,
-                sandbox.summary.c_str());
+    std::printf("Grading %s (%s) from %s into %s%s: %d jobs, sandbox: %s\n", assignment.id.c_str(),
+                assignment.title.c_str(), printable(root).c_str(), printable(out).c_str(),
+                shard.second ? (", shard " + o.shard).c_str() : "", o.jobs, sandbox.summary.c_str());
     std::fflush(stdout);
 
     // On a terminal, a live status line under the log; otherwise the log alone.
@@ -172,6 +184,19 @@ void runGrade(const GradeCommandOptions& o) {
     for (const std::string& w : result.warnings) std::cerr << "simlab: warning: " << printable(w) << "\n";
 
     std::cout << "\n" << summaryTable(rubric, records);
+    const int graded = static_cast<int>(records.size()) - result.reused;
+    std::cout << "\n" << graded << " graded, " << result.reused << " up to date and kept\n";
+    if (shard.second) {
+        std::cout << "Wrote shard " << o.shard << "'s students into " << printable(out)
+                  << "/students/<id>; once every shard has finished, the same command without --shard writes the "
+                     "gradebook, the summary and the reports (it grades again only what no shard finished)\n";
+        if (result.graderErrors > 0) {
+            throw std::runtime_error(std::to_string(result.graderErrors) +
+                                     " student(s) could not be graded (status 'grader error'); the whole-class run "
+                                     "retries them");
+        }
+        return;
+    }
     if (!o.junit.empty()) writeFileAtomically(o.junit, junitXml(assignment, records));
     std::cout << "\nWrote " << printable(out) << "/gradebook.csv, " << printable(out) << "/summary.csv, "
               << printable(out) << "/report.html and " << printable(out)
@@ -216,6 +241,11 @@ void addGrade(CLI::App& app) {
                       "student-repos); taken in as OUT/class, with OUT/roster.csv (names, ids, e-mails, late flags, "
                       "groups) for simlab export canvas")
         ->check(CLI::IsMember(engine::downloadLayouts()));
+    grade->add_option("--shard", options->shard,
+                      "I/N: grade share I of N of the class (students I, I + N, ... in name order) into OUT's student "
+                      "folders only, side by side with the other shards on a shared OUT; the command without "
+                      "--shard then assembles the gradebook and reports, grading again nothing up to date")
+        ->type_name("I/N");
     grade->callback([options] { runGrade(*options); });
 }
 

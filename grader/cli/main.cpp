@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
     simlab::cli::addStudy(app);
     simlab::cli::addPlot(app);
     simlab::cli::addSimilarity(app);
+    simlab::cli::addSlurm(app);
     // CLI11 would call an unknown command a missing one; say what it is.
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;

@@ -62,4 +62,40 @@ engine::SubmissionFiles readSubmission(const std::string& path, const Rubric& ru
     return files;
 }
 
+std::string selfPath() {
+    std::error_code unknown;
+    const fs::path self = fs::read_symlink("/proc/self/exe", unknown);
+    return unknown ? "simlab" : self.string();
+}
+
+std::string shellWord(const std::string& word) {
+    if (!word.empty() &&
+        word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789/._+-=:,@%") ==
+            std::string::npos) {
+        return word;
+    }
+    std::string quoted = "'";
+    for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+std::pair<int, int> parseShard(const std::string& text) {
+    const std::size_t slash = text.find('/');
+    int shard = 0, shards = 0;
+    try {
+        std::size_t used = 0, usedToo = 0;
+        if (slash == std::string::npos) throw std::invalid_argument("no slash");
+        shard = std::stoi(text.substr(0, slash), &used);
+        shards = std::stoi(text.substr(slash + 1), &usedToo);
+        if (used != slash || usedToo != text.size() - slash - 1) throw std::invalid_argument("trailing text");
+    } catch (const std::exception&) {
+        throw engine::UsageError("--shard takes I/N, the share I of N (1 <= I <= N), not '" +
+                                 engine::printable(text) + "'");
+    }
+    if (shards < 1 || shards > 10000 || shard < 1 || shard > shards) {
+        throw engine::UsageError("--shard " + engine::printable(text) + ": I/N needs 1 <= I <= N <= 10000");
+    }
+    return {shard, shards};
+}
+
 }  // namespace simlab::cli

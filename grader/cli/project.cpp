@@ -83,13 +83,7 @@ void runNew(const ProjectOptions& o) {
     std::string description = readText(source / "project.toml");
     // simlab is not on the PATH (a bundle builds it into build/bin): the project's files and the lines below name
     // this simlab by its full path, which works from the project's folder.
-    std::error_code unknown;
-    fs::path self = fs::read_symlink("/proc/self/exe", unknown);
-    std::string simlab = unknown ? "simlab" : engine::printable(self.string());
-    if (simlab.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789/._+-") !=
-        std::string::npos) {
-        simlab = "'" + replaceAll(simlab, "'", "'\\''") + "'";  // as a shell reads it back
-    }
+    const std::string simlab = shellWord(engine::printable(selfPath()));
     if (o.from == "template") {
         code = replaceAll(replaceAll(code, "PROJECT_NAME", o.name), "PROJECT_TITLE", o.name);
         description = replaceAll(replaceAll(description, "PROJECT_NAME", o.name), "PROJECT_TITLE", o.name);

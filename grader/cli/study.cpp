@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -32,6 +33,7 @@
 #include "simlab/trade_question.h"
 #include "simlab/work_precision.h"
 #include <optional>
+#include <tuple>
 #include <regex>
 #include <toml++/toml.h>
 
@@ -55,6 +57,8 @@ struct StudyOptions {
     std::string file;  ///< a student file to study instead of the reference solution
     bool question = false;  ///< the trade question's scene (tests/trade-question.json), as the grader measures it
     bool fronts = false;    ///< measure the fronts of the question's data files and write them there
+    std::string shard;      ///< "I/N": measure share I of N of the (lab, integrator) parts into OUTPUT/parts
+    bool assemble = false;  ///< trade.csv and the plots from OUTPUT/parts, measuring only the parts missing
 };
 
 /// A subject's header line and its points, as the study program printed them (for `study minimal`, its rows).
@@ -553,6 +557,145 @@ void writeFronts(const StudyOptions& o, const std::vector<const engine::Assignme
     }
 }
 
+/// trade.csv, the tables and (unless --no-plots) the plots of `runs`, into `dir`.
+void writeTrade(const StudyOptions& o, const fs::path& dir, const std::vector<SubjectRun>& runs) {
+    writeCsv(dir / "trade.csv", runs);
+    for (const SubjectRun& run : runs) {
+        printTable(std::cout, run);
+        if (o.plots) {
+            const std::vector<std::string> files = plot(dir, text(run.subject["subject"]));
+            if (files.empty()) std::cout << "  (no plots: gnuplot failed or is not installed)\n";
+        }
+    }
+    std::cout << "\nWritten to " << engine::printable(dir.string()) << ": trade.csv"
+              << (o.plots ? ", and for each scene its .gp script with -evaluations and -time plots (PNG, SVG)" : "")
+              << '\n';
+}
+
+/// The study in parts, one per lab and integrator, for machines that share OUTPUT (a cluster's job array): with
+/// --shard I/N, parts I, I + N, ... of the labs' parts in order are measured into OUTPUT/parts; with --assemble,
+/// the parts missing (or measured with other options or another build's study program) are measured here, and
+/// trade.csv and the plots are written from all of them, the points in the order one run prints them.
+void runTradeInParts(const StudyOptions& o, const std::vector<const engine::Assignment*>& labs) {
+    struct Part {
+        const engine::Assignment* lab;
+        std::string integrator;
+        std::size_t integratorIndex;
+        fs::path file;
+    };
+    const fs::path dir = fs::absolute(o.output);
+    const fs::path partsDir = dir / "parts";
+    fs::create_directories(partsDir);
+    std::vector<Part> parts;
+    for (const engine::Assignment* a : labs) {
+        std::size_t k = 0;
+        for (const char* name : kIntegrators) {
+            parts.push_back({a, name, k++, partsDir / (a->id + "." + name + ".json")});
+        }
+    }
+    std::vector<std::size_t> mine;
+    const auto [shard, shards] = o.shard.empty() ? std::pair<int, int>{1, 1} : parseShard(o.shard);
+    for (std::size_t i = static_cast<std::size_t>(shard - 1); i < parts.size(); i += static_cast<std::size_t>(shards)) {
+        mine.push_back(i);
+    }
+    // What a part is measured with: the study program's bytes and the options that change its points.
+    const auto keyOf = [&](const Part& p) {
+        engine::Hash h;
+        h.addFileContent(p.lab->studyProgramPath).add(p.integrator).add(o.quick ? "quick" : "full");
+        h.add(std::to_string(o.maxEvaluations)).add(std::to_string(o.cap)).add(std::to_string(o.repeats));
+        return h.hex();
+    };
+    const auto kept = [&](const Part& p) -> std::optional<json> {
+        if (!fs::exists(p.file)) return std::nullopt;
+        const json j = json::parse(engine::readFile(p.file.string()), nullptr, false);
+        if (j.is_discarded() || !j.is_object() || !j.contains("lines") || text(j["key"]) != keyOf(p)) return std::nullopt;
+        return j;
+    };
+    std::mutex lock;
+    std::atomic<std::size_t> next{0};
+    std::atomic<int> measured{0}, reused{0};
+    std::string failure;
+    auto work = [&] {
+        for (std::size_t i = next++; i < mine.size(); i = next++) {
+            const Part& p = parts[mine[i]];
+            if (kept(p)) {
+                ++reused;
+                continue;
+            }
+            std::vector<std::string> argv = {p.lab->studyProgramPath, "--integrators", p.integrator};
+            if (o.quick) argv.push_back("--quick");
+            if (o.cap > 0) argv.insert(argv.end(), {"--cap", std::to_string(o.cap)});
+            if (o.maxEvaluations > 0) argv.insert(argv.end(), {"--max-evaluations", std::to_string(o.maxEvaluations)});
+            if (o.repeats > 0) argv.insert(argv.end(), {"--repeats", std::to_string(o.repeats)});
+            json lines = json::array();
+            const auto start = std::chrono::steady_clock::now();
+            const int status = runStudyProgram(argv, false, [&lines](const json& j) { lines.push_back(j); });
+            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            std::lock_guard<std::mutex> guard(lock);
+            if (status != 0) {
+                if (failure.empty()) {
+                    failure = "the study of " + p.lab->id + " with " + p.integrator + " stopped with status " +
+                              std::to_string(status);
+                }
+                continue;
+            }
+            const json part = {{"key", keyOf(p)}, {"lab", p.lab->id}, {"integrator", p.integrator}, {"lines", lines}};
+            engine::writeFileDurably(p.file.string(), part.dump() + "\n");
+            ++measured;
+            std::printf("  part %s %s: %zu lines in %.1f s\n", p.lab->id.c_str(), p.integrator.c_str(), lines.size(),
+                        seconds);
+            std::fflush(stdout);
+        }
+    };
+    std::vector<std::thread> workers;
+    for (int k = 0; k < std::max(1, std::min<int>(o.jobs, static_cast<int>(mine.size()))); ++k) workers.emplace_back(work);
+    for (std::thread& w : workers) w.join();
+    std::cout << measured << " part(s) measured, " << reused << " up to date and kept, of "
+              << (o.shard.empty() ? "the study's " : "shard " + o.shard + "'s ") << mine.size() << '\n';
+    if (!failure.empty()) throw std::runtime_error(failure);
+    if (!o.assemble) {
+        std::cout << "Wrote " << engine::printable(partsDir.string()) << "; once every shard has finished, the same "
+                  << "command with --assemble instead of --shard writes trade.csv and the plots\n";
+        return;
+    }
+    // Each lab's scenes in the order its parts first name them; each scene's points as one run orders them: the
+    // accuracy sweeps integrator by integrator, then the fixed steps.
+    std::vector<SubjectRun> runs;
+    for (const engine::Assignment* a : labs) {
+        std::vector<SubjectRun> labRuns;
+        std::vector<std::vector<std::tuple<int, std::size_t, std::size_t, json>>> keyed;
+        for (const Part& p : parts) {
+            if (p.lab != a) continue;
+            const std::optional<json> part = kept(p);
+            if (!part) throw std::runtime_error("the part " + p.file.string() + " is missing or unreadable");
+            std::size_t current = labRuns.size(), seq = 0;
+            for (const json& line : (*part)["lines"]) {
+                if (text(line["type"]) == "subject") {
+                    current = labRuns.size();
+                    for (std::size_t k = 0; k < labRuns.size(); ++k) {
+                        if (text(labRuns[k].subject["subject"]) == text(line["subject"])) current = k;
+                    }
+                    if (current == labRuns.size()) {
+                        labRuns.push_back({line, {}, {}});
+                        keyed.emplace_back();
+                    }
+                } else if (text(line["type"]) == "point" && current < labRuns.size()) {
+                    keyed[current].emplace_back(text(line["mode"]) == "accuracy" ? 0 : 1, p.integratorIndex, seq++, line);
+                }
+            }
+        }
+        for (std::size_t k = 0; k < labRuns.size(); ++k) {
+            std::stable_sort(keyed[k].begin(), keyed[k].end(), [](const auto& x, const auto& y) {
+                return std::tie(std::get<0>(x), std::get<1>(x), std::get<2>(x)) <
+                       std::tie(std::get<0>(y), std::get<1>(y), std::get<2>(y));
+            });
+            for (auto& entry : keyed[k]) labRuns[k].points.push_back(std::get<3>(entry));
+        }
+        runs.insert(runs.end(), labRuns.begin(), labRuns.end());
+    }
+    writeTrade(o, dir, runs);
+}
+
 void runTrade(const StudyOptions& o) {
     const engine::Manifest manifest = engine::loadManifest();
     std::vector<const engine::Assignment*> labs;
@@ -597,7 +740,17 @@ void runTrade(const StudyOptions& o) {
                       << " moved in its last digit) and kept at its worst, as the grader measures an answer.\n";
         }
     }
+    if (!o.shard.empty() || o.assemble) {
+        const char* clash = !o.file.empty() ? "--file" : o.question ? "--question" : o.fronts ? "--fronts" : nullptr;
+        if (clash) throw engine::UsageError(std::string("--shard and --assemble study the reference solutions, not ") + clash);
+        if (!o.shard.empty() && o.assemble) throw engine::UsageError("--shard measures parts, --assemble gathers them: give one");
+        if (!o.shard.empty()) parseShard(o.shard);  // a bad I/N stops before anything is built
+    }
     ensureStudiesBuilt(manifest, labs, !o.file.empty());
+    if (!o.shard.empty() || o.assemble) {
+        runTradeInParts(o, labs);
+        return;
+    }
     if (o.fronts) {
         std::vector<const engine::Assignment*> withQuestions;
         for (const engine::Assignment* a : labs) {
@@ -690,17 +843,7 @@ void runTrade(const StudyOptions& o) {
                   << "minimal-points.csv (each model's curve)\n";
         return;
     }
-    writeCsv(dir / "trade.csv", runs);
-    for (const SubjectRun& run : runs) {
-        printTable(std::cout, run);
-        if (o.plots) {
-            const std::vector<std::string> files = plot(dir, text(run.subject["subject"]));
-            if (files.empty()) std::cout << "  (no plots: gnuplot failed or is not installed)\n";
-        }
-    }
-    std::cout << "\nWritten to " << engine::printable(dir.string()) << ": trade.csv"
-              << (o.plots ? ", and for each scene its .gp script with -evaluations and -time plots (PNG, SVG)" : "")
-              << '\n';
+    writeTrade(o, dir, runs);
 }
 
 // ---- study extremes -------------------------------------------------------------------------------------------
@@ -954,6 +1097,12 @@ void addStudy(CLI::App& app) {
     trade->add_flag("--fronts", options->fronts,
                     "for those who keep the course: measure the front of every scene of the trade question and its "
                     "hidden variants on the reference solution and write it into tests/trade-*.json");
+    trade->add_option("--shard", options->shard,
+                      "I/N: measure share I of N of the study's parts (one per lab and integrator) into "
+                      "OUTPUT/parts, beside the other shards on a shared OUTPUT (a cluster's job array)")
+        ->type_name("I/N");
+    trade->add_flag("--assemble", options->assemble,
+                    "write trade.csv and the plots from OUTPUT/parts, measuring here any part no shard finished");
     trade->callback([options] { runTrade(*options); });
 
     CLI::App* minimal = study->add_subcommand(

@@ -210,12 +210,29 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
             throw UsageError("no student '" + printable(id) + "' in " + printable(submissionsDir));
         }
     }
+    const bool sharded = options.shards > 0;
+    if (sharded) {
+        if (options.shard < 1 || options.shard > options.shards) {
+            throw UsageError("shard " + std::to_string(options.shard) + " of " + std::to_string(options.shards) +
+                             " does not exist: shards count from 1");
+        }
+        // A deterministic share: every shard lists the same class folder in the same (name) order.
+        std::vector<std::string> share;
+        for (std::size_t i = static_cast<std::size_t>(options.shard - 1); i < ids.size();
+             i += static_cast<std::size_t>(options.shards)) {
+            share.push_back(ids[i]);
+        }
+        ids = std::move(share);
+    }
     fs::create_directories(outDir + "/students");
-    const OutputLock outputLock(outDir);  // one simlab at a time writes a class's grades
+    // One simlab at a time writes a class's grades, or shards side by side, each its own students.
+    const OutputLock outputLock(outDir, sharded ? std::to_string(options.shard) + "-of-" +
+                                                      std::to_string(options.shards)
+                                                : "");
 
     // What every grade depends on besides the student's files.
     Hash base;
-    base.add(builder.graderKey(assignment)).add(verdictsOf(rubric));
+    base.add(builder.gradingKey(assignment)).add(verdictsOf(rubric));
     const Limits limits = options.grade.limits.value_or(rubric.limits);
     for (double v : {limits.wallSeconds, limits.cpuSeconds, double(limits.memoryMiB), double(limits.outputKiB),
                      double(limits.fileMiB), double(limits.processes), double(limits.observationMiB),
@@ -228,8 +245,8 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     // graded; written back at once with a row for every student and item (nothing typed in it is lost).
     const std::string sheetPath = outDir + "/manual.csv";
     ManualSheet sheet;
-    if (fs::exists(sheetPath)) sheet = readManualCsv(readFile(sheetPath), sheetPath, rubric);
-    if (!rubric.manual.empty() || fs::exists(sheetPath)) {
+    if (!sharded && fs::exists(sheetPath)) sheet = readManualCsv(readFile(sheetPath), sheetPath, rubric);
+    if (!sharded && (!rubric.manual.empty() || fs::exists(sheetPath))) {
         const std::vector<std::string> stray = strayManualRows(sheet, ids, rubric);
         if (!stray.empty()) {
             result.warnings.push_back(std::to_string(stray.size()) + " row(s) of " + sheetPath +
@@ -239,7 +256,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
         writeFileAtomically(sheetPath, manualCsv(sheet, ids, rubric));
     }
     // The rubric the class was graded with, beside the grades: the exports read its points.
-    writeFileAtomically(outDir + "/rubric.toml", readFile(rubric.path));
+    if (!sharded) writeFileAtomically(outDir + "/rubric.toml", readFile(rubric.path));
 
     std::map<std::string, StudentRecord> records;
     struct Pending {
@@ -318,6 +335,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     progress.total = static_cast<int>(options.only.empty() ? ids.size() : options.only.size());
     progress.reused = reused;
     auto publish = [&] {
+        if (sharded) return;  // the whole-class run writes the gradebook
         std::vector<StudentRecord> sorted;
         for (const auto& [id, r] : records) sorted.push_back(r);
         writeFileDurably(outDir + "/gradebook.csv", gradebookCsv(rubric, sorted));
@@ -424,8 +442,11 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     for (const std::string& id : ids) {
         if (records.count(id)) result.records.push_back(records[id]);
     }
-    writeFileAtomically(outDir + "/summary.csv", summaryCsv(rubric, result.records));
-    writeFileAtomically(outDir + "/report.html", classReportHtml(assignment, rubric, result));
+    result.reused = reused;
+    if (!sharded) {
+        writeFileAtomically(outDir + "/summary.csv", summaryCsv(rubric, result.records));
+        writeFileAtomically(outDir + "/report.html", classReportHtml(assignment, rubric, result));
+    }
     if (setupFailure) std::rethrow_exception(setupFailure);
     if (childrenInterrupted()) throw Interrupted();
     return result;

@@ -293,22 +293,38 @@ void trimObjectCache(const std::string& dir) {
     }
 }
 
-std::string Builder::objectKey(const Assignment& assignment, const std::string& sourceText) const {
-    Hash h;
-    h.add(sourceText).add(manifest_.version).add(kToolLocale).add(assignment.contractInclude);
-    for (const std::string& part : manifest_.compile) h.add(part);
-    for (std::size_t i = 0; i + 1 < manifest_.compile.size(); ++i) {
-        if (manifest_.compile[i] == "-include") h.addFileStamp(manifest_.compile[i + 1] + ".gch");
-        if (manifest_.compile[i] == "-include-pch") h.addFileStamp(manifest_.compile[i + 1]);
+namespace {
+
+// The precompiled header files the compile command reads (GCC's -include X reads X.gch; clang's -include-pch X).
+std::vector<std::string> precompiledHeaders(const Manifest& manifest) {
+    std::vector<std::string> files;
+    for (std::size_t i = 0; i + 1 < manifest.compile.size(); ++i) {
+        if (manifest.compile[i] == "-include") files.push_back(manifest.compile[i + 1] + ".gch");
+        if (manifest.compile[i] == "-include-pch") files.push_back(manifest.compile[i + 1]);
     }
+    return files;
+}
+
+// The contract's headers, every file below its folder, in name order.
+std::vector<std::string> contractHeaders(const Assignment& assignment) {
     std::error_code error;
     std::vector<std::string> headers;
     for (auto it = fs::recursive_directory_iterator(assignment.contractInclude, error);
          it != fs::recursive_directory_iterator(); it.increment(error)) {
-        headers.push_back(it->path().string());
+        if (it->is_regular_file(error)) headers.push_back(it->path().string());
     }
     std::sort(headers.begin(), headers.end());
-    for (const std::string& header : headers) h.addFileStamp(header);
+    return headers;
+}
+
+}  // namespace
+
+std::string Builder::objectKey(const Assignment& assignment, const std::string& sourceText) const {
+    Hash h;
+    h.add(sourceText).add(manifest_.version).add(kToolLocale).add(assignment.contractInclude);
+    for (const std::string& part : manifest_.compile) h.add(part);
+    for (const std::string& file : precompiledHeaders(manifest_)) h.addFileStamp(file);
+    for (const std::string& header : contractHeaders(assignment)) h.addFileStamp(header);
     return h.hex();
 }
 
@@ -320,6 +336,33 @@ std::string Builder::graderKey(const Assignment& assignment) const {
     for (const std::string& file : manifest_.probeLibraries) h.addFileStamp(file);
     for (const std::string& flag : manifest_.probeLink) h.add(flag);
     h.addFileStamp(assignment.judge);
+    return h.hex();
+}
+
+std::string Builder::gradingKey(const Assignment& assignment) const {
+    const auto portable = [&](std::string text) {
+        // The build folder first: it may lie inside the source folder.
+        for (const auto& [folder, name] : {std::pair<std::string, std::string>{manifest_.buildDir, "<build>"},
+                                           std::pair<std::string, std::string>{manifest_.sourceDir, "<source>"}}) {
+            if (folder.empty()) continue;
+            for (std::size_t at = text.find(folder); at != std::string::npos; at = text.find(folder, at + name.size())) {
+                text.replace(at, folder.size(), name);
+            }
+        }
+        return text;
+    };
+    Hash h;
+    h.add(manifest_.version).add(kToolLocale);
+    for (const std::string& part : manifest_.compile) h.add(portable(part));
+    for (const std::string& file : precompiledHeaders(manifest_)) h.addFileContent(file);
+    for (const std::string& header : contractHeaders(assignment)) {
+        h.add(fs::path(header).lexically_relative(assignment.contractInclude).string()).addFileContent(header);
+    }
+    for (const std::string& part : manifest_.link) h.add(portable(part));
+    for (const std::string& file : assignment.probeObjects) h.addFileContent(file);
+    for (const std::string& file : manifest_.probeLibraries) h.addFileContent(file);
+    for (const std::string& flag : manifest_.probeLink) h.add(portable(flag));
+    h.addFileContent(assignment.judge);
     return h.hex();
 }
 

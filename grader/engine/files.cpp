@@ -14,6 +14,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -105,11 +107,11 @@ void writeFileAtomically(const std::string& path, const std::string& text) { wri
 
 void writeFileDurably(const std::string& path, const std::string& text) { writeFileThenRename(path, text, true); }
 
-OutputLock::OutputLock(const std::string& folder) {
+OutputLock::OutputLock(const std::string& folder, const std::string& shard) {
     const std::string path = folder + "/.simlab-lock";
     fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd_ < 0) throw std::runtime_error("cannot open " + path + ": " + std::strerror(errno));
-    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    if (::flock(fd_, (shard.empty() ? LOCK_EX : LOCK_SH) | LOCK_NB) != 0) {
         const int error = errno;
         std::string holder = readFile(path);
         holder = holder.substr(0, holder.find('\n'));
@@ -127,9 +129,35 @@ OutputLock::OutputLock(const std::string& folder) {
     if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, pid.data(), pid.size(), 0) < 0) {
         // The lock holds all the same; only another simlab's message lacks the process number.
     }
+    if (shard.empty()) return;
+    const std::string shardPath = path + "-shard-" + shard;
+    shardFd_ = ::open(shardPath.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (shardFd_ < 0) {
+        const int error = errno;
+        ::close(fd_);
+        fd_ = -1;
+        throw std::runtime_error("cannot open " + shardPath + ": " + std::strerror(error));
+    }
+    if (::flock(shardFd_, LOCK_EX | LOCK_NB) != 0) {
+        const int error = errno;
+        std::string holder = readFile(shardPath);
+        holder = holder.substr(0, holder.find('\n'));
+        ::close(shardFd_);
+        ::close(fd_);
+        shardFd_ = fd_ = -1;
+        if (error == EWOULDBLOCK) {
+            throw UsageError("shard " + shard + " of " + folder + " is being graded already" +
+                             (holder.empty() ? "" : " (process " + holder + ")"));
+        }
+        throw std::runtime_error("cannot lock " + shardPath + ": " + std::strerror(error));
+    }
+    if (::ftruncate(shardFd_, 0) != 0 || ::pwrite(shardFd_, pid.data(), pid.size(), 0) < 0) {
+        // as above
+    }
 }
 
 OutputLock::~OutputLock() {
+    if (shardFd_ >= 0) ::close(shardFd_);
     if (fd_ >= 0) ::close(fd_);
 }
 
@@ -168,6 +196,48 @@ Hash& Hash::addFileStamp(const std::string& path) {
             std::to_string(info.st_mtim.tv_nsec));
     }
     return *this;
+}
+
+namespace {
+std::string hexOf(const unsigned char* digest, unsigned int size);
+}  // namespace
+
+Hash& Hash::addFileContent(const std::string& path) {
+    // Known digests by device, inode, size and modification time: a file read once is not read again while it
+    // stays as it was.
+    static std::mutex lock;
+    static std::map<std::string, std::string> known;
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) return add("(missing)");
+    const std::string stamp = std::to_string(info.st_dev) + ":" + std::to_string(info.st_ino) + ":" +
+                              std::to_string(info.st_size) + ":" + std::to_string(info.st_mtim.tv_sec) + "." +
+                              std::to_string(info.st_mtim.tv_nsec);
+    {
+        std::lock_guard<std::mutex> guard(lock);
+        if (const auto found = known.find(stamp); found != known.end()) return add(found->second);
+    }
+    // Read in pieces: a precompiled header is hundreds of megabytes.
+    EVP_MD_CTX* context = EVP_MD_CTX_new();
+    if (!context || EVP_DigestInit_ex(context, EVP_sha256(), nullptr) != 1) {
+        EVP_MD_CTX_free(context);
+        throw std::runtime_error("cannot start a SHA-256 hash");
+    }
+    std::ifstream in(path, std::ios::binary);
+    std::vector<char> piece(1 << 20);
+    while (in) {
+        in.read(piece.data(), static_cast<std::streamsize>(piece.size()));
+        EVP_DigestUpdate(context, piece.data(), static_cast<std::size_t>(in.gcount()));
+    }
+    unsigned char bytes[EVP_MAX_MD_SIZE];
+    unsigned int size = 0;
+    const bool read = in.eof() && !in.bad();
+    const bool done = EVP_DigestFinal_ex(context, bytes, &size) == 1;
+    EVP_MD_CTX_free(context);
+    if (!read || !done) throw std::runtime_error("cannot read " + path + " to hash it");
+    const std::string digest = hexOf(bytes, size);
+    std::lock_guard<std::mutex> guard(lock);
+    known[stamp] = digest;
+    return add(digest);
 }
 
 namespace {

@@ -30,14 +30,16 @@ TEST_CASE("the integrator is the one asked for at the accuracy asked for", "[pro
 TEST_CASE("y at 5.2 s has the target accuracy digits", "[projectile][accuracy]") {
     // y(5.2) = 44.7 sin(35 deg) 5.2 - 4.9 * 5.2^2 = 0.8316 m: the ball is nearly down again.
     const Scene scene;
-    const Sample& s = sampleAt(simulate(scene), 5.2);
+    const Run run = simulate(scene);
+    const Sample& s = sampleAt(run, 5.2);
     const double digits = simlab::accuracyDigits(s.y, exact::y(scene, 5.2));
     CHECK(grading::atLeast(digits, grading::param("floor"), grading::param("target"), "digits"));
 }
 
 TEST_CASE("x at 5.2 s has the target accuracy digits", "[projectile][accuracy]") {
     const Scene scene;
-    const Sample& s = sampleAt(simulate(scene), 5.2);
+    const Run run = simulate(scene);
+    const Sample& s = sampleAt(run, 5.2);
     const double digits = simlab::accuracyDigits(s.x, exact::x(scene, 5.2));
     CHECK(grading::atLeast(digits, grading::param("floor"), grading::param("target"), "digits"));
 }

@@ -53,6 +53,9 @@ const Sample& lastSample(const RunResult<Sample>& run, double time) {
     REQUIRE(last.time == Approx(time).epsilon(1e-9));
     return last;
 }
+/// Not from a run that ends with the statement: the sample would be gone before it is read.
+template <class Sample>
+const Sample& lastSample(RunResult<Sample>&& run, double time) = delete;
 
 /// The sample at `time` (to within a nanosecond); fails the test if there is none.
 template <class Sample>
@@ -65,6 +68,9 @@ const Sample& sampleAt(const RunResult<Sample>& run, double time) {
     FAIL();
     return run.samples.front();
 }
+/// Not from a run that ends with the statement: the sample would be gone before it is read.
+template <class Sample>
+const Sample& sampleAt(RunResult<Sample>&& run, double time) = delete;
 
 /// Samples at t = 0 and at every settings.sampleTime(k), up to the final time.
 template <class Sample>

@@ -71,6 +71,11 @@ struct ClassOptions {
     int jobs = 1;
     std::vector<std::string> only;  ///< regrade just these students; keep everyone else's row
     GradeOptions grade;             ///< per submission (limits, work folder)
+    /// One share of the class (shard of shards, from 1): the students at positions shard - 1, shard - 1 + shards,
+    /// ... of the class in name order, graded into the students' folders alone; the gradebook, the summary, the
+    /// report and the sheet of manual points are left to a whole-class run, which assembles them. 0: the class.
+    int shard = 0;
+    int shards = 0;
 };
 
 /// Grade every student folder of `submissionsDir` into `outDir`. Returns the records of every student in the

@@ -79,6 +79,11 @@ public:
     /// Changes whenever what a submission is graded with might: the object key's parts, the link command, the
     /// course's probe objects, the libraries and the judge (by path, size and time stamp).
     std::string graderKey(const Assignment& assignment) const;
+    /// What a grade depends on besides the submission and the rubric, by content: the compile and link commands
+    /// (with this build's own folders written as <build> and <source>), the precompiled header, the contract's
+    /// headers, the course's probe objects, the libraries and the judge. Another machine's copy of the same build
+    /// has the same key, wherever it is and whatever its files' times, so a class's records are reused there.
+    std::string gradingKey(const Assignment& assignment) const;
     /// The course's symbols for `assignment`'s probe, found once (and kept in the cache).
     const CourseSymbols& courseSymbols(const Assignment& assignment) const;
     /// The folder of the object cache (SIMLAB_CACHE, or the build's cache/).

@@ -28,17 +28,22 @@ void writeFileAtomically(const std::string& path, const std::string& text);
 /// after a crash or a power cut `path` holds the old text or the new one. For the files that commit a grade.
 void writeFileDurably(const std::string& path, const std::string& text);
 
-/// An exclusive hold on a folder simlab writes into (`folder`/.simlab-lock, flock): a second simlab given the same
-/// folder stops with a UsageError naming the first one's process. Released when destroyed or when the process ends.
+/// A hold on a folder simlab writes into (`folder`/.simlab-lock, flock): a second simlab given the same folder
+/// stops with a UsageError naming the first one's process. Released when destroyed or when the process ends.
+/// A shard (`shard` not empty, "2-of-3" say) shares the folder with the other shards, each writing only its own
+/// students, and holds `folder`/.simlab-lock-shard-`shard` alone: shards run side by side, a second copy of one
+/// shard stops, and a whole-class simlab (which writes the gradebook) waits for none of them but stops while any
+/// runs.
 class OutputLock {
 public:
-    explicit OutputLock(const std::string& folder);
+    explicit OutputLock(const std::string& folder, const std::string& shard = "");
     ~OutputLock();
     OutputLock(const OutputLock&) = delete;
     OutputLock& operator=(const OutputLock&) = delete;
 
 private:
     int fd_ = -1;
+    int shardFd_ = -1;
 };
 
 /// SHA-256 of the fields added, for cache and resume keys: a student must not be able to make two files share a
@@ -53,6 +58,9 @@ public:
     Hash& add(const std::string& bytes);
     /// Adds the file's path, size and modification time (cheap; enough to notice a rebuilt file).
     Hash& addFileStamp(const std::string& path);
+    /// Adds the SHA-256 of the file's content, not its path or times: the same bytes anywhere hash the same. Each
+    /// file is read once per process (while its size and time stay the same). A missing file adds "(missing)".
+    Hash& addFileContent(const std::string& path);
     /// 64 hexadecimal digits. The hash can go on being added to afterwards.
     std::string hex() const;
 

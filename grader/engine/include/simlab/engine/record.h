@@ -56,6 +56,7 @@ struct ClassResult {
     std::vector<StudentRecord> records;  ///< every student in the folder, sorted by id
     std::vector<Skipped> skipped;
     int graderErrors = 0;                ///< students simlab itself could not grade (recorded; retried next run)
+    int reused = 0;                      ///< records kept as they were: up to date with the files and the grader
     std::vector<std::string> warnings;   ///< one line each, for the instructor (a manual.csv row that counts for nothing)
 };
 
