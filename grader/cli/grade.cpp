@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -44,9 +45,9 @@ struct GradeCommandOptions {
 
 std::string minutesAndSeconds(double seconds) {
     char text[32];
-    const int s = static_cast<int>(seconds + 0.5);
-    if (s >= 60) std::snprintf(text, sizeof text, "%dm%02ds", s / 60, s % 60);
-    else std::snprintf(text, sizeof text, "%ds", s);
+    const long s = std::lround(seconds);
+    if (s >= 60) std::snprintf(text, sizeof text, "%ldm%02lds", s / 60, s % 60);
+    else std::snprintf(text, sizeof text, "%lds", s);
     return text;
 }
 

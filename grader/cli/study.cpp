@@ -315,7 +315,7 @@ std::vector<double> comparedDigits(const std::vector<work_precision::Point>& a,
     const double first = std::max(std::ceil(lo), std::min(1.0, std::floor(hi))), last = std::floor(hi);
     const double step = std::max(1.0, std::ceil((last - first) / 4));
     std::vector<double> digits;
-    for (double d = first; d <= last; d += step) digits.push_back(d);
+    for (int k = 0; first + k * step <= last; ++k) digits.push_back(first + k * step);
     return digits;
 }
 

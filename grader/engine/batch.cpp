@@ -334,13 +334,17 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     ClassProgress progress;
     progress.total = static_cast<int>(options.only.empty() ? ids.size() : options.only.size());
     progress.reused = reused;
-    auto publish = [&] {
+    // The gradebook as it stands, after each student: replaced whole (never half written), and flushed to the disk
+    // at the end. The records are the commits; a gradebook a power cut took back is written again from them.
+    auto publish = [&](bool durable) {
         if (sharded) return;  // the whole-class run writes the gradebook
         std::vector<StudentRecord> sorted;
         for (const auto& [id, r] : records) sorted.push_back(r);
-        writeFileDurably(outDir + "/gradebook.csv", gradebookCsv(rubric, sorted));
+        const std::string text = gradebookCsv(rubric, sorted);
+        if (durable) writeFileDurably(outDir + "/gradebook.csv", text);
+        else writeFileAtomically(outDir + "/gradebook.csv", text);
     };
-    publish();
+    publish(false);
     for (const auto& [id, r] : records) {
         if (options.only.empty() || std::count(options.only.begin(), options.only.end(), id)) {
             ++progress.done;
@@ -383,7 +387,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
 
         std::lock_guard<std::mutex> guard(lock);
         records[record.id] = record;
-        publish();
+        publish(false);
         ++progress.done;
         progress.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const double graded = progress.done - alreadyDone;
@@ -442,6 +446,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     for (const std::string& id : ids) {
         if (records.count(id)) result.records.push_back(records[id]);
     }
+    publish(true);
     result.reused = reused;
     if (!sharded) {
         writeFileAtomically(outDir + "/summary.csv", summaryCsv(rubric, result.records));

@@ -59,7 +59,7 @@ private:
     std::string name_;
 };
 
-std::string withoutVersion(std::string name) { return name.substr(0, name.find('@')); }
+std::string withoutVersion(const std::string& name) { return name.substr(0, name.find('@')); }
 
 bool isElf64(const std::string& b) {
     return b.size() >= sizeof(Elf64_Ehdr) && std::memcmp(b.data(), ELFMAG, SELFMAG) == 0 &&

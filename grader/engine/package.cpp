@@ -137,7 +137,7 @@ void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSu
                 // A program that does not draw refuses the options (a usage error, 2): its page is the handout
                 // alone. Anything else is a run that should have drawn, and is said.
                 if (!(ran.started && ran.signal == 0 && ran.exitCode == 2)) {
-                    std::string said = ran.output.substr(0, ran.output.find_last_not_of("\n") + 1);
+                    std::string said = ran.output.substr(0, ran.output.find_last_not_of('\n') + 1);
                     said = said.substr(said.find_last_of('\n') + 1);  // its last line: the error
                     summary.made.push_back("no reference run in handouts/" + a.id + ".html: " + a.program + " " +
                                            (ran.started ? "failed: " + printable(said) : ran.error));

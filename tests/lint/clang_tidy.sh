@@ -1,0 +1,48 @@
+# simlab's grading engine and its command pass clang-tidy with the project's .clang-tidy (every finding an error):
+# each of their translation units in the build's compile_commands.json, read without GCC's precompiled header
+# (clang cannot read it; every source includes what it uses), two at a time. glibc's <sys/platform/x86.h> spells
+# bool as C's _Bool, which GCC reads in C++ and clang does not: clang is told it is bool.
+# shellcheck source=../smoke/lib.sh
+source "$(dirname "$0")/../smoke/lib.sh"
+
+tidy=$(command -v clang-tidy-14 || command -v clang-tidy || true)
+if [[ -z $tidy ]]; then
+  echo "skipped: clang-tidy is not installed (scripts/install-deps installs it)"
+  exit 77
+fi
+build=$(cd "$BIN_DIR/.." && pwd)
+[[ -f $build/compile_commands.json ]] || { fail "no $build/compile_commands.json (CMAKE_EXPORT_COMPILE_COMMANDS)"; finish; }
+mkdir db
+python3 - "$build/compile_commands.json" db/compile_commands.json <<'PY'
+import json, shlex, sys
+entries = []
+for e in json.load(open(sys.argv[1])):
+    f = e["file"]
+    if not any(part in f for part in ("/simlab_engine.dir/", "/simlab.dir/", "/grader/engine/", "/grader/cli/")):
+        continue
+    if f.endswith("cmake_pch.hxx.cxx") or f.endswith("cmake_pch.hxx.cpp"):
+        continue
+    words = shlex.split(e["command"]) if "command" in e else e["arguments"]
+    kept, skip = [], False
+    for i, w in enumerate(words):
+        if skip:
+            skip = False
+            continue
+        if w == "-include" and i + 1 < len(words) and "cmake_pch" in words[i + 1]:
+            skip = True
+            continue
+        if "cmake_pch" in w or w == "-Winvalid-pch":
+            continue
+        kept.append(w)
+    entries.append({"directory": e["directory"], "file": f, "command": shlex.join(kept)})
+json.dump(entries, open(sys.argv[2], "w"), indent=1)
+print(len(entries))
+PY
+mapfile -t units < <(python3 -c 'import json,sys; [print(e["file"]) for e in json.load(open(sys.argv[1]))]' db/compile_commands.json)
+check "the engine's and the command's translation units are found (${#units[@]})" test "${#units[@]}" -ge 4
+printf '%s\0' "${units[@]}" |
+  xargs -0 -P 2 -n 1 "$tidy" -p db --quiet --extra-arg=-Wno-unknown-warning-option --extra-arg=-D_Bool=bool >tidy.out 2>tidy.err
+status=$?
+check "clang-tidy finds nothing (.clang-tidy's checks, every finding an error)" test "$status" -eq 0
+[[ $status -eq 0 ]] || grep -E 'warning:|error:' tidy.out tidy.err | sort -u | head -n 30
+finish
