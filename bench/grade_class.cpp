@@ -67,7 +67,7 @@ double gradeAtTheFloor(const Manifest& manifest, const Assignment& apple, const 
         for (std::size_t i = next++; i < ids.size(); i = next++) {
             const std::string dir = work + "/" + ids[i];
             fs::create_directories(dir);
-            std::vector<std::string> cc = manifest.compile;
+            std::vector<std::string> cc = apple.compile;
             cc.insert(cc.end(), {"-I" + apple.contractInclude, "-c", classDir + "/" + ids[i] + "/NewtonsApple.cpp",
                                  "-o", dir + "/student.o"});
             if (!run(cc, dir).exitedCleanly()) continue;

@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <thread>
 #include <toml++/toml.h>
 
@@ -78,7 +79,7 @@ double check(const std::string& dir, const std::string& lab, const std::string& 
 
 double floorRun(const Manifest& manifest, const Assignment& a, const std::string& dir, const std::string& source) {
     const auto start = Clock::now();
-    std::vector<std::string> cc = manifest.compile;
+    std::vector<std::string> cc = a.compile;
     cc.insert(cc.end(), {"-I" + a.contractInclude, "-c", source, "-o", dir + "/student.o"});
     const ProcessResult compiled = run(cc, dir);
     if (!compiled.exitedCleanly()) throw std::runtime_error("the floor's compile failed:\n" + compiled.output);
@@ -118,6 +119,9 @@ int main(int argc, char** argv) {
     try {
         const Manifest manifest = loadManifest();
         TempDir work("simlab-bench-check-");
+        // This run's own mark in every edit: no file a check compiles was ever compiled before, by an earlier run
+        // of the benchmark either (the object cache would answer it without the compiler).
+        const std::string run = std::to_string(std::random_device{}()) + std::to_string(std::random_device{}());
         std::printf("simlab check after a one-line edit against the floor, %d rounds per lab, alternating; "
                     "%u cores, load %s; sandbox: %s\n",
                     rounds, std::thread::hardware_concurrency(), loadAverage().c_str(),
@@ -140,7 +144,7 @@ int main(int argc, char** argv) {
                 double c = 0, f = 0;
                 for (int half = 0; half < 2; ++half) {
                     const bool checkTurn = (half == 0) == (r % 2 == 0);
-                    edit(source, lab + " round " + std::to_string(r) + (checkTurn ? " check" : " floor"));
+                    edit(source, lab + " round " + std::to_string(r) + (checkTurn ? " check " : " floor ") + run);
                     (checkTurn ? c : f) = checkTurn ? check(dir, lab, source) : floorRun(manifest, a, dir, source);
                 }
                 checks.push_back(c);

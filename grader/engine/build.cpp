@@ -44,16 +44,18 @@ Limits toolLimits() {
 // tool says nothing about the file's correctness: its outcome is not kept in the cache.
 std::string stoppedByLimit(const char* tool, const ProcessResult& run, const Limits& limits) {
     char line[256];
-    if (run.cpuTimeout) {
+    // Memory first, as for a test: when both limits were past at one poll, the CPU time includes the kernel's
+    // work of handing out that memory.
+    if (run.memoryLimit || run.output.find("out of memory") != std::string::npos ||
+        run.output.find("virtual memory exhausted") != std::string::npos) {
+        std::snprintf(line, sizeof line, "the %s was stopped: it needed more than the %ld MiB of memory the course "
+                      "allows", tool, static_cast<long>(limits.memoryMiB));
+    } else if (run.cpuTimeout) {
         std::snprintf(line, sizeof line, "the %s was stopped after %.0f s of CPU time, the course's limit for one "
                       "file (something evaluated at compile time that does not end: constexpr, templates?)",
                       tool, limits.cpuSeconds);
     } else if (run.wallTimeout) {
         std::snprintf(line, sizeof line, "the %s was stopped after %.0f s of wall-clock time", tool, limits.wallSeconds);
-    } else if (run.memoryLimit || run.output.find("out of memory") != std::string::npos ||
-               run.output.find("virtual memory exhausted") != std::string::npos) {
-        std::snprintf(line, sizeof line, "the %s was stopped: it needed more than the %ld MiB of memory the course "
-                      "allows", tool, static_cast<long>(limits.memoryMiB));
     } else if (run.outputLimit) {
         std::snprintf(line, sizeof line, "the %s was stopped: it printed more than %ld KiB", tool,
                       static_cast<long>(limits.outputKiB));
@@ -295,12 +297,12 @@ void trimObjectCache(const std::string& dir) {
 
 namespace {
 
-// The precompiled header files the compile command reads (GCC's -include X reads X.gch; clang's -include-pch X).
-std::vector<std::string> precompiledHeaders(const Manifest& manifest) {
+// The precompiled header files a compile command reads (GCC's -include X reads X.gch; clang's -include-pch X).
+std::vector<std::string> precompiledHeaders(const std::vector<std::string>& compile) {
     std::vector<std::string> files;
-    for (std::size_t i = 0; i + 1 < manifest.compile.size(); ++i) {
-        if (manifest.compile[i] == "-include") files.push_back(manifest.compile[i + 1] + ".gch");
-        if (manifest.compile[i] == "-include-pch") files.push_back(manifest.compile[i + 1]);
+    for (std::size_t i = 0; i + 1 < compile.size(); ++i) {
+        if (compile[i] == "-include") files.push_back(compile[i + 1] + ".gch");
+        if (compile[i] == "-include-pch") files.push_back(compile[i + 1]);
     }
     return files;
 }
@@ -322,8 +324,8 @@ std::vector<std::string> contractHeaders(const Assignment& assignment) {
 std::string Builder::objectKey(const Assignment& assignment, const std::string& sourceText) const {
     Hash h;
     h.add(sourceText).add(manifest_.version).add(kToolLocale).add(assignment.contractInclude);
-    for (const std::string& part : manifest_.compile) h.add(part);
-    for (const std::string& file : precompiledHeaders(manifest_)) h.addFileStamp(file);
+    for (const std::string& part : assignment.compile) h.add(part);
+    for (const std::string& file : precompiledHeaders(assignment.compile)) h.addFileStamp(file);
     for (const std::string& header : contractHeaders(assignment)) h.addFileStamp(header);
     return h.hex();
 }
@@ -353,8 +355,8 @@ std::string Builder::gradingKey(const Assignment& assignment) const {
     };
     Hash h;
     h.add(manifest_.version).add(kToolLocale);
-    for (const std::string& part : manifest_.compile) h.add(portable(part));
-    for (const std::string& file : precompiledHeaders(manifest_)) h.addFileContent(file);
+    for (const std::string& part : assignment.compile) h.add(portable(part));
+    for (const std::string& file : precompiledHeaders(assignment.compile)) h.addFileContent(file);
     for (const std::string& header : contractHeaders(assignment)) {
         h.add(fs::path(header).lexically_relative(assignment.contractInclude).string()).addFileContent(header);
     }
@@ -491,7 +493,7 @@ ProcessResult Builder::runCompiler(const Assignment& assignment, const std::stri
     // Compile a copy under the submission's own file name, so messages read "NewtonsApple.cpp:12:5: error".
     writeFileAtomically(workDir + "/" + name, text);
     ProcessRequest request;
-    request.argv = manifest_.compile;
+    request.argv = assignment.compile;
     request.argv.insert(request.argv.end(), {"-I" + assignment.contractInclude, "-c", name, "-o", output});
     request.env = {"PATH=/usr/bin:/bin", "HOME=" + workDir, "TMPDIR=/tmp", kToolLocale};
     request.workDir = workDir;
@@ -501,7 +503,7 @@ ProcessResult Builder::runCompiler(const Assignment& assignment, const std::stri
     // report: it runs as the sandbox user and sees the system, the contract's headers and the precompiled header -
     // nothing of the course's tests, rubrics or solutions, of other students', or of simlab's build tree.
     request.isolate = true;
-    request.readOnlyPaths = includeFolders(manifest_.compile);
+    request.readOnlyPaths = includeFolders(assignment.compile);
     request.readOnlyPaths.push_back(assignment.contractInclude);
     request.maskedPaths = {manifest_.sourceDir, manifest_.buildDir};
     return runProcess(request);
@@ -511,26 +513,29 @@ void Builder::checkPrecompiledHeader() const {
     static std::once_flag once;
     static std::string changed;
     std::call_once(once, [&] {
-        std::string pch;
-        for (std::size_t i = 0; i + 1 < manifest_.compile.size(); ++i) {
-            if (manifest_.compile[i] == "-include-pch") pch = manifest_.compile[i + 1];
-            if (manifest_.compile[i] == "-include") pch = manifest_.compile[i + 1] + ".gch";
-        }
-        // What the header was made from, by content, as the build recorded it (cmake/PchInputs.cmake): a file
-        // touched since (its inode changed after the record) is read again and compared.
-        struct stat recorded {};
-        if (pch.empty() || ::stat((pch + ".inputs").c_str(), &recorded) != 0) return;
-        std::istringstream lines(readFile(pch + ".inputs"));
-        for (std::string line; std::getline(lines, line) && changed.empty();) {
-            const std::size_t space = line.find(' ');
-            if (space != 64) continue;
-            const std::string path = line.substr(space + 1);
-            struct stat now {};
-            if (::stat(path.c_str(), &now) != 0) {
-                changed = path + " has gone";
-            } else if (now.st_ctim.tv_sec > recorded.st_mtim.tv_sec ||
-                       (now.st_ctim.tv_sec == recorded.st_mtim.tv_sec && now.st_ctim.tv_nsec > recorded.st_mtim.tv_nsec)) {
-                if (sha256Hex(readFile(path)) != line.substr(0, 64)) changed = path + " has changed";
+        // Each assignment's header. What it was made from, by content, as the build recorded it
+        // (cmake/PchInputs.cmake): a file touched since (its inode changed after the record) is read again and
+        // compared.
+        std::set<std::string> checked;
+        for (const Assignment& assignment : manifest_.assignments) {
+            for (const std::string& pch : precompiledHeaders(assignment.compile)) {
+                struct stat recorded {};
+                if (!checked.insert(pch).second || ::stat((pch + ".inputs").c_str(), &recorded) != 0) continue;
+                std::istringstream lines(readFile(pch + ".inputs"));
+                for (std::string line; std::getline(lines, line) && changed.empty();) {
+                    const std::size_t space = line.find(' ');
+                    if (space != 64) continue;
+                    const std::string path = line.substr(space + 1);
+                    struct stat now {};
+                    if (::stat(path.c_str(), &now) != 0) {
+                        changed = path + " has gone";
+                    } else if (now.st_ctim.tv_sec > recorded.st_mtim.tv_sec ||
+                               (now.st_ctim.tv_sec == recorded.st_mtim.tv_sec &&
+                                now.st_ctim.tv_nsec > recorded.st_mtim.tv_nsec)) {
+                        if (sha256Hex(readFile(path)) != line.substr(0, 64)) changed = path + " has changed";
+                    }
+                }
+                if (!changed.empty()) return;
             }
         }
     });
@@ -608,7 +613,7 @@ std::string sandboxCannotReach(const Manifest& manifest, const Assignment& assig
     const SandboxSupport& sandbox = sandboxSupport();
     // bubblewrap run as root lends each path whatever folder it lies below; as any other user, tools run as it.
     if (!sandbox.ownUser || (sandbox.bubblewrap && sandbox.rootBubblewrap)) return "";
-    std::vector<std::string> needed = includeFolders(manifest.compile);
+    std::vector<std::string> needed = includeFolders(assignment.compile);
     needed.push_back(assignment.contractInclude);
     needed.insert(needed.end(), assignment.probeObjects.begin(), assignment.probeObjects.end());
     needed.insert(needed.end(), manifest.probeLibraries.begin(), manifest.probeLibraries.end());

@@ -67,6 +67,7 @@ Manifest loadManifest(const std::string& path) {
             x.hiddenTestsBuilt = a.at("hidden_tests_built");
             x.hiddenTests = a.at("hidden_tests").get<std::vector<std::string>>();
             x.contractInclude = a.at("contract_include");
+            x.compile = a.at("compile").get<std::vector<std::string>>();
             x.judge = a.at("judge");
             x.probeObjects = a.at("probe_objects").get<std::vector<std::string>>();
             x.floorObjects = a.at("floor_objects").get<std::vector<std::string>>();

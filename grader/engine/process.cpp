@@ -313,15 +313,12 @@ bool overLimits(const sandbox::Usage& usage, const Limits& limits, double& treeC
                 ProcessResult& result) {
     treeCpu = std::max(treeCpu, usage.cpuSeconds);
     peakResidentKiB = std::max(peakResidentKiB, usage.residentKiB);
-    if (treeCpu > limits.cpuSeconds) {
-        result.cpuTimeout = true;
-        return true;
-    }
-    if (usage.residentKiB > static_cast<long>(limits.memoryMiB) * 1024) {
-        result.memoryLimit = true;
-        return true;
-    }
-    return false;
+    // Both are judged at every poll, and both are recorded when both are past: processes that fill memory are
+    // charged the kernel's page zeroing as CPU time, so on a busy machine the two limits can be crossed between
+    // the same two polls, and the verdict (memory first) must not depend on the order they are checked in.
+    if (treeCpu > limits.cpuSeconds) result.cpuTimeout = true;
+    if (usage.residentKiB > static_cast<long>(limits.memoryMiB) * 1024) result.memoryLimit = true;
+    return result.cpuTimeout || result.memoryLimit;
 }
 
 // How the process ended (`status`, as waitpid gives it), in `result`: its exit status or signal, a CPU limit the

@@ -75,7 +75,7 @@ expect_error "book: a negative dimension" "dimensions: must be a positive number
 python3 - "$BIN_DIR/../simlab-build.json" "$work" <<'PY'
 import json, os, sys, time
 manifest, work = json.load(open(sys.argv[1])), sys.argv[2]
-compile = manifest["compile"]
+compile = [a for a in manifest["assignments"] if a["id"] == "apple"][0]["compile"]
 for i, flag in enumerate(compile[:-1]):
     if flag in ("-include-pch", "-include"):
         real = compile[i + 1] + (".gch" if flag == "-include" else "")

@@ -18,6 +18,8 @@ struct Assignment {
     std::string dir;               ///< assignments/<id>
     std::string rubric;
     std::string contractInclude;   ///< the one include folder a student file sees: the contract and support headers
+    std::vector<std::string> compile;  ///< compiler, flags and the assignment's precompiled header; append
+                                       ///< -I<contractInclude> -c SOURCE -o OBJECT
     std::string starter;
     std::string solution;          ///< empty in the student bundle
     bool hiddenTestsBuilt = false;
@@ -38,7 +40,8 @@ struct Manifest {
     std::string studiesTarget;         ///< the target that builds every study (left out of `all` in the bundle)
     std::string sampleClass;           ///< <build>/sample-class: one folder per assignment, made from tests/corpus
     std::string catch2Include;         ///< the folder holding catch2/catch.hpp (Catch2 2.13)
-    std::vector<std::string> compile;  ///< compiler and flags; append -I<contract> -c SOURCE -o OBJECT
+    std::vector<std::string> compile;  ///< compiler and flags of every student file (an assignment's adds its
+                                       ///< precompiled header: Assignment::compile)
     std::vector<std::string> link;     ///< linker driver and flags
     std::vector<std::string> probeLibraries;  ///< shared libraries a probe links after the student's object
     std::vector<std::string> probeLink;       ///< flags a probe's link adds: export nothing (see cmake/Simlab.cmake)
