@@ -158,6 +158,7 @@ function(simlab_contract id header)
   add_custom_target(simlab_pch_${id} ALL DEPENDS ${pch})
   add_dependencies(simlab_pch_${id} simlab_pch_inputs_${id})
   set_property(GLOBAL PROPERTY SIMLAB_COMPILE_${id} ${SIMLAB_SUBMISSION_COMMAND} ${use})
+  set_property(GLOBAL PROPERTY SIMLAB_PCH_HEADER_${id} ${pch_header})
   set_property(GLOBAL PROPERTY SIMLAB_PCH_DEPENDS_${id} simlab_pch_${id} ${pch})
 endfunction()
 
@@ -341,11 +342,15 @@ function(simlab_add_assignment id)
   _simlab_json_list(program_objects $<TARGET_OBJECTS:${id}_program_main>)
   _simlab_json_list(hidden_tests ${hidden_paths})
   _simlab_json_list(compile_json ${compile})
+  # How the precompiled header is made (an installed simlab makes it again where it is installed).
+  get_property(pch_header GLOBAL PROPERTY SIMLAB_PCH_HEADER_${id})
+  _simlab_json_list(precompile_flags_json ${SIMLAB_PCH_FLAGS})
   set(json "{\"id\": \"${id}\", \"title\": \"${A_TITLE}\", \"source\": \"${A_SOURCE}\",
     \"program\": \"${A_PROGRAM}\", \"program_path\": \"$<TARGET_FILE:${A_PROGRAM}>\",
     \"reference_program_path\": \"${reference_program}\", \"study_program_path\": \"${study_program}\",
     \"dir\": \"${dir}\", \"rubric\": \"${dir}/${A_RUBRIC}\", \"contract_include\": \"${contract}\",
     \"compile\": ${compile_json},
+    \"precompiled_header\": \"${pch_header}\", \"precompile_flags\": ${precompile_flags_json},
     \"starter\": \"${starter}\", \"solution\": \"${solution}\", \"hidden_tests_built\": ${hidden_built},
     \"hidden_tests\": ${hidden_tests}, \"judge\": \"$<TARGET_FILE:${id}-judge>\",
     \"probe_objects\": ${probe_objects}, \"floor_objects\": ${floor_objects},

@@ -79,6 +79,18 @@ void runAutograde(const AutogradeOptions& o) {
 using PackageWriter =
     std::function<engine::PackageSummary(const engine::Manifest&, const engine::Assignment&, const PackageOptions&)>;
 
+// The manifest of a build tree: packages are made from the project's sources, which an installed simlab has
+// only the graded part of.
+engine::Manifest sourceTreeManifest() {
+    engine::Manifest manifest = engine::loadManifest();
+    if (manifest.installed) {
+        throw engine::UsageError("simlab package makes its packages from the project's source tree, and this simlab is "
+                                 "installed (" + engine::printable(manifest.prefix) + "): run the simlab of a build of "
+                                 "the project (build/bin/simlab)");
+    }
+    return manifest;
+}
+
 // A `package` subcommand that writes one assignment's package to --output with `write`.
 CLI::App* addAssignmentPackage(CLI::App* package, const std::string& name, const std::string& help,
                                const std::string& output, const std::shared_ptr<PackageOptions>& options,
@@ -87,7 +99,7 @@ CLI::App* addAssignmentPackage(CLI::App* package, const std::string& name, const
     sub->add_option("assignment", options->assignment, "which assignment")->required();
     sub->add_option("-o,--output", options->output, output)->required();
     sub->callback([options, write] {
-        const engine::Manifest manifest = engine::loadManifest();
+        const engine::Manifest manifest = sourceTreeManifest();
         printSummary(write(manifest, manifest.find(options->assignment), *options), options->output);
     });
     return sub;
@@ -107,8 +119,20 @@ void addPackage(CLI::App& app) {
                    "builds with scripts/setup and self-checks with simlab check.");
     s->add_option("-o,--output", student->output, "a new folder for the bundle")->required();
     s->callback([student] {
-        const engine::Manifest manifest = engine::loadManifest();
+        const engine::Manifest manifest = sourceTreeManifest();
         printSummary(engine::writeStudentBundle(manifest, student->output), student->output);
+    });
+
+    // What `cmake --install` runs (the project's CMakeLists.txt): not listed, since nobody types it.
+    auto tree = std::make_shared<PackageOptions>();
+    CLI::App* t = package->add_subcommand(
+        "installed-tree", "Write this build's installed files below DIR (DESTDIR and the prefix): the build's "
+                          "part in lib/simlab, the sources' in share/simlab; cmake --install runs this.");
+    t->group("");
+    t->add_option("dir", tree->output, "the prefix, with DESTDIR before it")->required();
+    t->callback([tree] {
+        const engine::Manifest manifest = sourceTreeManifest();
+        printSummary(engine::writeInstalledTree(manifest, tree->output), tree->output);
     });
 
     addAssignmentPackage(

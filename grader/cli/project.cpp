@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "simlab/engine/build.h"
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/manifest.h"
@@ -21,6 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct ProjectOptions {
+    std::string output;
     std::string name;
     std::string dir = ".";
     std::string from = "template";
@@ -99,13 +101,15 @@ void runNew(const ProjectOptions& o) {
     }
     engine::writeFileAtomically((folder / "Project.cpp").string(), code);
     engine::writeFileAtomically((folder / "project.toml").string(), description);
+    // find_package(simlab) finds this simlab's CMake package: where it was when the project was made, or wherever
+    // CMAKE_PREFIX_PATH or simlab_DIR says.
+    const std::string package = manifest.installed ? manifest.prefix + "/lib/cmake/simlab" : manifest.buildDir;
     engine::writeFileAtomically(
         (folder / "CMakeLists.txt").string(),
-        "# " + o.name + ": a biosimulation project, built against the simlab in " + manifest.buildDir +
-            " (made by `simlab project new`).\n"
+        "# " + o.name + ": a biosimulation project, built against simlab (made by `simlab project new`).\n"
             "cmake_minimum_required(VERSION 3.25)\n"
             "project(" + o.name + " CXX)\n"
-            "include(\"" + manifest.buildDir + "/simlab-project.cmake\")\n"
+            "find_package(simlab " + manifest.version + " REQUIRED CONFIG HINTS \"" + package + "\")\n"
             "simlab_project(" + o.name + " Project.cpp)\n");
     engine::writeFileAtomically((folder / ".gitignore").string(), "build/\n*Results.txt\n");
 
@@ -118,6 +122,34 @@ void runNew(const ProjectOptions& o) {
               << "  ./build/" << o.name << " --help\n"
               << "  " << simlab << " check biosim Project.cpp\n"
               << "      (what is done, and what to do next)\n";
+}
+
+// A CMake list of `items`, one bracket argument each (nothing in them is read as CMake syntax).
+std::string cmakeList(const std::vector<std::string>& items) {
+    std::string out;
+    for (const std::string& item : items) {
+        if (item.find("]==]") != std::string::npos || item.find(';') != std::string::npos) {
+            throw engine::UsageError("simlab's path " + engine::printable(item) + " cannot be written in CMake");
+        }
+        out += " [==[" + item + "]==]";
+    }
+    return out;
+}
+
+// What simlab's CMake package (cmake/simlabConfig.cmake.in) reads to build a project: the biosim lab's compile
+// command, with its precompiled header made if this is an installed simlab, and the lab program's link.
+void runCMakeConfig(const ProjectOptions& o) {
+    const engine::Manifest manifest = engine::loadManifest();
+    const engine::Assignment& biosim = manifest.find("biosim");
+    engine::ensurePrecompiledHeader(manifest, biosim);
+    const std::vector<std::string> linkOptions(manifest.link.begin() + (manifest.link.empty() ? 0 : 1), manifest.link.end());
+    engine::writeFileAtomically(
+        o.output, "# Written by " + selfPath() + " project cmake-config: how a project builds against it.\n"
+                  "set(SIMLAB_PROJECT_COMPILE" + cmakeList(biosim.compile) + ")\n"
+                  "set(SIMLAB_PROJECT_CONTRACT" + cmakeList({biosim.contractInclude}) + ")\n"
+                  "set(SIMLAB_PROJECT_LINK_OPTIONS" + cmakeList(linkOptions) + ")\n"
+                  "set(SIMLAB_PROJECT_OBJECTS" + cmakeList(biosim.programObjects) + ")\n"
+                  "set(SIMLAB_PROJECT_LIBRARIES" + cmakeList(manifest.programLibraries) + ")\n");
 }
 
 }  // namespace
@@ -135,6 +167,14 @@ void addProject(CLI::App& app) {
         ->check(CLI::IsMember({"template", "babyboot"}))
         ->capture_default_str();
     make->callback([options] { runNew(*options); });
+
+    // What find_package(simlab) runs (cmake/simlabConfig.cmake.in): not listed, since nobody types it.
+    auto config = std::make_shared<ProjectOptions>();
+    CLI::App* cmake = project->add_subcommand(
+        "cmake-config", "Write FILE: the CMake variables simlab_project() builds a project's program with.");
+    cmake->group("");
+    cmake->add_option("file", config->output, "the file to write")->required();
+    cmake->callback([config] { runCMakeConfig(*config); });
 }
 
 }  // namespace simlab::cli

@@ -118,6 +118,10 @@ void ensureStudiesBuilt(const engine::Manifest& m, const std::vector<const engin
     }
     if (ofAFile) needed.insert(needed.end(), m.studyLibraries.begin(), m.studyLibraries.end());
     if (std::all_of(needed.begin(), needed.end(), [](const std::string& p) { return fs::exists(p); })) return;
+    if (m.installed) {
+        throw engine::UsageError("this installation (" + engine::printable(m.prefix) + ") was made from a build without "
+                                 "the studies: build them (cmake --build BUILD --target simlab_studies), then install");
+    }
     if (m.studiesTarget.empty()) throw engine::UsageError("the studies are not built: run scripts/setup again");
     const std::string jobs = std::to_string(cores());
     const std::vector<std::string> argv = {m.cmake, "--build", m.buildDir, "--target", m.studiesTarget, "-j", jobs};

@@ -10,6 +10,7 @@
 #include <map>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <mutex>
 #include <set>
 #include <sstream>
@@ -240,13 +241,14 @@ std::vector<std::string> forbiddenCode(const std::string& objectPath, const std:
     return problems;
 }
 
-Builder::Builder(const Manifest& manifest) : manifest_(manifest), cacheDir_(manifest.buildDir + "/cache/objects") {
+Builder::Builder(const Manifest& manifest) : manifest_(manifest), cacheDir_(manifest.cacheDir + "/objects") {
     if (const char* dir = std::getenv("SIMLAB_CACHE"); dir && *dir) cacheDir_ = dir;
     std::error_code ignored;
     fs::create_directories(cacheDir_, ignored);
     // Every student's source and object is kept here: simlab's alone (the linker gets a copy of the one it needs).
     fs::permissions(cacheDir_, fs::perms::owner_all, ignored);
-    checkPrecompiledHeader();  // before anything is built or said to be
+    if (!manifest.installed) checkPrecompiledHeader();  // before anything is built or said to be
+
     trimObjectCache(cacheDir_);
 }
 
@@ -322,6 +324,7 @@ std::vector<std::string> contractHeaders(const Assignment& assignment) {
 }  // namespace
 
 std::string Builder::objectKey(const Assignment& assignment, const std::string& sourceText) const {
+    ensurePrecompiledHeader(manifest_, assignment);
     Hash h;
     h.add(sourceText).add(manifest_.version).add(kToolLocale).add(assignment.contractInclude);
     for (const std::string& part : assignment.compile) h.add(part);
@@ -353,6 +356,7 @@ std::string Builder::gradingKey(const Assignment& assignment) const {
         }
         return text;
     };
+    ensurePrecompiledHeader(manifest_, assignment);
     Hash h;
     h.add(manifest_.version).add(kToolLocale);
     for (const std::string& part : assignment.compile) h.add(portable(part));
@@ -376,9 +380,9 @@ const CourseSymbols& Builder::courseSymbols(const Assignment& assignment) const 
     if (const auto found = known.find(key); found != known.end()) return found->second;
     CourseSymbols& symbols = known[key];
     // Kept with the build (not with the objects, which $SIMLAB_CACHE may move): it depends on the build alone.
-    const std::string cached = manifest_.buildDir + "/cache/course-symbols-" + key + ".txt";
+    const std::string cached = manifest_.cacheDir + "/course-symbols-" + key + ".txt";
     std::error_code ignored;
-    fs::create_directories(manifest_.buildDir + "/cache", ignored);
+    fs::create_directories(manifest_.cacheDir, ignored);
     if (fs::exists(cached)) {
         // One line per symbol: six flags (defined, strong, inObjects, inLibraries, required, referenced), a tab,
         // the name, a tab, where it is from.
@@ -544,6 +548,52 @@ void Builder::checkPrecompiledHeader() const {
                          "student files was made from it, and the compiler would refuse every file that includes it; "
                          "rebuild simlab (cmake --build " + manifest_.buildDir + ", or scripts/setup), then grade again");
     }
+}
+
+void ensurePrecompiledHeader(const Manifest& manifest, const Assignment& a) {
+    const std::vector<std::string> made = precompiledHeaders(a.compile);
+    if (!manifest.installed || a.precompiledHeader.empty() || made.empty()) return;
+    static std::mutex lock;
+    static std::set<std::string> ready;
+    std::lock_guard<std::mutex> guard(lock);
+    const std::string& output = made.front();
+    if (ready.count(output)) return;
+    std::vector<std::string> argv = manifest.compile;
+    argv.insert(argv.end(), a.precompileFlags.begin(), a.precompileFlags.end());
+    argv.insert(argv.end(), {"-I" + a.contractInclude, "-x", "c++-header", a.precompiledHeader});
+    // What it was made for: this prefix, and the command (a new compiler or flag makes it again).
+    std::string stamp = manifest.prefix + "\n";
+    for (const std::string& part : argv) stamp += part + "\n";
+    std::error_code error;
+    if (!fs::exists(output, error) || !fs::exists(output + ".made-for", error) ||
+        readFile(output + ".made-for") != stamp) {
+        const std::string installedDir = manifest.buildDir + "/pch";
+        const fs::path dir = fs::path(a.precompiledHeader).parent_path();
+        fs::create_directories(dir, error);
+        // Readable by the compiler's sandbox user, like the installed headers it is made from.
+        fs::permissions(dir, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                 fs::perms::others_read | fs::perms::others_exec, error);
+        if (dir != fs::path(installedDir)) {  // made in the user's cache: its headers go there too
+            for (fs::directory_iterator it(installedDir, error), end; !error && it != end; it.increment(error)) {
+                if (it->path().extension() == ".h") {
+                    fs::copy_file(it->path(), dir / it->path().filename(), fs::copy_options::overwrite_existing);
+                }
+            }
+        }
+        std::cerr << "simlab: making " << a.id << "'s precompiled header for this installation, once ("
+                  << printable(output) << ", about 10 s)" << std::endl;
+        const std::string partial = output + ".part-" + std::to_string(::getpid());
+        argv.insert(argv.end(), {"-o", partial});
+        try {
+            runTool(argv, dir.string());
+        } catch (const std::runtime_error& e) {
+            fs::remove(partial, error);
+            throw SetupError("the precompiled header of " + a.id + " could not be made: " + e.what());
+        }
+        fs::rename(partial, output);
+        writeFileAtomically(output + ".made-for", stamp);
+    }
+    ready.insert(output);
 }
 
 void Builder::link(const std::vector<std::string>& inputs, const std::vector<std::string>& flags,

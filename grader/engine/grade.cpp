@@ -504,7 +504,7 @@ std::string secretsExposed(const Manifest& manifest, const Assignment& assignmen
     const char* cache = std::getenv("SIMLAB_CACHE");
     for (const std::string& path : {assignment.solution, assignment.judge, manifest.sampleClass,
                                     manifest.sourceDir + "/tests/corpus",
-                                    cache && *cache ? std::string(cache) : manifest.buildDir + "/cache/objects"}) {
+                                    cache && *cache ? std::string(cache) : manifest.cacheDir + "/objects"}) {
         if (!path.empty()) secrets.push_back(path);
     }
     secrets.insert(secrets.end(), more.begin(), more.end());

@@ -1,12 +1,75 @@
 #include "simlab/engine/manifest.h"
 
+#include <unistd.h>
+
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "simlab/engine/errors.h"
+#include "simlab/engine/files.h"
 
 namespace simlab::engine {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kPrefixMark = "@prefix@";  // what an installed manifest writes for its prefix
+
+// Every string in `j` with the installed manifest's mark replaced by `prefix`.
+void placeAt(nlohmann::json& j, const std::string& prefix) {
+    if (j.is_string()) {
+        std::string text = j.get<std::string>();
+        for (std::size_t at = text.find(kPrefixMark); at != std::string::npos; at = text.find(kPrefixMark, at)) {
+            text.replace(at, std::char_traits<char>::length(kPrefixMark), prefix);
+            at += prefix.size();
+        }
+        j = text;
+    } else if (j.is_structured()) {
+        for (nlohmann::json& element : j) placeAt(element, prefix);
+    }
+}
+
+// Where simlab keeps what it reuses between runs for an installed prefix: the user's cache, one folder per prefix
+// and version (a moved prefix starts afresh).
+std::string userCacheDir(const std::string& prefix, const std::string& version) {
+    std::string base;
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg == '/') {
+        base = xdg;
+    } else if (const char* home = std::getenv("HOME"); home && *home == '/') {
+        base = std::string(home) + "/.cache";
+    } else {
+        base = "/tmp/simlab-cache-" + std::to_string(::getuid());
+    }
+    return base + "/simlab/" + sha256Hex(prefix + "\n" + version).substr(0, 16);
+}
+
+// An installed prefix's precompiled headers are made on first use: beside their headers if this user may write
+// there (a prefix of one's own), else in the user's cache, where the compile commands then look for them.
+void placePrecompiledHeaders(Manifest& m) {
+    for (Assignment& a : m.assignments) {
+        if (a.precompiledHeader.empty()) continue;
+        const std::string dir = fs::path(a.precompiledHeader).parent_path().string();
+        if (::access(dir.c_str(), W_OK) == 0) continue;
+        const std::string moved = m.cacheDir + "/pch";
+        for (std::string& part : a.compile) {
+            if (part.rfind(dir + "/", 0) == 0) part = moved + part.substr(dir.size());
+        }
+        a.precompiledHeader = moved + a.precompiledHeader.substr(dir.size());
+    }
+}
+
+}  // namespace
+
+std::string installedManifestPath(const std::string& exe) {
+    std::error_code error;
+    const fs::path prefix = fs::canonical(exe, error).parent_path().parent_path();
+    if (error) return "";
+    const fs::path manifest = prefix / "lib/simlab/simlab-build.json";
+    return fs::is_regular_file(manifest, error) ? manifest.string() : "";
+}
 
 const Assignment& Manifest::find(const std::string& id) const {
     for (const Assignment& a : assignments) {
@@ -25,7 +88,9 @@ std::vector<std::string> Manifest::ids() const {
 
 Manifest loadManifest() {
     const char* path = std::getenv("SIMLAB_MANIFEST");
-    return loadManifest(path && *path ? path : SIMLAB_DEFAULT_MANIFEST);
+    if (path && *path) return loadManifest(path);
+    const std::string installed = installedManifestPath("/proc/self/exe");
+    return loadManifest(installed.empty() ? SIMLAB_DEFAULT_MANIFEST : installed);
 }
 
 Manifest loadManifest(const std::string& path) {
@@ -35,8 +100,16 @@ Manifest loadManifest(const std::string& path) {
     }
     Manifest m;
     try {
-        const nlohmann::json j = nlohmann::json::parse(in);
+        nlohmann::json j = nlohmann::json::parse(in);
         m.path = path;
+        m.installed = j.value("installed", false);
+        if (m.installed) {
+            // <prefix>/lib/simlab/simlab-build.json
+            std::error_code error;
+            m.prefix = fs::canonical(path, error).parent_path().parent_path().parent_path().string();
+            if (error) throw UsageError("cannot resolve the installed manifest " + path + ": " + error.message());
+            placeAt(j, m.prefix);
+        }
         m.version = j.at("version");
         m.sourceDir = j.at("source_dir");
         m.buildDir = j.at("build_dir");
@@ -73,8 +146,12 @@ Manifest loadManifest(const std::string& path) {
             x.floorObjects = a.at("floor_objects").get<std::vector<std::string>>();
             x.programObjects = a.at("program_objects").get<std::vector<std::string>>();
             x.studyObjects = a.value("study_objects", std::vector<std::string>());
+            x.precompiledHeader = a.value("precompiled_header", std::string());
+            x.precompileFlags = a.value("precompile_flags", std::vector<std::string>());
             m.assignments.push_back(std::move(x));
         }
+        m.cacheDir = m.installed ? userCacheDir(m.prefix, m.version) : m.buildDir + "/cache";
+        if (m.installed) placePrecompiledHeaders(m);
     } catch (const nlohmann::json::exception& e) {
         throw UsageError("build manifest " + path + " is damaged (" + e.what() + "): rebuild with scripts/setup");
     }

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
@@ -461,6 +463,68 @@ PackageSummary writeClassroomTemplate(const Manifest& manifest, const Assignment
     summary.files += 1;
     summary.made.push_back(".github/workflows/classroom.yml: on every push, the visible tests of " + assignment.id +
                            " (" + points(visible) + " points), reported to GitHub Classroom");
+    return summary;
+}
+
+PackageSummary writeInstalledTree(const Manifest& manifest, const std::string& root) {
+    if (manifest.installed) throw UsageError("this simlab is installed already: install from a build tree");
+    std::ifstream in(manifest.path);
+    nlohmann::json j = nlohmann::json::parse(in);
+    PackageSummary summary;
+    std::set<std::string> copied;
+    const auto copy = [&](const fs::path& from, const fs::path& to) {
+        if (!copied.insert(from.string()).second) return;
+        std::error_code error;
+        fs::create_directories(to.parent_path());
+        if (fs::is_directory(from, error)) {
+            fs::copy(from, to, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+            for (auto it = fs::recursive_directory_iterator(to); it != fs::recursive_directory_iterator(); ++it) {
+                if (it->is_regular_file()) ++summary.files;
+            }
+        } else if (fs::is_regular_file(from, error)) {
+            fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+            ++summary.files;
+        }
+    };
+    const std::string pchDir = manifest.buildDir + "/pch";
+    // The build folder first: it lies inside the source folder.
+    const std::vector<std::pair<std::string, std::string>> places = {{manifest.buildDir, "/lib/simlab/build"},
+                                                                     {manifest.sourceDir, "/share/simlab/source"}};
+    std::function<void(nlohmann::json&)> relocate = [&](nlohmann::json& value) {
+        if (value.is_structured()) {
+            for (nlohmann::json& element : value) relocate(element);
+            return;
+        }
+        if (!value.is_string()) return;
+        std::string text = value.get<std::string>();
+        for (const auto& [from, to] : places) {
+            const std::size_t at = text.find(from);
+            if (at == std::string::npos) continue;
+            const std::size_t end = at + from.size();
+            if (end < text.size() && text[end] != '/') continue;
+            const std::string path = text.substr(at), rest = text.substr(end);
+            if (path.rfind(pchDir + "/", 0) == 0) {
+                // The headers a precompiled header is made from; not the made one, which names them by path.
+                for (const auto& entry : fs::directory_iterator(pchDir)) {
+                    if (entry.path().extension() == ".h") copy(entry.path(), root + to + "/pch/" + entry.path().filename().string());
+                }
+            } else if (!rest.empty() && from == manifest.sourceDir && fs::is_regular_file(path)) {
+                // A source file comes with its folder (a starter's or solution's other files, a rubric's tests).
+                copy(fs::path(path).parent_path(), root + to + fs::path(rest).parent_path().string());
+            } else if (!rest.empty()) {
+                copy(path, root + to + rest);
+            }
+            text = text.substr(0, at) + "@prefix@" + to + rest;
+            break;
+        }
+        value = text;
+    };
+    relocate(j);
+    j["installed"] = true;
+    fs::create_directories(root + "/lib/simlab");
+    writeFileAtomically(root + "/lib/simlab/simlab-build.json", j.dump(2) + "\n");
+    summary.made.push_back("lib/simlab/simlab-build.json: the build manifest, its paths written from the prefix");
+    summary.left.push_back("the precompiled headers: made where the prefix is, when simlab first needs them");
     return summary;
 }
 

@@ -57,9 +57,15 @@ std::vector<std::string> forbiddenCode(const std::string& objectPath, const std:
 /// where everything is reachable.
 std::string sandboxCannotReach(const Manifest& manifest, const Assignment& assignment);
 
+/// An installed simlab's precompiled header for `assignment`, made where the manifest places it (manifest.h) the
+/// first time the prefix grades that assignment, and again after the prefix moves (clang's name their headers by
+/// path), saying so on stderr. Nothing for a build tree, whose build makes them. Throws SetupError if the compiler
+/// fails.
+void ensurePrecompiledHeader(const Manifest& manifest, const Assignment& assignment);
+
 class Builder {
 public:
-    /// Objects are cached in <build>/cache/objects, or in $SIMLAB_CACHE.
+    /// Objects are cached in <cache>/objects (Manifest::cacheDir), or in $SIMLAB_CACHE.
     explicit Builder(const Manifest& manifest);
 
     /// Compile the student's file (`name`, its bytes `text`) in `workDir` in the sandbox, check the object, and link

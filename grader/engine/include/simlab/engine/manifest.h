@@ -29,6 +29,8 @@ struct Assignment {
     std::vector<std::string> floorObjects;  ///< tests and probe in one program (the benchmark's floor)
     std::vector<std::string> programObjects;
     std::vector<std::string> studyObjects;  ///< the work-precision study's side, for a study of any student file
+    std::string precompiledHeader;     ///< the header `compile` reads precompiled (<pch>/<id>.h), "" without one
+    std::vector<std::string> precompileFlags;  ///< what building it adds to Manifest::compile
 };
 
 struct Manifest {
@@ -36,6 +38,12 @@ struct Manifest {
     std::string version;
     std::string sourceDir;
     std::string buildDir;
+    /// Installed (`cmake --install`): the manifest under <prefix>/lib/simlab, its paths written from the prefix
+    /// it is found in, so that a moved prefix still works. The precompiled headers are then made where this
+    /// prefix is, on first use (ensurePrecompiledHeaders).
+    bool installed = false;
+    std::string prefix;                ///< the installed prefix, "" for a build tree
+    std::string cacheDir;              ///< what simlab keeps between runs: <build>/cache, or the user's cache
     std::string cmake;                 ///< the cmake that configured the build
     std::string studiesTarget;         ///< the target that builds every study (left out of `all` in the bundle)
     std::string sampleClass;           ///< <build>/sample-class: one folder per assignment, made from tests/corpus
@@ -59,5 +67,9 @@ struct Manifest {
 /// Throws UsageError if it is missing or unreadable.
 Manifest loadManifest();
 Manifest loadManifest(const std::string& path);
+
+/// The manifest of an installed simlab whose executable is `exe` (<prefix>/bin/simlab): <prefix>/lib/simlab/
+/// simlab-build.json, or "" if there is none.
+std::string installedManifestPath(const std::string& exe);
 
 }  // namespace simlab::engine

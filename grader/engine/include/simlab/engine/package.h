@@ -57,4 +57,11 @@ PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignm
 /// can change; the README says so.
 PackageSummary writeClassroomTemplate(const Manifest& manifest, const Assignment& assignment, const std::string& outDir);
 
+/// Write an installed simlab's files under `root` (DESTDIR and the prefix, as `cmake --install` gives them): what
+/// the build manifest names, the build's part in <root>/lib/simlab/build and the sources' in
+/// <root>/share/simlab/source, and the manifest itself as <root>/lib/simlab/simlab-build.json with every path
+/// written from the prefix (loadManifest places them where the prefix is found, so that it may move). Precompiled
+/// headers are left out: they name their headers by path, and are made where the prefix is on first use.
+PackageSummary writeInstalledTree(const Manifest& manifest, const std::string& root);
+
 }  // namespace simlab::engine

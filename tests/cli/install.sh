@@ -1,0 +1,55 @@
+# cmake --install, then the prefix moved: the moved simlab grades a file as the build's simlab does, making its
+# precompiled header where it now is (once), and a project made by it builds with find_package(simlab) and runs;
+# --version and the man page are there; a package command from an installation is one line.
+# Usage: install.sh BUILD_DIR
+# shellcheck source=../smoke/lib.sh
+source "$(dirname "$0")/../smoke/lib.sh"
+build=$1
+chmod 0755 "$work"  # the prefix is read by the sandbox's throwaway users too
+export HOME=$work/home XDG_CACHE_HOME=$work/cache
+mkdir -p "$HOME"
+
+run_capture install cmake --install "$build" --prefix "$work/first"
+check "cmake --install writes simlab, its manifest and its CMake package" \
+  test "$(status_of install)" -eq 0 -a -x first/bin/simlab -a -f first/lib/simlab/simlab-build.json \
+       -a -f first/lib/cmake/simlab/simlabConfig.cmake -a -f first/lib/cmake/simlab/simlabConfigVersion.cmake
+if command -v help2man >/dev/null; then
+  page=first/share/man/man1/simlab.1
+  check "and the man page, made from simlab --help: its title and each command" \
+    bash -c "grep -q '^\.TH SIMLAB \"1\"' $page && grep -qx check $page && grep -qx grade $page"
+fi
+check "the installed manifest names no folder of the build or of the sources" \
+  bash -c "! grep -qF '$build' first/lib/simlab/simlab-build.json && ! grep -qF '\"$SOURCE_DIR/' first/lib/simlab/simlab-build.json"
+check "and carries no precompiled header, which would name its headers by path" \
+  bash -c "! ls first/lib/simlab/build/pch/*.pch >/dev/null 2>&1"
+
+mv first moved
+run_capture version moved/bin/simlab --version
+check "the moved simlab says its version" grep -qx "simlab $("$SIMLAB" --version | awk '{ print $2 }')" version.out
+cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" .
+run_capture built "$SIMLAB" check apple NewtonsApple.cpp
+run_capture apple moved/bin/simlab check apple NewtonsApple.cpp
+check "it grades the apple's solution as the build's simlab does" \
+  bash -c "grep -q '^Score: ' apple.out && test \"\$(grep '^Score: ' apple.out)\" = \"\$(grep '^Score: ' built.out)\""
+check "making the apple's precompiled header where the prefix now is, and saying so" \
+  bash -c "test -f moved/lib/simlab/build/pch/apple.h.pch && grep -q \"making apple's precompiled header\" apple.err"
+echo "// edited" >>NewtonsApple.cpp
+run_capture again moved/bin/simlab check apple NewtonsApple.cpp
+check "once: the next check compiles against it without making it again" \
+  bash -c "grep -q '^Score: ' again.out && ! grep -q 'precompiled header' again.err"
+check "what it keeps between runs is in the user's cache, not in the prefix" test -d "$XDG_CACHE_HOME/simlab"
+
+run_capture new moved/bin/simlab project new myboot --from babyboot
+check "a project made by the installed simlab asks for it with find_package(simlab)" \
+  grep -q "^find_package(simlab .* REQUIRED CONFIG HINTS \"$work/moved/lib/cmake/simlab\")$" myboot/CMakeLists.txt
+(cmake -S myboot -B myboot/build >cmake.log 2>&1 && cmake --build myboot/build >>cmake.log 2>&1)
+check "and builds against it with CMake" test -x myboot/build/myboot || tail -20 cmake.log
+run_capture myboot myboot/build/myboot --quiet --final-time 1
+check "and runs as its own lab program" grep -q '^myboot: A swinging baby boot' myboot.out
+run_capture bootversion myboot/build/myboot --version
+check "which says its version" grep -q '^myboot (simlab ' bootversion.out
+
+run_capture package moved/bin/simlab package student -o bundle
+check "a package command from an installation is one line: packages are made from the source tree" \
+  bash -c "test $(status_of package) -eq 2 && test \$(wc -l <package.err) -eq 1 && grep -q 'source tree' package.err"
+finish
