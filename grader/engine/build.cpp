@@ -88,7 +88,17 @@ std::string linkSummary(const std::string& log) {
 }
 
 // The folders a compile command reads headers from: -I and -isystem folders, and the folder of an -include.
-std::vector<std::string> includeFolders(const std::vector<std::string>& command) {
+// Whether the sandbox shows `path` without lending it: under /usr, and not within a folder it hides (`masked`: an
+// installation in /usr/local is hidden, and lent back a part at a time).
+bool inSandboxAlready(const std::string& path, const std::vector<std::string>& masked) {
+    if (path.rfind("/usr/", 0) != 0) return false;
+    return std::none_of(masked.begin(), masked.end(), [&](const std::string& m) {
+        return !m.empty() && (path == m || path.rfind(m + "/", 0) == 0);
+    });
+}
+
+std::vector<std::string> includeFolders(const std::vector<std::string>& command,
+                                        const std::vector<std::string>& masked = {}) {
     std::vector<std::string> folders;
     for (std::size_t i = 0; i < command.size(); ++i) {
         const std::string& arg = command[i];
@@ -100,7 +110,7 @@ std::vector<std::string> includeFolders(const std::vector<std::string>& command)
     }
     // Folders under /usr are in the sandbox already.
     folders.erase(std::remove_if(folders.begin(), folders.end(),
-                                 [](const std::string& f) { return f.rfind("/usr/", 0) == 0; }),
+                                 [&](const std::string& f) { return inSandboxAlready(f, masked); }),
                   folders.end());
     return folders;
 }
@@ -507,9 +517,9 @@ ProcessResult Builder::runCompiler(const Assignment& assignment, const std::stri
     // report: it runs as the sandbox user and sees the system, the contract's headers and the precompiled header -
     // nothing of the course's tests, rubrics or solutions, of other students', or of simlab's build tree.
     request.isolate = true;
-    request.readOnlyPaths = includeFolders(assignment.compile);
+    request.maskedPaths = {manifest_.sourceDir, manifest_.buildDir, manifest_.cacheDir, cacheDir_};
+    request.readOnlyPaths = includeFolders(assignment.compile, request.maskedPaths);
     request.readOnlyPaths.push_back(assignment.contractInclude);
-    request.maskedPaths = {manifest_.sourceDir, manifest_.buildDir};
     return runProcess(request);
 }
 
@@ -561,13 +571,20 @@ void ensurePrecompiledHeader(const Manifest& manifest, const Assignment& a) {
     std::vector<std::string> argv = manifest.compile;
     argv.insert(argv.end(), a.precompileFlags.begin(), a.precompileFlags.end());
     argv.insert(argv.end(), {"-I" + a.contractInclude, "-x", "c++-header", a.precompiledHeader});
-    // What it was made for: this prefix, and the command (a new compiler or flag makes it again).
+    // What it was made for: this prefix, the command (a new compiler or flag makes it again) and the headers it is
+    // made from, by content (an installation over this one makes it again).
+    const std::string installedDir = manifest.buildDir + "/pch";
     std::string stamp = manifest.prefix + "\n";
     for (const std::string& part : argv) stamp += part + "\n";
     std::error_code error;
+    std::vector<std::string> headers = contractHeaders(a);
+    for (fs::directory_iterator it(installedDir, error), end; !error && it != end; it.increment(error)) {
+        if (it->path().extension() == ".h") headers.push_back(it->path().string());
+    }
+    std::sort(headers.begin(), headers.end());
+    for (const std::string& header : headers) stamp += sha256Hex(readFile(header)) + " " + header + "\n";
     if (!fs::exists(output, error) || !fs::exists(output + ".made-for", error) ||
         readFile(output + ".made-for") != stamp) {
-        const std::string installedDir = manifest.buildDir + "/pch";
         const fs::path dir = fs::path(a.precompiledHeader).parent_path();
         fs::create_directories(dir, error);
         // Readable by the compiler's sandbox user, like the installed headers it is made from.
@@ -619,14 +636,14 @@ void Builder::link(const std::vector<std::string>& inputs, const std::vector<std
     // The linker reads the student's object too: it runs in the sandbox as well, lent its inputs one by one, and
     // with no plugin (the link compiles nothing: see the manifest's link command).
     request.isolate = true;
+    request.maskedPaths = {manifest_.sourceDir, manifest_.buildDir, manifest_.cacheDir, cacheDir_};
     for (const std::string& input : linked) {
-        if (input.rfind("/usr/", 0) != 0 && input != student) request.readOnlyPaths.push_back(input);
+        if (!inSandboxAlready(input, request.maskedPaths) && input != student) request.readOnlyPaths.push_back(input);
     }
     for (const std::string& flag : flags) {
         const std::size_t file = flag.find("--version-script=");
         if (file != std::string::npos) request.readOnlyPaths.push_back(flag.substr(file + 17));
     }
-    request.maskedPaths = {manifest_.sourceDir, manifest_.buildDir};
     const ProcessResult run = runProcess(request);
     result.linkSeconds = run.wallSeconds;
     if (run.interrupted) {

@@ -520,6 +520,36 @@ PackageSummary writeInstalledTree(const Manifest& manifest, const std::string& r
         value = text;
     };
     relocate(j);
+    // What no test's code may read, readable by the installing user alone: in a container without bubblewrap, a
+    // prefix in /usr/local lies among the system's files, which every sandboxed process may read, and there the
+    // files' modes are what keeps the throwaway users out (simlab check and grade refuse to run otherwise).
+    const auto installedPath = [&](const std::string& path) -> std::string {
+        for (const auto& [from, to] : places) {
+            if (path.rfind(from + "/", 0) == 0) return root + to + path.substr(from.size());
+        }
+        return "";
+    };
+    std::vector<std::string> secrets = {manifest.sampleClass};
+    for (const Assignment& a : manifest.assignments) {
+        secrets.insert(secrets.end(), a.hiddenTests.begin(), a.hiddenTests.end());
+        secrets.push_back(a.judge);
+        if (!a.solution.empty()) secrets.push_back(fs::path(a.solution).parent_path().string());
+    }
+    for (const std::string& secret : secrets) {
+        const std::string path = installedPath(secret);
+        std::error_code error;
+        if (path.empty() || !fs::exists(path, error)) continue;
+        const auto closeUp = [&](const fs::path& p) {
+            fs::permissions(p, fs::perms::group_all | fs::perms::others_all, fs::perm_options::remove, error);
+        };
+        closeUp(path);
+        if (fs::is_directory(path, error)) {
+            for (auto it = fs::recursive_directory_iterator(path, error); !error && it != fs::recursive_directory_iterator();
+                 it.increment(error)) {
+                closeUp(it->path());
+            }
+        }
+    }
     j["installed"] = true;
     fs::create_directories(root + "/lib/simlab");
     writeFileAtomically(root + "/lib/simlab/simlab-build.json", j.dump(2) + "\n");

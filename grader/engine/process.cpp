@@ -148,8 +148,11 @@ std::vector<std::string> bubblewrapArguments(const std::string& bwrap, const Pro
         std::vector<std::string> folders;
         for (fs::path p = fs::path(path).parent_path(); p.has_relative_path(); p = p.parent_path()) folders.push_back(p);
         for (auto f = folders.rbegin(); f != folders.rend(); ++f) {
+            // A system folder is there already, unless it lies in a hidden one (an installation in /usr/local).
             const bool isSystem = std::any_of(system.begin(), system.end(), [&](const std::string& d) {
                 return *f == d || isUnder(*f, d);
+            }) && std::none_of(r.maskedPaths.begin(), r.maskedPaths.end(), [&](const std::string& m) {
+                return isUnder(*f, m);
             });
             if (isSystem || *f == "/tmp" || *f == "/dev" || *f == "/proc" || !made.insert(*f).second) continue;
             a.insert(a.end(), {"--perms", "0755", "--dir", *f});

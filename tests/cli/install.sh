@@ -49,6 +49,31 @@ check "and runs as its own lab program" grep -q '^myboot: A swinging baby boot' 
 run_capture bootversion myboot/build/myboot --version
 check "which says its version" grep -q '^myboot (simlab ' bootversion.out
 
+# Installed among the system's files (/usr/local), which every sandbox lets its processes read: the hidden tests,
+# solutions and judges are there for the installing user alone, and a file that includes one is refused it, with
+# bubblewrap and without (Landlock and a user of its own, as in Gradescope's and PrairieLearn's containers).
+if [[ -w /usr/local ]]; then
+  system=/usr/local/simlab-install-test-$$
+  trap 'rm -rf "$work" "$system"' EXIT
+  run_capture system cmake --install "$build" --prefix "$system"
+  cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" solution.cpp
+  for secret in share/simlab/source/assignments/apple/tests/hidden.cpp lib/simlab/build/judges/apple-judge \
+                share/simlab/source/solutions/apple/NewtonsApple.cpp; do
+    name=$(basename "$secret")
+    mkdir -p "reads-$name"
+    { echo "#include \"$system/$secret\""; cat solution.cpp; } >"reads-$name/NewtonsApple.cpp"
+    for mode in bubblewrap none; do
+      if [[ $mode == none ]]; then export SIMLAB_NO_BUBBLEWRAP=1; else unset SIMLAB_NO_BUBBLEWRAP; fi
+      run_capture "reads-$name-$mode" "$system/bin/simlab" check apple "reads-$name/NewtonsApple.cpp"
+      check "installed in /usr/local ($mode): a file that includes $secret is refused it" \
+        bash -c "grep -q \"'$system/$secret' file not found\" reads-$name-$mode.out && grep -qx 'Score: 0/76' reads-$name-$mode.out"
+    done
+  done
+  unset SIMLAB_NO_BUBBLEWRAP
+  run_capture systemall env SIMLAB_NO_BUBBLEWRAP=1 "$system/bin/simlab" check apple solution.cpp --all
+  check "and the hidden tests run there without bubblewrap, out of the tests' reach" grep -qx 'Score: 100/100' systemall.out
+fi
+
 run_capture package moved/bin/simlab package student -o bundle
 check "a package command from an installation is one line: packages are made from the source tree" \
   bash -c "test $(status_of package) -eq 2 && test \$(wc -l <package.err) -eq 1 && grep -q 'source tree' package.err"
