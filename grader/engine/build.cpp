@@ -87,7 +87,6 @@ std::string linkSummary(const std::string& log) {
     return summary.empty() ? log : summary;
 }
 
-// The folders a compile command reads headers from: -I and -isystem folders, and the folder of an -include.
 // Whether the sandbox shows `path` without lending it: under /usr, and not within a folder it hides (`masked`: an
 // installation in /usr/local is hidden, and lent back a part at a time).
 bool inSandboxAlready(const std::string& path, const std::vector<std::string>& masked) {
@@ -97,6 +96,8 @@ bool inSandboxAlready(const std::string& path, const std::vector<std::string>& m
     });
 }
 
+// The folders a compile command reads headers from (-I and -isystem folders, and the folder of an -include) that
+// the sandbox must lend it.
 std::vector<std::string> includeFolders(const std::vector<std::string>& command,
                                         const std::vector<std::string>& masked = {}) {
     std::vector<std::string> folders;
@@ -258,7 +259,6 @@ Builder::Builder(const Manifest& manifest) : manifest_(manifest), cacheDir_(mani
     // Every student's source and object is kept here: simlab's alone (the linker gets a copy of the one it needs).
     fs::permissions(cacheDir_, fs::perms::owner_all, ignored);
     if (!manifest.installed) checkPrecompiledHeader();  // before anything is built or said to be
-
     trimObjectCache(cacheDir_);
 }
 
