@@ -1,5 +1,6 @@
 #include "simlab/engine/manifest.h"
 
+#include <pwd.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -40,8 +41,12 @@ std::string userCacheDir(const std::string& prefix, const std::string& version) 
         base = xdg;
     } else if (const char* home = std::getenv("HOME"); home && *home == '/') {
         base = std::string(home) + "/.cache";
+    } else if (const struct passwd* user = ::getpwuid(::getuid()); user && user->pw_dir && *user->pw_dir == '/') {
+        base = std::string(user->pw_dir) + "/.cache";
     } else {
-        base = "/tmp/simlab-cache-" + std::to_string(::getuid());
+        // Never a shared folder such as /tmp, where another user could lay out the cache before simlab does.
+        throw UsageError("an installed simlab keeps its cache in $XDG_CACHE_HOME or ~/.cache: set HOME or "
+                         "XDG_CACHE_HOME (this user has no home folder)");
     }
     return base + "/simlab/" + sha256Hex(prefix + "\n" + version).substr(0, 16);
 }
