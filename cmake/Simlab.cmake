@@ -314,7 +314,12 @@ function(simlab_add_assignment id)
   target_link_libraries(${id}_probe PRIVATE simlab_probe simlab_support ${Simbody_LIBRARIES})
   set_target_properties(${id}_probe PROPERTIES POSITION_INDEPENDENT_CODE ON)
   simlab_use_pch(${id}_grader_tests ${id}_probe)
+  # Everything the manifest entry below names is built with it, so that `--target <id>_grader` alone makes a
+  # tree that grades, links a floor and builds the lab program from a submission.
   add_custom_target(${id}_grader ALL DEPENDS ${id}-judge ${id}_probe ${id}_program_main ${pch_depends})
+  add_dependencies(${id}_grader ${id}_grader_tests simlab_probe_main simlab_probe simlab_support_objects
+                   simlab_sanitizer_defaults simlab_harness simlab_observe_local simlab_rubric simlab_plot
+                   simlab_program simlab_support)
 
   # The probe's course side: linked before the student's object, whole, so that the student can add to it but
   # never replace any of it.

@@ -500,13 +500,10 @@ GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, 
 
 std::string secretsExposed(const Manifest& manifest, const Assignment& assignment,
                            const std::vector<std::string>& more) {
-    std::vector<std::string> secrets = assignment.hiddenTests;
+    std::vector<std::string> secrets = secretPaths(manifest, assignment);
     const char* cache = std::getenv("SIMLAB_CACHE");
-    for (const std::string& path : {assignment.solution, assignment.judge, manifest.sampleClass,
-                                    manifest.sourceDir + "/tests/corpus",
-                                    cache && *cache ? std::string(cache) : manifest.cacheDir + "/objects"}) {
-        if (!path.empty()) secrets.push_back(path);
-    }
+    secrets.push_back(manifest.sourceDir + "/tests/corpus");
+    secrets.push_back(cache && *cache ? std::string(cache) : manifest.cacheDir + "/objects");
     secrets.insert(secrets.end(), more.begin(), more.end());
     for (std::string& path : secrets) {
         std::error_code ignored;

@@ -68,6 +68,16 @@ void placePrecompiledHeaders(Manifest& m) {
 
 }  // namespace
 
+std::vector<std::string> secretPaths(const Manifest& manifest, const Assignment& assignment) {
+    std::vector<std::string> secrets = assignment.hiddenTests;
+    for (const std::string& path : {assignment.solution.empty() ? std::string()
+                                                                : fs::path(assignment.solution).parent_path().string(),
+                                    assignment.judge, manifest.sampleClass}) {
+        if (!path.empty()) secrets.push_back(path);
+    }
+    return secrets;
+}
+
 std::string installedManifestPath(const std::string& exe) {
     std::error_code error;
     const fs::path prefix = fs::canonical(exe, error).parent_path().parent_path();

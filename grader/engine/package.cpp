@@ -283,7 +283,10 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
         "  exit 1\n"
         "fi\n"
         "source_dir=$(cd \"$(dirname \"${BASH_SOURCE[0]}\")\" && pwd)\n"
-        "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" \"$source_dir/scripts/setup\"\n"
+        "# simlab and this assignment's grader alone: the other labs, their programs and the studies are not built.\n"
+        "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" SIMLAB_TARGETS=\"simlab " + assignment.id +
+            "_grader\" \\\n"
+        "  \"$source_dir/scripts/setup\"\n"
         "# The hidden tests, solutions and judges readable by root alone, should neither bubblewrap nor Landlock run.\n"
         "\"$source_dir/scripts/lock-course\"\n");
     writeFileAtomically(staging.path() + "/run_autograder",
@@ -490,6 +493,21 @@ PackageSummary writeInstalledTree(const Manifest& manifest, const std::string& r
     // The build folder first: it lies inside the source folder.
     const std::vector<std::pair<std::string, std::string>> places = {{manifest.buildDir, "/lib/simlab/build"},
                                                                      {manifest.sourceDir, "/share/simlab/source"}};
+    // Where in `text` a path inside one of the places begins (npos if nowhere), and which place it is in.
+    struct Found {
+        std::size_t at = std::string::npos;
+        std::string from, to;
+    };
+    const auto find = [&](const std::string& text) {
+        for (const auto& [from, to] : places) {
+            const std::size_t at = text.find(from);
+            if (at == std::string::npos) continue;
+            const std::size_t end = at + from.size();
+            if (end < text.size() && text[end] != '/') continue;
+            return Found{at, from, to};
+        }
+        return Found{};
+    };
     std::function<void(nlohmann::json&)> relocate = [&](nlohmann::json& value) {
         if (value.is_structured()) {
             for (nlohmann::json& element : value) relocate(element);
@@ -497,11 +515,8 @@ PackageSummary writeInstalledTree(const Manifest& manifest, const std::string& r
         }
         if (!value.is_string()) return;
         std::string text = value.get<std::string>();
-        for (const auto& [from, to] : places) {
-            const std::size_t at = text.find(from);
-            if (at == std::string::npos) continue;
+        if (const auto [at, from, to] = find(text); at != std::string::npos) {
             const std::size_t end = at + from.size();
-            if (end < text.size() && text[end] != '/') continue;
             const std::string path = text.substr(at), rest = text.substr(end);
             if (path.rfind(pchDir + "/", 0) == 0) {
                 // The headers a precompiled header is made from; not the made one, which names them by path.
@@ -515,7 +530,6 @@ PackageSummary writeInstalledTree(const Manifest& manifest, const std::string& r
                 copy(path, root + to + rest);
             }
             text = text.substr(0, at) + "@prefix@" + to + rest;
-            break;
         }
         value = text;
     };
@@ -524,16 +538,12 @@ PackageSummary writeInstalledTree(const Manifest& manifest, const std::string& r
     // prefix in /usr/local lies among the system's files, which every sandboxed process may read, and there the
     // files' modes are what keeps the throwaway users out (simlab check and grade refuse to run otherwise).
     const auto installedPath = [&](const std::string& path) -> std::string {
-        for (const auto& [from, to] : places) {
-            if (path.rfind(from + "/", 0) == 0) return root + to + path.substr(from.size());
-        }
-        return "";
+        const auto [at, from, to] = find(path);
+        return at == 0 ? root + to + path.substr(from.size()) : "";
     };
-    std::vector<std::string> secrets = {manifest.sampleClass};
+    std::set<std::string> secrets;
     for (const Assignment& a : manifest.assignments) {
-        secrets.insert(secrets.end(), a.hiddenTests.begin(), a.hiddenTests.end());
-        secrets.push_back(a.judge);
-        if (!a.solution.empty()) secrets.push_back(fs::path(a.solution).parent_path().string());
+        for (const std::string& secret : secretPaths(manifest, a)) secrets.insert(secret);
     }
     for (const std::string& secret : secrets) {
         const std::string path = installedPath(secret);

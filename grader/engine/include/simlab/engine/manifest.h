@@ -63,6 +63,11 @@ struct Manifest {
     std::vector<std::string> ids() const;
 };
 
+/// What no test's code may read, for one assignment: its hidden tests' sources, its solution's folder, its judge
+/// (which holds the hidden tests), and the course's sample class. The corpus and the object cache are the
+/// caller's to add where they exist (a build tree; the user's cache).
+std::vector<std::string> secretPaths(const Manifest& manifest, const Assignment& assignment);
+
 /// The manifest at SIMLAB_MANIFEST if set, else the one of the build this engine was built in.
 /// Throws UsageError if it is missing or unreadable.
 Manifest loadManifest();
