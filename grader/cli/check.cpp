@@ -81,19 +81,30 @@ void runCheck(const CheckOptions& o) {
     if (o.format == "text") {
         std::cerr << "Building " << printable(source) << " against the " << assignment.id << " grader...\n";
     }
-    // How long each test took in the last self-check of this lab: the judges' shares are made to end together.
-    const std::string timesFile = builder.cacheDir() + "/test-seconds-" + assignment.id + ".json";
+    // What each test cost in the last self-check of this lab (its seconds, the shared answers it used): the
+    // judges' shares are made to end together.
+    const std::string timesFile = builder.cacheDir() + "/test-costs-" + assignment.id + ".json";
     nlohmann::json times = nlohmann::json::object();
     if (std::ifstream in(timesFile); in) {
         times = nlohmann::json::parse(in, nullptr, false);
         if (!times.is_object()) times = nlohmann::json::object();
     }
-    for (const auto& [name, seconds] : times.items()) {
-        if (seconds.is_number() && std::isfinite(seconds.get<double>())) options.expectedSeconds[name] = seconds.get<double>();
+    for (const auto& [name, cost] : times.items()) {
+        const nlohmann::json seconds = cost.is_object() ? cost.value("seconds", nlohmann::json()) : nlohmann::json();
+        if (!seconds.is_number() || !std::isfinite(seconds.get<double>()) || seconds.get<double>() < 0) continue;
+        TestCost& expected = options.expected[name];
+        expected.seconds = seconds.get<double>();
+        const nlohmann::json shared = cost.value("shared", nlohmann::json());
+        if (!shared.is_object()) continue;
+        for (const auto& [digest, took] : shared.items()) {
+            if (took.is_number() && std::isfinite(took.get<double>()) && took.get<double>() >= 0) {
+                expected.shared[digest] = took.get<double>();
+            }
+        }
     }
     const GradeReport report = gradeSubmission(builder, assignment, rubric, files, options);
     for (const TestResult& t : report.tests) {
-        if (std::isfinite(t.seconds) && t.seconds > 0) times[t.name] = t.seconds;
+        if (std::isfinite(t.seconds) && t.seconds > 0) times[t.name] = {{"seconds", t.seconds}, {"shared", t.shared}};
     }
     try {
         writeFileAtomically(timesFile, times.dump());

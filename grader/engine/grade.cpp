@@ -16,6 +16,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <thread>
 
 #include "simlab/attachments.h"
@@ -207,6 +208,22 @@ TestResult interpret(const RubricTest& test, const ProcessResult& probe, const P
             t.unit = figure.value("unit", "");
         }
     }
+    if (verdict) {
+        // The judge's account of the test's time (the student's process's, and the judge's own: drawing, say) and
+        // of the shared questions it used: hints for sharing the next self-check's tests out, nothing scored.
+        const nlohmann::json took = verdict->value("seconds", nlohmann::json());
+        if (took.is_number() && std::isfinite(took.get<double>()) && took.get<double>() >= 0) {
+            t.seconds = std::max(t.seconds, took.get<double>());
+        }
+        const nlohmann::json shared = verdict->value("shared", nlohmann::json());
+        if (shared.is_object()) {
+            for (const auto& [digest, cost] : shared.items()) {
+                if (t.shared.size() >= 256 || digest.size() > 16 || !cost.is_number()) continue;
+                const double c = cost.get<double>();
+                if (std::isfinite(c) && c >= 0) t.shared[digest] = c;
+            }
+        }
+    }
     t.credit = credit;
     t.score = roundScore(test.points * credit);
     return t;
@@ -377,39 +394,25 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     return results;
 }
 
-// The selected tests, over `options.judges` judges at once, each with files of its own: judge k takes tests k,
-// k + J, k + 2J, ... of the rubric's order, or, where the tests' times of last time are known, the longest test
-// goes first to the judge with the least work; the results come back in the rubric's order.
+// The selected tests, over `options.judges` judges at once (shareTests), each with files of its own; the results
+// come back in the rubric's order.
 std::vector<TestResult> runJudges(const Assignment& assignment, const Rubric& rubric, const SubmissionFiles& files,
                                   const std::vector<const RubricTest*>& selected, const Workspace& w,
                                   const Limits& limits, const GradeOptions& options, std::string* graderOutput) {
     if (selected.empty()) return {};
-    const std::size_t judges = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(options.judges, 1)), 1,
-                                                       selected.size());
+    std::vector<std::string> names;
+    for (const RubricTest* test : selected) names.push_back(test->name);
+    std::vector<std::size_t> judgeOf = shareTests(names, options.expected, options.judges);
+    std::map<std::size_t, std::size_t> used;  // the judges given work, numbered from 0 in order
+    for (std::size_t k : judgeOf) used.emplace(k, 0);
+    std::size_t judges = 0;
+    for (auto& [k, number] : used) number = judges++;
     std::vector<std::vector<const RubricTest*>> shares(judges);
     std::vector<std::pair<std::size_t, std::size_t>> placed(selected.size());  // test i: judge, place in its share
-    std::vector<std::size_t> order(selected.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    if (!options.expectedSeconds.empty() && judges > 1) {
-        double known = 0;
-        for (const auto& [name, seconds] : options.expectedSeconds) known = std::max(known, seconds);
-        auto expected = [&](std::size_t i) {  // a test not seen before: as long as the longest
-            const auto found = options.expectedSeconds.find(selected[i]->name);
-            return found == options.expectedSeconds.end() ? known : found->second;
-        };
-        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return expected(a) > expected(b); });
-        std::vector<double> load(judges, 0.0);
-        for (std::size_t i : order) {
-            const std::size_t k = static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
-            load[k] += expected(i);
-            placed[i] = {k, shares[k].size()};
-            shares[k].push_back(selected[i]);
-        }
-    } else {
-        for (std::size_t i = 0; i < selected.size(); ++i) {
-            placed[i] = {i % judges, shares[i % judges].size()};
-            shares[i % judges].push_back(selected[i]);
-        }
+    for (std::size_t i = 0; i < selected.size(); ++i) {
+        const std::size_t k = used.at(judgeOf[i]);
+        placed[i] = {k, shares[k].size()};
+        shares[k].push_back(selected[i]);
     }
     std::vector<std::vector<TestResult>> results(judges);
     std::vector<std::string> outputs(judges);
@@ -549,6 +552,186 @@ double StudentRecord::pendingPoints() const {
     double sum = 0;
     for (const ManualGrade& m : manual) sum += m.points ? 0 : m.maxPoints;
     return roundScore(sum);
+}
+
+std::vector<std::size_t> shareTests(const std::vector<std::string>& tests,
+                                    const std::map<std::string, TestCost>& expected, int judgeCount) {
+    const std::size_t judges = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(judgeCount, 1)), 1,
+                                                       std::max<std::size_t>(tests.size(), 1));
+    const std::size_t n = tests.size();
+    std::vector<std::size_t> judgeOf(n);
+    if (expected.empty() || judges == 1) {
+        for (std::size_t i = 0; i < n; ++i) judgeOf[i] = i % judges;
+        return judgeOf;
+    }
+    // A shared answer costs what it took where it was computed, once in each judge whose tests ask for it; a
+    // test's own cost is its time less the answers it computed.
+    std::map<std::string, double> answerCost;
+    double longest = 0;
+    for (const auto& [name, cost] : expected) {
+        longest = std::max(longest, cost.seconds);
+        for (const auto& [digest, seconds] : cost.shared) answerCost[digest] = std::max(answerCost[digest], seconds);
+    }
+    std::vector<double> own(n, longest);  // a test not seen before: as long as the longest
+    std::vector<std::set<std::string>> asks(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto found = expected.find(tests[i]);
+        if (found == expected.end()) continue;
+        double computed = 0;
+        for (const auto& [digest, seconds] : found->second.shared) {
+            computed += seconds;
+            asks[i].insert(digest);
+        }
+        own[i] = std::max(found->second.seconds - computed, 0.0);
+    }
+    auto costOf = [&](double ownSeconds, const std::set<std::string>& answers) {
+        for (const std::string& digest : answers) ownSeconds += answerCost[digest];
+        return ownSeconds;
+    };
+    // How long the judges of a plan would take, the longest first; a plan is better when its longest judge ends
+    // sooner, then when the judges' time together is less.
+    auto loadsOf = [&](const std::vector<std::size_t>& plan) {
+        std::vector<double> owns(judges, 0.0);
+        std::vector<std::set<std::string>> answers(judges);
+        for (std::size_t i = 0; i < n; ++i) {
+            owns[plan[i]] += own[i];
+            answers[plan[i]].insert(asks[i].begin(), asks[i].end());
+        }
+        std::vector<double> load(judges);
+        for (std::size_t k = 0; k < judges; ++k) load[k] = costOf(owns[k], answers[k]);
+        std::sort(load.rbegin(), load.rend());
+        return load;
+    };
+    auto better = [](const std::vector<double>& a, const std::vector<double>& b) {
+        constexpr double kTie = 1e-9;
+        if (a.front() < b.front() - kTie) return true;
+        if (a.front() > b.front() + kTie) return false;
+        double sumA = 0, sumB = 0;
+        for (double x : a) sumA += x;
+        for (double x : b) sumB += x;
+        return sumA < sumB - kTie;
+    };
+    // The costliest group first, each to the judge where it would end soonest (the first such judge on a tie),
+    // counting only the answers that judge does not have yet.
+    auto longestFirst = [&](const std::vector<std::vector<std::size_t>>& groups) {
+        std::vector<std::size_t> order(groups.size());
+        std::vector<double> groupOwn(groups.size(), 0.0);
+        std::vector<std::set<std::string>> groupAsks(groups.size());
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+            order[g] = g;
+            for (std::size_t i : groups[g]) {
+                groupOwn[g] += own[i];
+                groupAsks[g].insert(asks[i].begin(), asks[i].end());
+            }
+        }
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+            return costOf(groupOwn[a], groupAsks[a]) > costOf(groupOwn[b], groupAsks[b]);
+        });
+        std::vector<double> load(judges, 0.0);
+        std::vector<std::set<std::string>> answered(judges);
+        std::vector<std::size_t> plan(n, 0);
+        for (std::size_t g : order) {
+            std::size_t best = 0;
+            double bestEnd = 0;
+            for (std::size_t k = 0; k < judges; ++k) {
+                double end = load[k] + groupOwn[g];
+                for (const std::string& digest : groupAsks[g]) {
+                    if (!answered[k].count(digest)) end += answerCost[digest];
+                }
+                if (k == 0 || end < bestEnd) {
+                    best = k;
+                    bestEnd = end;
+                }
+            }
+            load[best] = bestEnd;
+            answered[best].insert(groupAsks[g].begin(), groupAsks[g].end());
+            for (std::size_t i : groups[g]) plan[i] = best;
+        }
+        return plan;
+    };
+    // Then single tests moved, and pairs swapped, between judges while that makes the plan better.
+    auto improved = [&](std::vector<std::size_t> plan) {
+        std::vector<double> now = loadsOf(plan);
+        for (int round = 0; round < 50; ++round) {
+            bool changed = false;
+            for (std::size_t i = 0; i < n; ++i) {
+                for (std::size_t k = 0; k < judges; ++k) {
+                    if (k == plan[i]) continue;
+                    const std::size_t was = plan[i];
+                    plan[i] = k;
+                    const std::vector<double> moved = loadsOf(plan);
+                    if (better(moved, now)) {
+                        now = moved;
+                        changed = true;
+                    } else {
+                        plan[i] = was;
+                    }
+                }
+            }
+            for (std::size_t i = 0; i < n; ++i) {
+                for (std::size_t j = i + 1; j < n; ++j) {
+                    if (plan[i] == plan[j]) continue;
+                    std::swap(plan[i], plan[j]);
+                    const std::vector<double> swapped = loadsOf(plan);
+                    if (better(swapped, now)) {
+                        now = swapped;
+                        changed = true;
+                    } else {
+                        std::swap(plan[i], plan[j]);
+                    }
+                }
+            }
+            if (!changed) break;
+        }
+        return plan;
+    };
+    // Two starts: each test alone, and tests asking for the same answer joined (the costliest answers first) while
+    // the group stays within a judge's even share of the whole; the better plan either improves to.
+    std::vector<std::vector<std::size_t>> alone(n);
+    for (std::size_t i = 0; i < n; ++i) alone[i] = {i};
+    std::vector<std::size_t> group(n);
+    for (std::size_t i = 0; i < n; ++i) group[i] = i;
+    auto root = [&](std::size_t i) {
+        while (group[i] != i) i = group[i] = group[group[i]];
+        return i;
+    };
+    std::vector<double> groupOwn = own;
+    std::vector<std::set<std::string>> groupAsks = asks;
+    std::set<std::string> everyAnswer;
+    double total = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        total += own[i];
+        everyAnswer.insert(asks[i].begin(), asks[i].end());
+    }
+    const double evenShare = costOf(total, everyAnswer) / static_cast<double>(judges);
+    std::vector<std::string> byCost(everyAnswer.begin(), everyAnswer.end());
+    std::stable_sort(byCost.begin(), byCost.end(),
+                     [&](const std::string& a, const std::string& b) { return answerCost[a] > answerCost[b]; });
+    for (const std::string& digest : byCost) {
+        std::size_t first = n;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (!asks[i].count(digest)) continue;
+            if (first == n) {
+                first = i;
+                continue;
+            }
+            const std::size_t a = root(first), b = root(i);
+            if (a == b) continue;
+            std::set<std::string> joined = groupAsks[a];
+            joined.insert(groupAsks[b].begin(), groupAsks[b].end());
+            if (costOf(groupOwn[a] + groupOwn[b], joined) > evenShare) continue;
+            group[b] = a;
+            groupOwn[a] += groupOwn[b];
+            groupAsks[a] = std::move(joined);
+        }
+    }
+    std::map<std::size_t, std::vector<std::size_t>> byRoot;
+    for (std::size_t i = 0; i < n; ++i) byRoot[root(i)].push_back(i);
+    std::vector<std::vector<std::size_t>> joined;
+    for (auto& [r, members] : byRoot) joined.push_back(std::move(members));
+    const std::vector<std::size_t> fromAlone = improved(longestFirst(alone));
+    const std::vector<std::size_t> fromJoined = improved(longestFirst(joined));
+    return better(loadsOf(fromJoined), loadsOf(fromAlone)) ? fromJoined : fromAlone;
 }
 
 GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment, const Rubric& rubric,

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -83,6 +84,7 @@ struct Verdict {
     std::string firstFailure;  // reason taken from the first failed assertion
     bool failureIsException = false;
     bool failureHasInfo = false;
+    std::chrono::steady_clock::time_point started;
 };
 
 Verdict& verdict() {
@@ -220,6 +222,7 @@ struct Listener : Catch::TestEventListenerBase {
     void testCaseStarting(const Catch::TestCaseInfo& info) override {
         verdict() = Verdict{};
         verdict().test = info.name;
+        verdict().started = std::chrono::steady_clock::now();
         observe::startTest(info.name);
         send({{"event", "start"}, {"test", info.name}});
         TestEventListenerBase::testCaseStarting(info);
@@ -261,13 +264,18 @@ struct Listener : Catch::TestEventListenerBase {
         std::string reason = v.text;
         if (!passed && (v.failureIsException || v.failureHasInfo || v.text.empty())) reason = v.firstFailure;
         if (!extra.empty() && !failedBefore) reason = extra;
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - v.started).count();
         nlohmann::json record = {{"event", "end"},
                                  {"test", v.test},
                                  {"passed", passed},
                                  {"credit", passed ? 1.0 : v.credit.value_or(0.0)},
                                  {"reason", reason},
                                  {"feedback", v.feedback},
-                                 {"attachments", v.attachments}};
+                                 {"attachments", v.attachments},
+                                 // how long the test took here, the student's process included, and the shared
+                                 // questions it used: what the next self-check shares the tests out by
+                                 {"seconds", seconds},
+                                 {"shared", observe::sharedUsed()}};
         if (channel == observe::ChannelFailure::BadReport) record["channel"] = "bad report";
         if (channel == observe::ChannelFailure::ProcessEnded) record["channel"] = "process ended";
         if (v.figure) record["figure"] = {{"value", std::isfinite(*v.figure) ? *v.figure : 0.0}, {"unit", v.unit}};

@@ -2,6 +2,7 @@
 // run here against a transport that returns whatever answer a test scripts, well formed or hostile.
 #include <catch2/catch.hpp>
 #include <deque>
+#include <map>
 #include <string>
 
 #include "simlab/observe.h"
@@ -118,6 +119,31 @@ TEST_CASE("a process that ends before answering, or sends what nobody asked for,
     CHECK(lastFailure() == ChannelFailure::BadReport);
     gExtra.clear();
     clearFailure();
+    CHECK(finishTest().empty());
+}
+
+TEST_CASE("a shared answer serves later tests, and each test says which it used and which it computed", "[observe]") {
+    gExtra.clear();
+    clearFailure();
+    startTest("first");
+    gScripted = {R"({"id": $ID, "answer": {"samples": [{"time": 0, "y": 10}]}})"};
+    CHECK(askShared("run", {{"scene", 1}})["samples"][0]["y"] == 10);
+    const std::map<std::string, double> first = sharedUsed();
+    REQUIRE(first.size() == 1);
+    const std::string digest = first.begin()->first;
+    CHECK(digest.size() == 16);
+    CHECK(first.begin()->second >= 0);
+    CHECK(finishTest().empty());
+
+    // The next test asks the same (no process answers: the answer kept is read) and another question.
+    startTest("second");
+    CHECK(sharedUsed().empty());
+    CHECK(askShared("run", {{"scene", 1}})["samples"][0]["y"] == 10);
+    gScripted = {R"({"id": $ID, "answer": 4})"};
+    CHECK(askShared("run", {{"scene", 2}}) == 4);
+    const std::map<std::string, double> second = sharedUsed();
+    REQUIRE(second.size() == 2);
+    CHECK(second.at(digest) == 0);  // served by the first test's answer
     CHECK(finishTest().empty());
 }
 

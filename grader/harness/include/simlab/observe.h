@@ -14,6 +14,7 @@
 //     }
 #pragma once
 
+#include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -60,6 +61,13 @@ nlohmann::json ask(const std::string& kind, const nlohmann::json& arguments);
 /// the same, which then need not start a process at all. For questions whose repetition is not itself what a test
 /// looks at.
 nlohmann::json askShared(const std::string& kind, const nlohmann::json& arguments);
+
+/// The shared questions the test under way has used (at most kMaxSharedReported), each by a digest of the
+/// question: the seconds its answer took where this test asked the student's process, 0 where an earlier test's
+/// answer served. The harness reports them, so that the next self-check can give tests that ask alike to one
+/// judge, where the answer is computed once.
+constexpr std::size_t kMaxSharedReported = 256;
+std::map<std::string, double> sharedUsed();
 
 /// `answer` read as a T; a field missing or of the wrong type is a BadReport naming it.
 template <class T>

@@ -40,8 +40,11 @@ struct TestResult {
     std::vector<std::string> feedback;  ///< further lines for the student
     std::optional<double> figure;       ///< what the test measured, e.g. 14.8
     std::string unit;                   ///< e.g. "digits"
-    double seconds = 0;
+    double seconds = 0;                 ///< the test's time in its judge, its student's process included
     double cpuSeconds = 0;              ///< the student's process's CPU time
+    /// The judge's shared questions the test used (observe::askShared), by digest: the seconds the answer took
+    /// where this test computed it, 0 where an earlier test of its judge had.
+    std::map<std::string, double> shared;
     std::string output;                 ///< what the student's process printed (cut short), for instructors
     /// Files the test made for the student's feedback (a drawing of the model): name and contents.
     std::vector<std::pair<std::string, std::string>> attachments;
@@ -67,6 +70,12 @@ struct GradeReport {
     double maxScore() const;
 };
 
+/// What one test cost last time (TestResult's seconds and shared), a hint for sharing tests out.
+struct TestCost {
+    double seconds = 0;
+    std::map<std::string, double> shared;
+};
+
 struct GradeOptions {
     bool includeHidden = false;          ///< run every test (instructors), not only the visible ones
     std::optional<Limits> limits;        ///< instead of the rubric's
@@ -75,12 +84,22 @@ struct GradeOptions {
     /// Judges run at once, each over its share of the tests (each test still alone in its own sandbox, as a user
     /// of its own): a self-check uses the machine's cores; a class, graded a submission per core, uses 1.
     int judges = 1;
-    /// How long each test took last time (by name), to share the tests out so that the judges end together (the
-    /// longest first, each to the judge with the least work); round-robin in the rubric's order without it.
-    std::map<std::string, double> expectedSeconds;
+    /// How long each test took last time (by name) and the shared questions it used, to share the tests out so
+    /// that the judges end together: the longest first, each to the judge where it ends soonest, counting a shared
+    /// answer once per judge. Round-robin in the rubric's order without it.
+    std::map<std::string, TestCost> expected;
     /// Told what grading is doing as it goes ("compiling", a test starting), for a person to watch; may be empty.
     std::function<void(const std::string&)> progress;
 };
+
+/// The judge (0 to judges - 1) each of `tests` runs in, so that the last judge ends as soon as it can: round-robin
+/// in the given order without `expected`. With it, a judge's time is its tests' own plus each shared answer
+/// (observe::askShared) its tests ask for, once, so tests asking alike gain by meeting in one judge; the plan is
+/// the longest first, each to the judge where it would end soonest (tests alone, or joined by the answers they
+/// share while a group stays within a judge's even share), then improved by moving single tests and swapping
+/// pairs. A test `expected` does not name counts as long as the longest it does. A judge may be left without tests.
+std::vector<std::size_t> shareTests(const std::vector<std::string>& tests,
+                                    const std::map<std::string, TestCost>& expected, int judges);
 
 /// What a student handed in, read as data (readHandedIn): the source and the rubric's extra files.
 struct SubmissionFiles {
