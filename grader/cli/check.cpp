@@ -90,17 +90,7 @@ void runCheck(const CheckOptions& o) {
         if (!times.is_object()) times = nlohmann::json::object();
     }
     for (const auto& [name, cost] : times.items()) {
-        const nlohmann::json seconds = cost.is_object() ? cost.value("seconds", nlohmann::json()) : nlohmann::json();
-        if (!seconds.is_number() || !std::isfinite(seconds.get<double>()) || seconds.get<double>() < 0) continue;
-        TestCost& expected = options.expected[name];
-        expected.seconds = seconds.get<double>();
-        const nlohmann::json shared = cost.value("shared", nlohmann::json());
-        if (!shared.is_object()) continue;
-        for (const auto& [digest, took] : shared.items()) {
-            if (took.is_number() && std::isfinite(took.get<double>()) && took.get<double>() >= 0) {
-                expected.shared[digest] = took.get<double>();
-            }
-        }
+        if (std::optional<TestCost> expected = readTestCost(cost)) options.expected[name] = std::move(*expected);
     }
     const GradeReport report = gradeSubmission(builder, assignment, rubric, files, options);
     for (const TestResult& t : report.tests) {

@@ -208,21 +208,11 @@ TestResult interpret(const RubricTest& test, const ProcessResult& probe, const P
             t.unit = figure.value("unit", "");
         }
     }
-    if (verdict) {
-        // The judge's account of the test's time (the student's process's, and the judge's own: drawing, say) and
-        // of the shared questions it used: hints for sharing the next self-check's tests out, nothing scored.
-        const nlohmann::json took = verdict->value("seconds", nlohmann::json());
-        if (took.is_number() && std::isfinite(took.get<double>()) && took.get<double>() >= 0) {
-            t.seconds = std::max(t.seconds, took.get<double>());
-        }
-        const nlohmann::json shared = verdict->value("shared", nlohmann::json());
-        if (shared.is_object()) {
-            for (const auto& [digest, cost] : shared.items()) {
-                if (t.shared.size() >= 256 || digest.size() > 16 || !cost.is_number()) continue;
-                const double c = cost.get<double>();
-                if (std::isfinite(c) && c >= 0) t.shared[digest] = c;
-            }
-        }
+    // The judge's account of the test's time (the student's process's, and the judge's own: drawing, say) and of
+    // the shared questions it used: hints for sharing the next self-check's tests out, nothing scored.
+    if (const std::optional<TestCost> cost = verdict ? readTestCost(*verdict) : std::nullopt) {
+        t.seconds = std::max(t.seconds, cost->seconds);
+        t.shared = cost->shared;
     }
     t.credit = credit;
     t.score = roundScore(test.points * credit);
@@ -552,6 +542,25 @@ double StudentRecord::pendingPoints() const {
     double sum = 0;
     for (const ManualGrade& m : manual) sum += m.points ? 0 : m.maxPoints;
     return roundScore(sum);
+}
+
+std::optional<TestCost> readTestCost(const nlohmann::json& record) {
+    auto seconds = [](const nlohmann::json& value) {
+        return value.is_number() && std::isfinite(value.get<double>()) && value.get<double>() >= 0;
+    };
+    if (!record.is_object()) return std::nullopt;
+    const nlohmann::json took = record.value("seconds", nlohmann::json());
+    if (!seconds(took)) return std::nullopt;
+    TestCost cost;
+    cost.seconds = took.get<double>();
+    const nlohmann::json shared = record.value("shared", nlohmann::json());
+    if (shared.is_object()) {
+        for (const auto& [digest, answer] : shared.items()) {
+            if (cost.shared.size() >= 256 || digest.size() > 16 || !seconds(answer)) continue;
+            cost.shared[digest] = answer.get<double>();
+        }
+    }
+    return cost;
 }
 
 std::vector<std::size_t> shareTests(const std::vector<std::string>& tests,

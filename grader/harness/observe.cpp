@@ -42,6 +42,18 @@ std::string sampleTime(const nlohmann::json& answer, const std::string& where) {
     return text;
 }
 
+// 64-bit FNV-1a of the question, in hex: the same question has the same digest in every run of the judge.
+std::string digestOf(const std::string& key) {
+    std::uint64_t h = 14695981039346656037ull;
+    for (const unsigned char c : key) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+    return text;
+}
+
 }  // namespace
 
 nlohmann::json ask(const std::string& kind, const nlohmann::json& arguments) {
@@ -95,22 +107,6 @@ static std::map<std::string, nlohmann::json> gShared, gPending;
 // The shared questions the test under way used, by digest: the seconds the answer took where it asked the
 // student's process, 0 where an earlier test's answer served.
 static std::map<std::string, double> gUsed;
-
-namespace {
-
-// 64-bit FNV-1a of the question, in hex: the same question has the same digest in every run of the judge.
-std::string digestOf(const std::string& key) {
-    std::uint64_t h = 14695981039346656037ull;
-    for (const unsigned char c : key) {
-        h ^= c;
-        h *= 1099511628211ull;
-    }
-    char text[17];
-    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
-    return text;
-}
-
-}  // namespace
 
 nlohmann::json askShared(const std::string& kind, const nlohmann::json& arguments) {
     const std::string key = kind + "\n" + arguments.dump();

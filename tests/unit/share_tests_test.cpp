@@ -7,6 +7,7 @@
 
 #include "simlab/engine/grade.h"
 
+using simlab::engine::readTestCost;
 using simlab::engine::shareTests;
 using simlab::engine::TestCost;
 
@@ -118,4 +119,16 @@ TEST_CASE("a test not seen last time counts as long as the longest", "[share]") 
     const auto judgeOf = judgesOf({"long", "short", "new"}, expected, 2);
     CHECK(judgeOf.at("new") != judgeOf.at("long"));
     CHECK(judgeOf.at("short") == judgeOf.at("long"));
+}
+
+TEST_CASE("a cost is read only where its numbers are finite and not negative", "[share]") {
+    const auto cost = readTestCost(nlohmann::json::parse(
+        R"({"seconds": 0.5, "shared": {"0123456789abcdef": 0.25, "a": -1, "b": "soon", "0123456789abcdef0": 1}})"));
+    REQUIRE(cost);
+    CHECK(cost->seconds == 0.5);
+    CHECK(cost->shared == std::map<std::string, double>{{"0123456789abcdef", 0.25}});
+    CHECK_FALSE(readTestCost(nlohmann::json::parse(R"({"seconds": -1})")));
+    CHECK_FALSE(readTestCost(nlohmann::json::parse(R"({"shared": {}})")));
+    CHECK_FALSE(readTestCost(nlohmann::json::parse("5")));
+    CHECK_FALSE(readTestCost(nlohmann::json::parse(R"({"seconds": 1e999})", nullptr, false)));
 }

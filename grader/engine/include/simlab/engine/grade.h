@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
@@ -75,6 +76,11 @@ struct TestCost {
     double seconds = 0;
     std::map<std::string, double> shared;
 };
+
+/// A test's cost as the judge's end record and check's cost file hold it ({"seconds": S, "shared": {DIGEST: S}}):
+/// none unless its seconds are a finite number >= 0; of shared, only digests of up to 16 characters with such a
+/// number, at most 256.
+std::optional<TestCost> readTestCost(const nlohmann::json& record);
 
 struct GradeOptions {
     bool includeHidden = false;          ///< run every test (instructors), not only the visible ones
