@@ -658,35 +658,71 @@ std::vector<std::size_t> shareTests(const std::vector<std::string>& tests,
         }
         return plan;
     };
-    // Then single tests moved, and pairs swapped, between judges while that makes the plan better.
+    // Then single tests moved, and pairs swapped, between judges while that makes the plan better. A move updates
+    // the two judges' times from how many of each judge's tests ask for each answer, so a try costs the moved
+    // test's answers, not the whole plan.
+    std::map<std::string, std::size_t> answerIndex;
+    for (std::size_t i = 0; i < n; ++i) {
+        for (const std::string& digest : asks[i]) answerIndex.emplace(digest, answerIndex.size());
+    }
+    std::vector<double> costByIndex(answerIndex.size());
+    for (const auto& [digest, index] : answerIndex) costByIndex[index] = answerCost[digest];
+    std::vector<std::vector<std::size_t>> asked(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (const std::string& digest : asks[i]) asked[i].push_back(answerIndex.at(digest));
+    }
     auto improved = [&](std::vector<std::size_t> plan) {
-        std::vector<double> now = loadsOf(plan);
+        std::vector<std::vector<int>> askers(judges, std::vector<int>(answerIndex.size(), 0));
+        std::vector<double> load(judges, 0.0);
+        auto place = [&](std::size_t i, std::size_t k, int sign) {  // test i joins (+1) or leaves (-1) judge k
+            load[k] += sign * own[i];
+            for (std::size_t d : asked[i]) {
+                const bool firstOrLast = sign > 0 ? askers[k][d] == 0 : askers[k][d] == 1;
+                if (firstOrLast) load[k] += sign * costByIndex[d];
+                askers[k][d] += sign;
+            }
+        };
+        auto move = [&](std::size_t i, std::size_t k) {
+            place(i, plan[i], -1);
+            plan[i] = k;
+            place(i, k, +1);
+        };
+        auto sorted = [&] {
+            std::vector<double> v = load;
+            std::sort(v.rbegin(), v.rend());
+            return v;
+        };
+        for (std::size_t i = 0; i < n; ++i) place(i, plan[i], +1);
+        std::vector<double> now = sorted();
         for (int round = 0; round < 50; ++round) {
             bool changed = false;
             for (std::size_t i = 0; i < n; ++i) {
                 for (std::size_t k = 0; k < judges; ++k) {
                     if (k == plan[i]) continue;
                     const std::size_t was = plan[i];
-                    plan[i] = k;
-                    const std::vector<double> moved = loadsOf(plan);
+                    move(i, k);
+                    const std::vector<double> moved = sorted();
                     if (better(moved, now)) {
                         now = moved;
                         changed = true;
                     } else {
-                        plan[i] = was;
+                        move(i, was);
                     }
                 }
             }
             for (std::size_t i = 0; i < n; ++i) {
                 for (std::size_t j = i + 1; j < n; ++j) {
-                    if (plan[i] == plan[j]) continue;
-                    std::swap(plan[i], plan[j]);
-                    const std::vector<double> swapped = loadsOf(plan);
+                    const std::size_t a = plan[i], b = plan[j];
+                    if (a == b) continue;
+                    move(i, b);
+                    move(j, a);
+                    const std::vector<double> swapped = sorted();
                     if (better(swapped, now)) {
                         now = swapped;
                         changed = true;
                     } else {
-                        std::swap(plan[i], plan[j]);
+                        move(j, b);
+                        move(i, a);
                     }
                 }
             }
