@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "simlab/engine/process.h"
+#include "simlab/isolation/process.h"
 
 namespace simlab::bench {
 
@@ -16,18 +16,18 @@ using Clock = std::chrono::steady_clock;
 inline double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 /// `argv` in `dir`, as simlab's own tools run: an hour of CPU and wall time, room for a class's processes.
-inline engine::ProcessResult run(const std::vector<std::string>& argv, const std::string& dir,
+inline isolation::ProcessResult run(const std::vector<std::string>& argv, const std::string& dir,
                                  const std::vector<std::string>& env = {}) {
-    engine::ProcessRequest r;
+    isolation::ProcessRequest r;
     r.argv = argv;
-    r.env = engine::childEnvironment(env);
+    r.env = isolation::childEnvironment(env);
     r.workDir = dir;
     r.limits.wallSeconds = r.limits.cpuSeconds = 3600;
     r.limits.memoryMiB = 1 << 16;
     r.limits.processes = 4096;
     r.limits.fileMiB = 1 << 12;
     r.limits.outputKiB = 1 << 20;
-    return engine::runProcess(r);
+    return isolation::runProcess(r);
 }
 
 /// The variables that choose how simlab sandboxes a test, passed on from the benchmark's own environment, so that

@@ -27,10 +27,11 @@
 #include "bench.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/manifest.h"
-#include "simlab/engine/process.h"
+#include "simlab/isolation/process.h"
 
 namespace fs = std::filesystem;
 using namespace simlab::engine;
+using namespace simlab::isolation;
 using namespace simlab::bench;
 
 namespace {

@@ -49,9 +49,10 @@ endif()
 # Flags for student code. A function that falls off its end without returning a value is an error, not a crash
 # waiting to happen. Student code is compiled with hidden visibility: what it defines stays inside the program and
 # cannot take the place of a shared library's function (simlab checks that nothing it defines is exported in one's
-# stead).
+# stead). It is position-independent as a shared object's code must be: a probe is one, which the probe's host
+# loads as the test's own user (a thread_local would not link there otherwise).
 set(SIMLAB_SUBMISSION_FLAGS
-    -std=c++17 ${optimization} -g0 -fPIE -pthread -fvisibility=hidden -fvisibility-inlines-hidden
+    -std=c++17 ${optimization} -g0 -fPIC -pthread -fvisibility=hidden -fvisibility-inlines-hidden
     -Wall -Wextra -Wno-unused-parameter -Wno-deprecated-declarations -Werror=return-type)
 if(SIMLAB_STUDENT_CXX_ID STREQUAL "GNU")
   list(APPEND SIMLAB_SUBMISSION_FLAGS -Winvalid-pch)
@@ -319,13 +320,12 @@ function(simlab_add_assignment id)
   add_custom_target(${id}_grader ALL DEPENDS ${id}-judge ${id}_probe ${id}_program_main ${pch_depends})
   add_dependencies(${id}_grader ${id}_grader_tests simlab_probe_main simlab_probe simlab_support_objects
                    simlab_sanitizer_defaults simlab_harness simlab_observe_local simlab_rubric simlab_plot
-                   simlab_program simlab_support)
+                   simlab_program simlab_support simlab-probe-host)
 
   # The probe's course side: linked before the student's object, whole, so that the student can add to it but
-  # never replace any of it.
+  # never replace any of it. The probe is a shared object that the probe's host loads (simlab-probe-host).
   _simlab_json_list(probe_objects $<TARGET_OBJECTS:simlab_probe_main> $<TARGET_OBJECTS:simlab_probe>
-                                  $<TARGET_OBJECTS:${id}_probe> $<TARGET_OBJECTS:simlab_support_objects>
-                                  $<TARGET_OBJECTS:simlab_sanitizer_defaults>)
+                                  $<TARGET_OBJECTS:${id}_probe> $<TARGET_OBJECTS:simlab_support_objects>)
   # The benchmark's floor: the tests and the probe in one program, the student's code called directly. A course
   # source both sides compile (biosim's declaration.cpp) is linked once.
   set(shared_sources "")
@@ -396,14 +396,10 @@ function(simlab_write_manifest)
   # Link order: the course's objects, the student's object, then libraries from most to least dependent.
   _simlab_json_list(probe_libraries
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
-  # A probe exports nothing it defines (beyond the library data it must hold copies of): a function the student
-  # defines can never take the place of a shared library's, whoever calls it.
-  # A sanitizer build's probe exports AddressSanitizer's defaults too, which its runtime looks up by name.
-  if(SIMLAB_SANITIZE)
-    file(WRITE ${PROJECT_BINARY_DIR}/probe-exports.map "{ global: __asan_default_options; local: *; };\n")
-  else()
-    file(WRITE ${PROJECT_BINARY_DIR}/probe-exports.map "{ local: *; };\n")
-  endif()
+  # A probe is a shared object that simlab-probe-host loads as the test's own user (grader/isolation/host). It
+  # exports its entry point alone: a function the student defines can never take the place of a library's, whoever
+  # calls it; and it links only if every symbol it needs is there (-z defs), as a program would.
+  file(WRITE ${PROJECT_BINARY_DIR}/probe-exports.map "{ global: simlab_probe_entry; local: *; };\n")
   _simlab_json_list(floor_libraries
     $<TARGET_FILE:simlab_plot> $<TARGET_FILE:simlab_rubric> $<TARGET_FILE:Catch2::Catch2WithMain> $<TARGET_FILE:tomlplusplus::tomlplusplus>
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
@@ -424,7 +420,8 @@ function(simlab_write_manifest)
   \"compile\": ${compile},
   \"link\": ${link},
   \"probe_libraries\": ${probe_libraries},
-  \"probe_link\": [\"-Wl,--version-script=${PROJECT_BINARY_DIR}/probe-exports.map\"],
+  \"probe_link\": [\"-shared\", \"-Wl,-z,defs\", \"-Wl,--version-script=${PROJECT_BINARY_DIR}/probe-exports.map\"],
+  \"probe_host\": \"$<TARGET_FILE:simlab-probe-host>\",
   \"floor_libraries\": ${floor_libraries},
   \"program_libraries\": ${program_libraries},
   \"study_libraries\": ${study_libraries},

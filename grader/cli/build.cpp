@@ -24,6 +24,7 @@ struct BuildOptions {
 
 void runBuild(const BuildOptions& o) {
     using namespace simlab::engine;
+    using namespace simlab::isolation;
     const Manifest manifest = loadManifest();
     const Assignment& assignment = manifest.find(o.assignment);
     const std::string source = o.source.empty() ? assignment.starter : o.source;

@@ -19,7 +19,7 @@
 #include "simlab/engine/intake.h"
 #include "simlab/engine/manifest.h"
 #include "simlab/engine/manual.h"
-#include "simlab/engine/process.h"
+#include "simlab/isolation/process.h"
 #include "simlab/engine/report.h"
 #include "simlab/engine/text.h"
 
@@ -73,11 +73,12 @@ void onSignal(int) {
     }
     static const char line[] = "\nsimlab: stopping: finishing what is complete (press Ctrl-C again to quit at once)\n";
     (void)!::write(STDERR_FILENO, line, sizeof line - 1);
-    engine::interruptChildren();
+    isolation::interruptChildren();
 }
 
 void runGrade(const GradeCommandOptions& o) {
     using namespace simlab::engine;
+    using namespace simlab::isolation;
     const Manifest manifest = loadManifest();
     const Assignment& assignment = manifest.find(o.assignment);
     if (!assignment.hiddenTestsBuilt) {
@@ -143,6 +144,8 @@ void runGrade(const GradeCommandOptions& o) {
     const SandboxSupport& sandbox = sandboxSupport();
     if (!sandbox.warning.empty()) std::cerr << "simlab: warning: " << sandbox.warning << "\n";
     if (const std::string closed = sandboxCannotReach(manifest, assignment); !closed.empty()) throw UsageError(closed);
+    // The class's files and the grades are no sandbox's to see, wherever they lie.
+    hideFromSandboxes({root, out});
     // Hidden tests run only where no test's code can read them, nor the class's files.
     if (const std::string exposed = secretsExposed(manifest, assignment, {root, out}); !exposed.empty()) {
         throw UsageError(exposed);

@@ -17,6 +17,7 @@
 #include "simlab/engine/report.h"
 #include "simlab/engine/text.h"
 #include "simlab/engine/writers.h"
+#include "simlab/isolation/process.h"
 
 namespace fs = std::filesystem;
 
@@ -41,6 +42,7 @@ struct AutogradeOptions {
     std::string submission;
     std::string results;
     std::string format = "gradescope";
+    std::string judge;
 };
 
 // The platform needs a results.json whatever happens: an error becomes one, with the reason in it.
@@ -49,7 +51,14 @@ void runAutograde(const AutogradeOptions& o) {
     fs::create_directories(fs::absolute(o.results).parent_path());
     try {
         const Manifest manifest = loadManifest();
-        const Assignment& assignment = manifest.find(o.assignment);
+        Assignment assignment = manifest.find(o.assignment);
+        if (!o.judge.empty()) {
+            // A judge made apart, with the hidden tests (PrairieLearn's tests/judge): no sandbox sees it.
+            if (!fs::is_regular_file(o.judge)) throw UsageError("no judge at " + o.judge);
+            assignment.judge = fs::absolute(o.judge).lexically_normal().string();
+            assignment.hiddenTestsBuilt = true;
+            isolation::hideFromSandboxes({assignment.judge});
+        }
         if (!fs::is_directory(o.submission)) throw UsageError("no submission folder " + o.submission);
         const Rubric rubric = loadRubric(assignment.rubric);
         if (const std::string closed = sandboxCannotReach(manifest, assignment); !closed.empty()) throw UsageError(closed);
@@ -188,6 +197,9 @@ void addAutograde(CLI::App& app) {
     a->add_option("--format", options->format, "gradescope, or prairielearn")
         ->check(CLI::IsMember({"gradescope", "prairielearn"}))
         ->capture_default_str();
+    a->add_option("--judge", options->judge,
+                  "the assignment's judge, with its hidden tests, made apart from this simlab (a PrairieLearn "
+                  "question's tests/judge: scripts/prairielearn-judge)");
     a->callback([options] { runAutograde(*options); });
 }
 

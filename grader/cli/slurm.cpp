@@ -18,7 +18,7 @@
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/manifest.h"
-#include "simlab/engine/process.h"
+#include "simlab/isolation/process.h"
 #include "simlab/engine/text.h"
 
 namespace fs = std::filesystem;
@@ -104,7 +104,7 @@ std::string onPath(const std::string& name) {
 // sbatch --parsable ARGS: the job's id. The submitting environment goes with it (the Slurm client's own variables,
 // SLURM_CONF among them), as a shell would pass it.
 std::string sbatch(const std::string& program, const std::vector<std::string>& args, const std::string& dir) {
-    engine::ProcessRequest r;
+    isolation::ProcessRequest r;
     r.argv = {program, "--parsable"};
     r.argv.insert(r.argv.end(), args.begin(), args.end());
     std::vector<std::string> slurm;
@@ -114,19 +114,19 @@ std::string sbatch(const std::string& program, const std::vector<std::string>& a
             slurm.push_back(entry);
         }
     }
-    r.env = engine::childEnvironment(slurm);
+    r.env = isolation::childEnvironment(slurm);
     r.workDir = dir;
     r.limits.wallSeconds = r.limits.cpuSeconds = 120;
     r.limits.outputKiB = 1024;
     r.keepOutput = 1 << 20;
-    const engine::ProcessResult result = engine::runProcess(r);
+    const isolation::ProcessResult result = isolation::runProcess(r);
     if (!result.exitedCleanly()) {
         throw std::runtime_error("sbatch refused the job: " +
-                                 engine::printable(engine::firstLines(result.started ? result.output : result.error, 3)));
+                                 engine::printable(isolation::firstLines(result.started ? result.output : result.error, 3)));
     }
     std::string id = result.output.substr(0, result.output.find_first_of(";\n"));
     if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos) {
-        throw std::runtime_error("sbatch answered '" + engine::printable(engine::firstLines(result.output, 1)) +
+        throw std::runtime_error("sbatch answered '" + engine::printable(isolation::firstLines(result.output, 1)) +
                                  "', not a job id");
     }
     return id;

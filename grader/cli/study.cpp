@@ -27,7 +27,7 @@
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/manifest.h"
-#include "simlab/engine/process.h"
+#include "simlab/isolation/process.h"
 #include "simlab/cli_checks.h"
 #include "simlab/engine/text.h"
 #include "simlab/trade_question.h"
@@ -79,9 +79,9 @@ const char* const kIntegrators[] = {"RungeKuttaMerson", "RungeKutta3", "RungeKut
 int runStudyProgram(const std::vector<std::string>& argv, bool sandboxed,
                     const std::function<void(const json&)>& onLine) {
     engine::TempDir scratch("simlab-study-run-");
-    engine::ProcessRequest request;
+    isolation::ProcessRequest request;
     request.argv = argv;
-    request.env = engine::childEnvironment({"LC_ALL=C", "SIMLAB_PROGRESS=1"});
+    request.env = isolation::childEnvironment({"LC_ALL=C", "SIMLAB_PROGRESS=1"});
     request.workDir = scratch.path();
     request.limits.cpuSeconds = 4 * 3600;  // a net: the points' evaluation caps bound the work
     request.limits.wallSeconds = 12 * 3600;
@@ -96,11 +96,13 @@ int runStudyProgram(const std::vector<std::string>& argv, bool sandboxed,
         else if (!line.empty()) std::cerr << engine::printable(line) << '\n';
     };
     if (sandboxed) {
+        // A student's file built into a study program: the students' system-call filter, as for a probe.
         request.isolate = true;
+        request.studentCode = true;
         request.scratchWorkDir = true;
         request.readOnlyPaths = {fs::path(argv.front()).parent_path().string()};
     }
-    const engine::ProcessResult result = engine::runProcess(request);
+    const isolation::ProcessResult result = isolation::runProcess(request);
     if (!result.started) throw std::runtime_error("cannot run " + argv.front() + ": " + result.error);
     if (result.cpuTimeout || result.wallTimeout) throw std::runtime_error(argv.front() + " ran past its time net");
     if (result.signal != 0) return 128 + result.signal;
@@ -216,7 +218,7 @@ std::vector<std::string> plot(const fs::path& dir, const std::string& subject) {
     const fs::path script = dir / (subject + ".gp");
     engine::writeFileAtomically(script.string(), gp.str());
     try {
-        engine::runTool({gnuplot, script.filename().string()}, dir.string());
+        isolation::runTool({gnuplot, script.filename().string()}, dir.string());
     } catch (const std::runtime_error&) {
         return {};  // the table says what was drawn; no plot is no error of the study
     }
@@ -784,7 +786,7 @@ void runTrade(const StudyOptions& o) {
         studyProgram = built->path() + "/" + a.program + "-study";
         const engine::BuildResult result = engine::Builder(manifest).buildStudy(a, files.name, files.text, studyProgram);
         if (!result.ok) {
-            std::cerr << engine::printable(engine::firstLines(result.log, 30), true);
+            std::cerr << engine::printable(isolation::firstLines(result.log, 30), true);
             throw engine::UsageError(engine::printable(o.file) + (result.stage == "link"    ? " did not link"
                                                                   : result.stage == "check" ? " is refused (forbidden code)"
                                                                                             : " did not compile"));
@@ -922,14 +924,14 @@ std::string lineWith(const std::string& output, const std::string& word) {
 /// defect of the lab program.
 void runExtreme(const std::string& program, double cap, Extreme& e) {
     engine::TempDir dir("simlab-extreme-");
-    engine::ProcessRequest request;
+    isolation::ProcessRequest request;
     request.argv = {program};
     request.argv.insert(request.argv.end(), e.args.begin(), e.args.end());
     const std::string results = dir.path() + "/results.txt";
     request.argv.insert(request.argv.end(), {"--quiet", "--output", results});
     // The program is asked to announce any run longer than a quarter of the cap, so that a case that reaches the
     // cap without a word is one the program itself did not see coming.
-    request.env = engine::childEnvironment(
+    request.env = isolation::childEnvironment(
         {"LC_ALL=C", "SIMLAB_LONG_RUN_SECONDS=" + std::to_string(std::max(1.0, cap / 4))});
     request.workDir = dir.path();
     // CPU time decides, as in grading, so that a busy machine names the same outcomes; wall time is a net.
@@ -939,7 +941,7 @@ void runExtreme(const std::string& program, double cap, Extreme& e) {
     request.limits.fileMiB = 1024;
     request.limits.processes = 64;
     request.keepOutput = 256 * 1024;
-    const engine::ProcessResult r = engine::runProcess(request);
+    const isolation::ProcessResult r = isolation::runProcess(request);
     e.seconds = r.wallSeconds;
     const std::regex nonFinite(R"((^|[^A-Za-z_])(nan|-?inf)([^A-Za-z_]|$))", std::regex::icase);
     if (!r.started) {
@@ -951,7 +953,7 @@ void runExtreme(const std::string& program, double cap, Extreme& e) {
         e.outcome = warned.empty() ? "SILENT: ran past the cap without a word" : "trouble";
         e.line = warned.empty() ? "" : "expected run time past the cap: " + warned;
     } else if (r.signal != 0) {
-        e.outcome = "SILENT: crashed (" + engine::signalName(r.signal) + ")";
+        e.outcome = "SILENT: crashed (" + isolation::signalName(r.signal) + ")";
     } else if (r.exitCode == 2) {
         e.outcome = "rejected";
         e.line = lineWith(r.output, "error:");

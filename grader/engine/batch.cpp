@@ -16,7 +16,7 @@
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/manual.h"
-#include "simlab/engine/process.h"
+#include "simlab/isolation/process.h"
 #include "simlab/engine/text.h"
 #include "simlab/engine/writers.h"
 
@@ -51,7 +51,7 @@ StudentRecord recordOf(const std::string& id, const std::string& key, const Grad
     r.score = report.score();
     r.maxScore = report.maxScore();
     r.seconds = report.seconds;
-    r.compiler = firstLines(report.build.ok ? report.build.warnings : report.build.log, 20);
+    r.compiler = isolation::firstLines(report.build.ok ? report.build.warnings : report.build.log, 20);
     r.sandbox = report.sandbox;
     r.tests = report.tests;
     return r;
@@ -453,7 +453,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
         writeFileAtomically(outDir + "/report.html", classReportHtml(assignment, rubric, result));
     }
     if (setupFailure) std::rethrow_exception(setupFailure);
-    if (childrenInterrupted()) throw Interrupted();
+    if (isolation::childrenInterrupted()) throw Interrupted();
     return result;
 }
 

@@ -22,7 +22,7 @@
 #include "simlab/attachments.h"
 #include "simlab/bounded_json.h"
 #include "simlab/engine/errors.h"
-#include "simlab/engine/process.h"
+#include "simlab/isolation/process.h"
 #include "simlab/engine/record.h"
 
 namespace fs = std::filesystem;
@@ -68,6 +68,7 @@ struct ProbeEvents {
     bool memory = false;
     bool terminated = false;  // std::terminate ran
     std::string type, what;   // the exception in flight then, if there was one
+    std::string refused;      // the system call the students' filter refused (the host names it), if one was
 };
 
 ProbeEvents probeEvents(const std::vector<std::string>& lines) {
@@ -77,6 +78,9 @@ ProbeEvents probeEvents(const std::vector<std::string>& lines) {
         if (!record.is_object() || !record.contains("event") || !record["event"].is_string()) continue;
         const std::string event = record["event"];
         if (event == "memory") e.memory = true;
+        if (event == "refused" && record.contains("call") && record["call"].is_string()) {
+            e.refused = record["call"].get<std::string>().substr(0, 64);
+        }
         if (event == "terminate") {
             e.terminated = true;
             e.type = record.contains("type") && record["type"].is_string() ? record["type"].get<std::string>() : "";
@@ -97,8 +101,8 @@ std::optional<nlohmann::json> judgeVerdict(const std::vector<std::string>& lines
 }
 
 // Why a probe that died of a signal died, as far as simlab can tell.
-std::string crashReason(const ProcessResult& probe, const ProbeEvents& events) {
-    std::string reason = "crashed (" + signalName(probe.signal) + ")";
+std::string crashReason(const isolation::ProcessResult& probe, const ProbeEvents& events) {
+    std::string reason = "crashed (" + isolation::signalName(probe.signal) + ")";
     if (probe.signal == SIGABRT && events.terminated) {
         if (events.type.empty()) return reason + ": std::terminate was called with no exception in flight";
         return reason + ": " + events.type + (events.what.empty() ? "" : " \"" + events.what + "\"") +
@@ -114,12 +118,17 @@ std::string crashReason(const ProcessResult& probe, const ProbeEvents& events) {
         }
         return reason + ": abort() was called";
     }
+    if (probe.signal == SIGSYS) {
+        if (events.refused.empty()) return reason + ": the sandbox refused a system call a simulation does not make";
+        return reason + ": the sandbox refuses the system call " + events.refused +
+               ", which a simulation does not make (simlab's system-call filter)";
+    }
     if (probe.signal == SIGSEGV) return reason + ": a bad pointer, or a stack overflowed by endless recursion";
     if (probe.signal == SIGFPE) return reason + ": an arithmetic fault, such as an integer division by zero";
     return reason;
 }
 
-TestResult interpret(const RubricTest& test, const ProcessResult& probe, const ProcessResult& judge,
+TestResult interpret(const RubricTest& test, const isolation::ProcessResult& probe, const isolation::ProcessResult& judge,
                      const Limits& limits) {
     TestResult t;
     t.name = test.name;
@@ -141,7 +150,7 @@ TestResult interpret(const RubricTest& test, const ProcessResult& probe, const P
     } else if (!verdict && (judge.cpuTimeout || judge.wallTimeout || judge.signal != 0)) {
         t.outcome = Outcome::DidNotFinish;
         t.reason = "the grader's judge stopped (" +
-                   std::string(judge.signal ? signalName(judge.signal) : judge.cpuTimeout ? "its CPU time ran out" : "its time ran out") +
+                   std::string(judge.signal ? isolation::signalName(judge.signal) : judge.cpuTimeout ? "its CPU time ran out" : "its time ran out") +
                    ") before this test: a fault in simlab, not in the submission";
     } else if (probe.memoryLimit) {
         t.outcome = Outcome::OutOfMemory;
@@ -171,7 +180,7 @@ TestResult interpret(const RubricTest& test, const ProcessResult& probe, const P
             t.reason = "the grader has no test of this name: the rubric and the tests disagree";
         } else {
             t.reason = "the grader's judge ended without a verdict (" +
-                       (judge.signal ? signalName(judge.signal) : "status " + std::to_string(judge.exitCode)) +
+                       (judge.signal ? isolation::signalName(judge.signal) : "status " + std::to_string(judge.exitCode)) +
                        "): a fault in simlab, not in the submission";
         }
     } else if (verdict->value("channel", "") == "process ended") {
@@ -219,9 +228,10 @@ TestResult interpret(const RubricTest& test, const ProcessResult& probe, const P
     return t;
 }
 
-// Where one submission's grading happens: the probe's program, the judges' files, a folder per process.
+// Where one submission's grading happens: the probe (a shared object) and the host it runs in, the judges' files,
+// a folder per process.
 struct Workspace {
-    std::string root, build, probe;
+    std::string root, build, probe, host;
 };
 
 // A judge's files: the rubric, and the files handed in beside the source (or why each was refused).
@@ -254,34 +264,36 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
         throw std::runtime_error(std::string("cannot create a socket: ") + std::strerror(errno));
     }
     std::mutex lock;
-    std::map<std::string, ProcessResult> probes;  // by test name
+    std::map<std::string, isolation::ProcessResult> probes;  // by test name
     std::vector<std::thread> running;
     int started = 0;
 
-    // Where the sandbox allows, the tests' probes are forked from one started probe program (TestServer): each is
-    // still a process of its own, as a user of its own. The server starts while the judge does.
-    std::unique_ptr<TestServer> probeServer;
+    // Where the sandbox allows, the tests' probes are forked from one host started for them (TestServer): each is
+    // still a process of its own, as a user of its own, and loads the probe only once it is. The server starts
+    // while the judge does.
+    std::unique_ptr<isolation::TestServer> probeServer;
     const std::vector<std::string> probeEnvironment = {"PATH=/usr/bin:/bin", "TMPDIR=/tmp", "LC_ALL=C"};
-    if (testServers()) {
+    if (isolation::testServers()) {
         const std::string program = w.root + "/" + tag + "server";
         const std::string home = w.root + "/" + tag + "probes";
         fs::create_directory(program);
         fs::create_directory(home);
-        writeFileAtomically(program + "/probe", readFile(w.probe + "/probe"));
-        fs::permissions(program + "/probe", fs::perms::owner_all);
-        // Each test's probe makes its folder there, through root's group (probe_main.cpp): nothing else of it is any
-        // test's to write or list.
+        writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
+        fs::permissions(program, fs::perms::owner_all | fs::perms::others_exec);
+        fs::permissions(program + "/probe.so", fs::perms::owner_read | fs::perms::others_read);
+        // Each test's child makes its folder there, through root's group (probe_host.cpp): nothing else of it is
+        // any test's to write or list.
         fs::permissions(home, fs::perms::owner_all | fs::perms::group_write | fs::perms::group_exec |
                                   fs::perms::others_exec);
-        ProcessRequest server;
-        server.argv = {program + "/probe", "--serve"};
+        isolation::ProcessRequest server;
+        server.argv = {w.host, "--serve", program + "/probe.so"};
         server.env = probeEnvironment;
         server.env.push_back("HOME=" + home);
         server.workDir = home;
         server.limits = serverLimits(limits, tests.size());
-        server.readOnlyPaths = {program};
+        server.readOnlyPaths = {program, w.host};
         server.scratchWorkDir = true;
-        probeServer = std::make_unique<TestServer>(server);
+        probeServer = std::make_unique<isolation::TestServer>(server);
     }
 
     // Each message from the judge is "probe <test>"; each reply carries the judge's ends of the new pipes.
@@ -300,32 +312,32 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
                 }
                 break;  // the judge reads the socket's end: its tests say the process could not start
             }
-            ProcessRequest probe;
+            isolation::ProcessRequest probe;
             probe.limits = limits;
             probe.reportChannel = true;
             probe.passFds = {{4, requests[0]}, {5, answers[1]}};
             probe.isolate = true;
             probe.scratchWorkDir = true;
             running.emplace_back([&, probe, test, number = ++started]() mutable {
-                std::optional<ProcessResult> result;
+                std::optional<isolation::ProcessResult> result;
                 if (probeServer) result = probeServer->run(probe);
                 if (!result) {
-                    // A probe program of its own, run as a user of its own, from a copy of the program that user owns
-                    // while it runs (a test's user never touches another's files, even as one test ends and the
-                    // next begins).
+                    // A host of its own, run as a user of its own, loading a copy of the probe that user owns while
+                    // it runs (a test's user never touches another's files, even as one test ends and the next
+                    // begins).
                     const std::string dir = w.root + "/" + tag + "test" + std::to_string(number);
                     const std::string program = w.root + "/" + tag + "program" + std::to_string(number);
                     fs::create_directory(dir);
                     fs::create_directory(program);
-                    writeFileAtomically(program + "/probe", readFile(w.probe + "/probe"));
-                    fs::permissions(program + "/probe", fs::perms::owner_all);
-                    probe.argv = {program + "/probe"};
+                    writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
+                    fs::permissions(program + "/probe.so", fs::perms::owner_read);
+                    probe.argv = {w.host, program + "/probe.so"};
                     probe.env = probeEnvironment;
                     probe.env.push_back("HOME=" + dir);
                     probe.workDir = dir;
-                    probe.readOnlyPaths = {program};
+                    probe.readOnlyPaths = {program, w.host};
                     probe.handOver = {program};
-                    result = runProcess(probe);
+                    result = isolation::runProcess(probe);
                 }
                 std::lock_guard<std::mutex> guard(lock);
                 probes[test] = std::move(*result);
@@ -333,7 +345,7 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
             // The judge's ends: sent, then closed here, so that each pipe ends when its last holder does.
             const int ends[2] = {requests[1], answers[0]};
             const char byte = 'p';
-            const bool sent = sendWithDescriptors(socket[0], &byte, 1, {ends[0], ends[1]});
+            const bool sent = isolation::sendWithDescriptors(socket[0], &byte, 1, {ends[0], ends[1]});
             ::close(ends[0]);
             ::close(ends[1]);
             if (!sent) break;
@@ -345,7 +357,7 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     const std::string judgeProgram = judgeFiles + "/judge";
     writeFileAtomically(judgeProgram, readFile(assignment.judge));
     fs::permissions(judgeProgram, fs::perms::owner_all);
-    ProcessRequest judge;
+    isolation::ProcessRequest judge;
     // One test spec naming every test: Catch2 reads commas as "or" (a rubric's names hold none).
     std::string names;
     for (const RubricTest* test : tests) names += (names.empty() ? "" : ",") + test->name;
@@ -362,7 +374,7 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     judge.readOnlyPaths = {judgeProgram, judgeFiles};
     judge.handOver = {judgeFiles};  // its user's alone: no probe can read the judge, the rubric or the files
     judge.scratchWorkDir = true;
-    const ProcessResult judged = runProcess(judge);
+    const isolation::ProcessResult judged = isolation::runProcess(judge);
     ::shutdown(socket[0], SHUT_RDWR);  // ends the server's wait, should the judge have left a copy behind
     server.join();
     for (std::thread& t : running) t.join();
@@ -375,7 +387,7 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     if (interrupted) throw Interrupted();
     std::vector<TestResult> results;
     for (const RubricTest* test : tests) {
-        ProcessResult probe;  // a test that asked nothing had no probe: as if one had started and ended cleanly
+        isolation::ProcessResult probe;  // a test that asked nothing had no probe: as if one had started and ended cleanly
         probe.started = true;
         probe.exitCode = 0;
         if (const auto found = probes.find(test->name); found != probes.end()) probe = found->second;
@@ -502,11 +514,11 @@ std::string secretsExposed(const Manifest& manifest, const Assignment& assignmen
         std::error_code ignored;
         if (!path.empty()) path = fs::absolute(path, ignored).lexically_normal().string();
     }
-    const std::vector<std::string> readable = readableInSandbox(secrets);
+    const std::vector<std::string> readable = isolation::readableInSandbox(secrets);
     if (readable.empty()) return "";
     std::string paths;
     for (const std::string& path : readable) paths += " " + path;
-    return "in this sandbox (" + sandboxSupport().mode + ") a test's code could read " + readable.front() +
+    return "in this sandbox (" + isolation::sandboxSupport().mode + ") a test's code could read " + readable.front() +
            (readable.size() > 1 ? " and " + std::to_string(readable.size() - 1) + " more" : "") +
            ", so hidden tests are not run: make them unreadable to other users (chmod -R go-rwx" + paths +
            "), or install bubblewrap";
@@ -787,7 +799,7 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
     report.title = assignment.title;
     report.manual = rubric.manual;
     report.source = files.shown;
-    report.sandbox = sandboxSupport().summary;
+    report.sandbox = isolation::sandboxSupport().summary;
     for (const HandedIn& extra : files.extras) {
         if (!extra.ok) report.note += (report.note.empty() ? "" : "; ") + extra.refusal;
     }
@@ -810,16 +822,17 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
         }
     }
 
-    // work/build: the student's file and its object (the compiler's folder); work/probe: the probe's program,
-    // which its sandbox is lent; work/judgeN: the rubric and the files handed in beside the source, which judge N's
-    // sandbox is lent - never a probe's. Each process gets an empty folder of its own as well.
+    // work/build: the student's file and its object (the compiler's folder); work/probe: the probe, which its
+    // sandbox is lent; work/judgeN: the rubric and the files handed in beside the source, which judge N's sandbox
+    // is lent - never a probe's. Each process gets an empty folder of its own as well.
     TempDir work("simlab-" + assignment.id + "-", options.workRoot);
-    Workspace w{work.path(), work.path() + "/build", work.path() + "/probe"};
+    Workspace w{work.path(), work.path() + "/build", work.path() + "/probe", builder.probeHost()};
     for (const std::string& dir : {w.build, w.probe}) fs::create_directory(dir);
     // Each folder below is handed to the sandbox user of the process that works in it, for that run (0700).
     makePassable(w.root);
     if (options.progress) options.progress("building");
-    report.build = builder.buildProbe(assignment, files.name, files.text, w.build, w.probe + "/probe");
+    report.build =
+        builder.buildProbe(assignment, files.name, files.text, w.build, w.probe + "/probe.so", options.checkObject);
     if (report.build.interrupted) throw Interrupted();
     const Limits limits = options.limits.value_or(rubric.limits);
 

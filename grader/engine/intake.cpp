@@ -253,13 +253,18 @@ std::vector<IntakeStudent> gradescope(const std::string& folder, const std::stri
             id += (id.empty() ? "" : "+") + safeId(own);
             names += (names.empty() ? "" : ", ") + s.name;
         }
-        // Ids are the students': two submissions whose students' ids are alike stay apart, and say so.
+        // Ids are the students': two submissions whose students' ids are alike stay apart, and say so. The new id is
+        // one no submission has taken, whatever the SIDs (a SID may be "s42-submission_103" itself): a clash is
+        // never two submissions in one folder.
         IntakeStudent first = members.front();
-        if (!taken.insert(id).second) {
-            first.note = "the id " + id + " is another submission's too: this one is " + id + "-" + safeId(submission);
-            id += "-" + safeId(submission);
-            taken.insert(id);
+        if (taken.count(id)) {
+            const std::string apart = id + "-" + safeId(submission);
+            std::string unique = apart;
+            for (int n = 2; taken.count(unique); ++n) unique = apart + "-" + std::to_string(n);
+            first.note = "the id " + id + " is another submission's too: this one is " + unique;
+            id = unique;
         }
+        taken.insert(id);
         idOf[submission] = id;
         first.id = id;
         const std::string dir = folder + "/" + submission;

@@ -1,4 +1,5 @@
 #include "simlab/engine/manifest.h"
+#include "simlab/isolation/process.h"
 
 #include <pwd.h>
 #include <unistd.h>
@@ -136,6 +137,7 @@ Manifest loadManifest(const std::string& path) {
         m.link = j.at("link").get<std::vector<std::string>>();
         m.probeLibraries = j.at("probe_libraries").get<std::vector<std::string>>();
         m.probeLink = j.at("probe_link").get<std::vector<std::string>>();
+        m.probeHost = j.at("probe_host");
         m.floorLibraries = j.at("floor_libraries").get<std::vector<std::string>>();
         m.programLibraries = j.at("program_libraries").get<std::vector<std::string>>();
         m.studyLibraries = j.value("study_libraries", std::vector<std::string>());
@@ -170,6 +172,18 @@ Manifest loadManifest(const std::string& path) {
     } catch (const nlohmann::json::exception& e) {
         throw UsageError("build manifest " + path + " is damaged (" + e.what() + "): rebuild with scripts/setup");
     }
+    // Nothing of simlab's own is any sandbox's to see but what each process is lent: a sandbox lets its processes
+    // read the system's folders, and an installation in /usr/local lies among them.
+    std::vector<std::string> hidden = {m.sourceDir, m.buildDir, m.cacheDir, m.sampleClass,
+                                       fs::path(m.path).parent_path().string()};
+    if (const char* cache = std::getenv("SIMLAB_CACHE"); cache && *cache) hidden.push_back(cache);
+    if (m.installed) {
+        for (const char* place : {"/lib/simlab", "/share/simlab"}) hidden.push_back(m.prefix + place);
+    }
+    for (const Assignment& a : m.assignments) {
+        for (const std::string& secret : secretPaths(m, a)) hidden.push_back(secret);
+    }
+    isolation::hideFromSandboxes(hidden);
     return m;
 }
 

@@ -12,7 +12,7 @@
 #include "simlab/engine/build.h"
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
-#include "simlab/engine/process.h"
+#include "simlab/isolation/process.h"
 #include "simlab/engine/report.h"
 #include "simlab/engine/text.h"
 #include "simlab/rubric.h"
@@ -116,15 +116,15 @@ void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSu
         if (!a.referenceProgramPath.empty()) {
             TempDir scratch("simlab-handout-");
             const std::string plot = "figures/" + a.id + "-reference.svg", replay = a.id + "-replay.html";
-            ProcessRequest r;
+            isolation::ProcessRequest r;
             r.argv = {a.referenceProgramPath, "--quiet", "--output", scratch.path() + "/results.txt", "--plot",
                       handouts + "/" + plot, "--replay", handouts + "/" + replay};
-            r.env = childEnvironment({"LC_ALL=C"});
+            r.env = isolation::childEnvironment({"LC_ALL=C"});
             r.workDir = scratch.path();
             r.limits.wallSeconds = r.limits.cpuSeconds = 120;
             r.limits.outputKiB = 1024;
             r.keepOutput = 4096;
-            const ProcessResult ran = runProcess(r);
+            const isolation::ProcessResult ran = isolation::runProcess(r);
             if (ran.exitedCleanly() && fs::exists(handouts + "/" + plot) && fs::exists(handouts + "/" + replay)) {
                 ++runs;
                 after = "<section id=\"reference-run\">\n<h2>The reference solution's run</h2>\n<p>What <code>" + a.program +
@@ -158,7 +158,7 @@ void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSu
             writeFileAtomically(afterFile, after);
             argv.push_back("--include-after-body=." + a.id + "-after.html");
         }
-        runTool(argv, handouts);
+        isolation::runTool(argv, handouts);
         std::error_code ignored;
         fs::remove(afterFile, ignored);
         ++pages;
@@ -211,7 +211,7 @@ std::string stableUuid(const std::string& name) {
 std::vector<std::string> projectFiles(const std::string& sourceDir) {
     std::vector<std::string> files;
     if (fs::exists(fs::path(sourceDir) / ".git") && fs::exists("/usr/bin/git")) {
-        std::istringstream list(runTool({"/usr/bin/git", "-C", sourceDir, "ls-files", "--cached", "--others",
+        std::istringstream list(isolation::runTool({"/usr/bin/git", "-C", sourceDir, "ls-files", "--cached", "--others",
                                          "--exclude-standard"},
                                         sourceDir));
         std::string file;
@@ -304,7 +304,7 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
 
     std::error_code ignored;
     fs::remove(target, ignored);
-    runTool({"/usr/bin/zip", "-q", "-r", "-X", target.string(), "."}, staging.path());
+    isolation::runTool({"/usr/bin/zip", "-q", "-r", "-X", target.string(), "."}, staging.path());
     return summary;
 }
 
@@ -320,39 +320,68 @@ PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignm
     });
     if (!imageName) throw UsageError("'" + options.image + "' is not a Docker image name (such as course/simlab:2025)");
     fs::create_directories(outDir + "/tests");
-    // The grading image's build context: the project as Gradescope's archive has it, and its Dockerfile.
-    PackageSummary summary = copyFiles(manifest, instructorOnly(), outDir + "/image/simlab");
+    // The grading image's build context: the project as students may have it - no hidden test, no solution but the
+    // worked example - and its Dockerfile. PrairieLearn pulls images from a public registry: anyone may pull it.
+    std::set<std::string> hidden;
+    for (const Assignment& a : manifest.assignments) {
+        for (const std::string& h : a.hiddenTests) hidden.insert(relativeTo(h, manifest.sourceDir));
+    }
+    std::vector<Rule> rules = instructorOnly();
+    rules.push_back({"hidden tests: in the question's tests/hidden/, which PrairieLearn keeps from students",
+                     [hidden](const std::string& f) { return hidden.count(f) > 0; }});
+    PackageSummary summary = copyFiles(manifest, rules, outDir + "/image/simlab");
     addCatch2(manifest, outDir + "/image/simlab", summary);
     writeFileAtomically(outDir + "/image/Dockerfile",
         "# The grading image of the simlab " + assignment.id + " question: Ubuntu 24.04 with simlab built in\n"
         "# /simlab (scripts/setup installs the packages and builds; simlab needs CMake 3.25 and\n"
-        "# libtomlplusplus-dev). Build it here and push it where PrairieLearn pulls images from, under the name\n"
-        "# that ../info.json gives as externalGradingOptions.image:\n"
+        "# libtomlplusplus-dev). It holds no hidden test: those are in ../tests/, which PrairieLearn keeps from\n"
+        "# students. Build it here and push it where PrairieLearn pulls images from, under the name that\n"
+        "# ../info.json gives as externalGradingOptions.image; then, once, make the judge of the hidden tests with it:\n"
         "#     docker build -t " + options.image + " . && docker push " + options.image + "\n"
+        "#     docker run --rm -v \"$PWD/../tests:/grade/tests\" " + options.image +
+            " /simlab/scripts/prairielearn-judge " + assignment.id + " /grade/tests\n"
         "FROM ubuntu:24.04\n"
         "COPY simlab /simlab\n"
-        "RUN SIMLAB_CMAKE_ARGS=-DBUILD_TESTING=OFF /simlab/scripts/setup && rm -rf /var/lib/apt/lists/* && \\\n"
-        "    /simlab/scripts/lock-course\n");
+        "RUN SIMLAB_CMAKE_ARGS=-DBUILD_TESTING=OFF SIMLAB_TARGETS=\"simlab " + assignment.id +
+            "_grader\" /simlab/scripts/setup && \\\n"
+        "    rm -rf /var/lib/apt/lists/*\n");
+
+    // The hidden tests, for the judge the instructor makes once in the image (scripts/prairielearn-judge), which
+    // PrairieLearn copies to /grade/tests with the entry point at grading time.
+    for (const std::string& h : assignment.hiddenTests) {
+        std::error_code missing;
+        if (!fs::exists(h, missing)) continue;
+        const std::string to = outDir + "/tests/hidden/" + relativeTo(h, manifest.sourceDir);
+        fs::create_directories(fs::path(to).parent_path());
+        fs::copy_file(h, to);
+        ++summary.files;
+    }
 
     // The entry point: PrairieLearn copies the question's tests/ to /grade/tests and runs it there.
     const std::string results = "$root/results/results.json";
+    const auto notGradable = [&](const std::string& why) {
+        return "  echo '{\"gradable\": false, \"score\": 0, \"message\": \"The autograder could not grade this "
+               "submission: " + why + ".\", \"format_errors\": [\"" + why + "\"]}' >\"" + results + "\"\n"
+               "  exit 1\n";
+    };
     writeFileAtomically(outDir + "/tests/run_autograder",
         "#!/usr/bin/env bash\n"
         "# PrairieLearn runs this in the grading container for every submission: it grades /grade/student on every\n"
-        "# test of the " + assignment.id + " assignment and writes /grade/results/results.json.\n"
+        "# test of the " + assignment.id + " assignment, the hidden ones with the judge in this folder, and writes\n"
+        "# /grade/results/results.json.\n"
         "#   GRADE_ROOT  replaces /grade (for testing)\n"
         "#   SIMLAB      the simlab command (default: the grading image's)\n"
         "root=${GRADE_ROOT:-/grade}\n"
         "simlab=${SIMLAB:-/simlab/build/bin/simlab}\n"
         "mkdir -p \"$root/results\"\n"
-        "if [[ ! -x $simlab ]]; then\n"
-        "  echo '{\"gradable\": false, \"score\": 0, \"message\": \"The autograder could not grade this submission: "
-        "simlab is not in the grading image.\", \"format_errors\": [\"simlab is not in the grading image\"]}' >\"" +
-            results + "\"\n"
-        "  exit 1\n"
-        "fi\n"
-        "exec \"$simlab\" autograde " + assignment.id + " --format prairielearn --submission \"$root/student\" --results \"" +
-            results + "\"\n");
+        "if [[ ! -x $simlab ]]; then\n" + notGradable("simlab is not in the grading image") + "fi\n"
+        "if [[ ! -f $root/tests/judge ]]; then\n" +
+            notGradable("the question has no judge of its hidden tests (tests/judge): make it once with "
+                        "scripts/prairielearn-judge, as image/Dockerfile says") + "fi\n"
+        "# The hidden tests' judge is root's alone, should the container allow neither bubblewrap nor Landlock.\n"
+        "chmod -R go-rwx \"$root/tests\" 2>/dev/null\n"
+        "exec \"$simlab\" autograde " + assignment.id + " --format prairielearn --judge \"$root/tests/judge\" "
+        "--submission \"$root/student\" --results \"" + results + "\"\n");
     makeExecutable(outDir + "/tests/run_autograder");
 
     const nlohmann::json info = {
@@ -391,7 +420,8 @@ PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignm
     }
     summary.files += 4;
     summary.made.push_back("info.json (image " + options.image + ", timeout " + std::to_string(options.timeout) +
-                           " s), question.html, tests/run_autograder, image/Dockerfile");
+                           " s), question.html, tests/run_autograder, tests/hidden/ (its judge, tests/judge, made "
+                           "once in the image: image/Dockerfile says how), image/Dockerfile");
     return summary;
 }
 

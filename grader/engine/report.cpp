@@ -38,7 +38,7 @@ std::string buildLine(const BuildResult& b) {
 // The compiler's warnings about the student's file, to show under the build line.
 std::string warningLines(const BuildResult& b, int maxLines) {
     if (!b.ok || warningCount(b.warnings) == 0) return "";
-    return firstLines(printable(b.warnings, true), maxLines);
+    return isolation::firstLines(printable(b.warnings, true), maxLines);
 }
 
 std::string indent(const std::string& text, const std::string& prefix) {
@@ -86,7 +86,7 @@ std::string renderText(const GradeReport& r) {
     if (!r.note.empty()) out << "  " << printable(r.note) << "\n";
     out << "  " << buildLine(r.build) << "\n";
     if (!r.sandbox.empty() && r.build.ok) out << "  sandbox: " << r.sandbox << "\n";
-    if (!r.build.ok) out << indent(firstLines(printable(r.build.log, true), 12), "    | ");
+    if (!r.build.ok) out << indent(isolation::firstLines(printable(r.build.log, true), 12), "    | ");
     out << indent(warningLines(r.build, 12), "    | ");
     const std::string* previous = nullptr;
     for (const TestResult& t : r.tests) {
@@ -126,7 +126,7 @@ nlohmann::json toGradescope(const GradeReport& r) {
         std::string output = outcomeName(t.outcome);
         if (!t.reason.empty() && t.outcome != Outcome::DidNotCompile) output += ": " + printable(t.reason);
         for (const std::string& line : t.feedback) output += "\n- " + printable(line);
-        if (t.outcome == Outcome::DidNotCompile) output += "\n" + firstLines(printable(r.build.log, true), 12);
+        if (t.outcome == Outcome::DidNotCompile) output += "\n" + isolation::firstLines(printable(r.build.log, true), 12);
         nlohmann::json test = {{"name", t.name},
                                {"score", t.score},
                                {"max_score", t.maxScore},
@@ -143,7 +143,7 @@ nlohmann::json toGradescope(const GradeReport& r) {
     std::string output = r.note.empty() ? "" : printable(r.note) + "\n";
     output += buildLine(r.build) + "\n";
     if (!r.sandbox.empty()) output += "sandbox: " + r.sandbox + "\n";
-    if (!r.build.ok) output += firstLines(printable(r.build.log, true), 20);
+    if (!r.build.ok) output += isolation::firstLines(printable(r.build.log, true), 20);
     output += warningLines(r.build, 20);
     const std::string left = notRunLine(r);
     if (!left.empty()) output += left + "\n";

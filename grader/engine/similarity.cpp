@@ -11,7 +11,7 @@
 
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
-#include "simlab/engine/process.h"
+#include "simlab/isolation/process.h"
 #include "simlab/engine/text.h"
 #include "writers/html.h"
 
@@ -67,10 +67,10 @@ SimilarityReport compareSubmissions(const std::map<std::string, std::string>& fi
         writeFileAtomically(dir.path() + "/" + names.back(), withoutStarter(text, starter));
     }
     if (report.ids.size() < 2) return report;
-    ProcessRequest request;
+    isolation::ProcessRequest request;
     request.argv = {kSim, "-p", "-e", "-s", "-t", "1"};
     request.argv.insert(request.argv.end(), names.begin(), names.end());
-    request.env = childEnvironment({"LC_ALL=C"});
+    request.env = isolation::childEnvironment({"LC_ALL=C"});
     request.workDir = dir.path();
     request.isolate = true;
     request.handOver = {dir.path()};
@@ -78,7 +78,7 @@ SimilarityReport compareSubmissions(const std::map<std::string, std::string>& fi
     request.limits.wallSeconds = 1200;
     request.limits.outputKiB = 64 * 1024;
     request.keepOutput = 64 << 20;
-    const ProcessResult run = runProcess(request);
+    const isolation::ProcessResult run = isolation::runProcess(request);
     if (!run.exitedCleanly()) {
         throw UsageError("sim_c++ failed (" + (run.started ? "status " + std::to_string(run.exitCode) : run.error) + ")");
     }

@@ -1,4 +1,4 @@
-// AddressSanitizer's defaults in the two processes simlab runs in a sandbox, the judge and the probe: in a build
+// AddressSanitizer's defaults in the programs simlab runs in a sandbox, the judge and the probe's host: in a build
 // with -DSIMLAB_SANITIZE=ON only (elsewhere this file is empty).
 //
 // A crash of student code must reach simlab as the signal it is (SIGSEGV, SIGFPE, ...), which the engine turns into

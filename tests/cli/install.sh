@@ -1,6 +1,8 @@
 # cmake --install, then the prefix moved: the moved simlab grades a file as the build's simlab does, making its
 # precompiled header where it now is (once), and a project made by it builds with find_package(simlab) and runs;
-# --version and the man page are there; a package command from an installation is one line.
+# --version and the man page are there; a package command from an installation is one line. In each installed
+# layout - a prefix, the same moved, one among the system's files (/usr/local) - the isolation's invariants hold:
+# no code of a submission runs with privilege or reads a secret of that installation, with bubblewrap and without.
 # Usage: install.sh BUILD_DIR
 # shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
@@ -39,6 +41,27 @@ check "once: the next check compiles against it without making it again" \
   bash -c "grep -q '^Score: ' again.out && ! grep -q 'precompiled header' again.err"
 check "what it keeps between runs is in the user's cache, not in the prefix" test -d "$XDG_CACHE_HOME/simlab"
 
+# invariants LAYOUT MANIFEST: the isolation's invariants graded by that installation, with bubblewrap and without,
+# its files opened to every user first: the sandbox hides them, not their modes (which the installer closes too).
+invariants() {
+  local layout=$1 manifest=$2 mode
+  chmod -R o+rX "$(dirname "$manifest")" "$(dirname "$(dirname "$(dirname "$manifest")")")/share/simlab"
+  for mode in bubblewrap Landlock; do
+    local settings=(SIMLAB_MANIFEST="$manifest")
+    [[ $mode == Landlock ]] && settings+=(SIMLAB_NO_BUBBLEWRAP=1)
+    run_capture "invariants-$layout-$mode" env "${settings[@]}" "$CORPUS" invariants apple \
+      "$SOURCE_DIR"/tests/corpus/apple/invariants/*.toml
+    if [[ $mode == Landlock ]] && ! grep -q '^sandbox: Landlock' "invariants-$layout-$mode.out"; then
+      echo "skipped: the invariants of the $layout installation without bubblewrap (no Landlock here)"
+      continue
+    fi
+    grep -E '^(OK|FAILED|    )' "invariants-$layout-$mode.out" | sed 's/^/    /'
+    check "installed ($layout, $mode): no code of a submission ran with privilege or read a secret of the installation" \
+      bash -c "test $(status_of "invariants-$layout-$mode") -eq 0 && grep -q '^manifest: $manifest' invariants-$layout-$mode.out"
+  done
+}
+invariants moved "$work/moved/lib/simlab/simlab-build.json"
+
 run_capture new moved/bin/simlab project new myboot --from babyboot
 check "a project made by the installed simlab asks for it with find_package(simlab)" \
   grep -q "^find_package(simlab .* REQUIRED CONFIG HINTS \"$work/moved/lib/cmake/simlab\")$" myboot/CMakeLists.txt
@@ -72,6 +95,7 @@ if [[ -w /usr/local ]]; then
   unset SIMLAB_NO_BUBBLEWRAP
   run_capture systemall env SIMLAB_NO_BUBBLEWRAP=1 "$system/bin/simlab" check apple solution.cpp --all
   check "and the hidden tests run there without bubblewrap, out of the tests' reach" grep -qx 'Score: 100/100' systemall.out
+  invariants usr-local "$system/lib/simlab/simlab-build.json"
 fi
 
 run_capture package moved/bin/simlab package student -o bundle

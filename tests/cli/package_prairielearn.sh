@@ -1,6 +1,8 @@
 # simlab package prairielearn: the question folder PrairieLearn documents (info.json, question.html, tests/), its
-# image's Dockerfile, and the entry point run in a temporary /grade with this build's simlab: results.json in
-# PrairieLearn's format, with the points simlab check --all gives.
+# image - no hidden test in it, since anyone may pull it - built from the package as its Dockerfile builds it, the
+# hidden tests' judge made with that build from the question's tests/ (scripts/prairielearn-judge), and the entry
+# point run in a temporary /grade with it: results.json in PrairieLearn's format, with the points simlab check --all
+# gives.
 # shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 validate() { python3 "$SOURCE_DIR/tests/tools/validate_platforms.py" "$@"; }
@@ -25,10 +27,17 @@ check "the Dockerfile builds simlab with scripts/setup on Ubuntu 24.04" bash -c 
   grep -qx 'FROM ubuntu:24.04' question/image/Dockerfile &&
   grep -qx 'COPY simlab /simlab' question/image/Dockerfile &&
   grep -q '^RUN .*/simlab/scripts/setup' question/image/Dockerfile && test -x question/image/simlab/scripts/setup"
-check "the image's sources hold the hidden tests and Catch2 2.13's header" \
-  test -f question/image/simlab/assignments/apple/tests/hidden.cpp -a -f question/image/simlab/third_party/catch2/catch.hpp
+check "the image's sources hold Catch2 2.13's header and no hidden test" bash -c "
+  test -f question/image/simlab/third_party/catch2/catch.hpp &&
+  test -z \"\$(find question/image/simlab -name 'hidden*' -o -name 'trade-hidden*')\""
 check "and no solutions (but the worked example project's)" \
   bash -c "! find question/image/simlab/solutions -mindepth 1 -maxdepth 1 | grep -qv '/solutions/biosim$'"
+check "the hidden tests are in tests/hidden, which PrairieLearn keeps from students" bash -c "
+  cmp question/tests/hidden/assignments/apple/tests/hidden.cpp '$SOURCE_DIR/assignments/apple/tests/hidden.cpp' &&
+  cmp question/tests/hidden/assignments/apple/tests/trade-hidden.json '$SOURCE_DIR/assignments/apple/tests/trade-hidden.json'"
+check "the Dockerfile says how to make the judge once" \
+  grep -q 'docker run --rm -v "$PWD/../tests:/grade/tests" course/simlab:1 /simlab/scripts/prairielearn-judge apple /grade/tests' \
+  question/image/Dockerfile
 check "the default entry point is the image's simlab" grep -q 'SIMLAB:-/simlab/build/bin/simlab' question/tests/run_autograder
 
 run_capture upload "$SIMLAB" package prairielearn apple -o uploaded --upload
@@ -41,14 +50,37 @@ run_capture again "$SIMLAB" package prairielearn apple -o question
 check "a folder that is not empty is refused" bash -c "test $(status_of again) -ne 0 && grep -q 'not empty' again.err"
 
 grade=$PWD/grade
+mkdir -p "$grade"
 grade_submission() {  # grade_submission NAME: run the entry point on what is in $grade/student
   rm -rf "$grade/results"
-  GRADE_ROOT=$grade SIMLAB=$SIMLAB question/tests/run_autograder >"$1.out" 2>"$1.err"
+  GRADE_ROOT=$grade SIMLAB=$image_simlab "$grade/tests/run_autograder" >"$1.out" 2>"$1.err"
   echo $? >"$1.status"
 }
 
+# The image, as its Dockerfile builds it (the packages are there already: SIMLAB_SKIP_APT).
+image=question/image/simlab
+image_simlab=$PWD/$image/build/bin/simlab
+SIMLAB_SKIP_APT=1 SIMLAB_CMAKE_ARGS=-DBUILD_TESTING=OFF SIMLAB_TARGETS="simlab apple_grader" "$image/scripts/setup" \
+  >image-build.log 2>&1
+check "the image's simlab builds from its sources" test -x "$image_simlab" || tail -20 image-build.log
+cp -r question/tests "$grade/tests"
 mkdir -p "$grade/student"
 cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" "$grade/student/"
+grade_submission nojudge
+check "before the judge is made: not gradable, saying how to make it" bash -c "
+  test $(status_of nojudge) -ne 0 &&
+  python3 '$SOURCE_DIR/tests/tools/validate_platforms.py' prairielearn '$grade/results/results.json' --gradable no &&
+  grep -q 'scripts/prairielearn-judge' '$grade/results/results.json'"
+run_capture imagecheck "$image_simlab" check apple "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" --all
+check "the image's own simlab has no hidden test to run (--all is refused)" \
+  bash -c "test $(status_of imagecheck) -ne 0 && grep -q 'hidden tests' imagecheck.err"
+run_capture judge "$image/scripts/prairielearn-judge" apple "$grade/tests"
+check "scripts/prairielearn-judge makes tests/judge in the image's build, with the hidden tests" \
+  bash -c "test $(status_of judge) -eq 0 && test -x '$grade/tests/judge' && grep -q 'wrote .*tests/judge' judge.out"
+check "and leaves the image's tree as it found it: no hidden test in it, its own judge without them" bash -c "
+  test -z \"\$(find $image -path $image/build -prune -o -name 'hidden*' -print)\" &&
+  ! grep -q 'hidden: ' $image/build/judges/apple-judge"
+
 "$SIMLAB" check apple "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" --all --format json >reference.json
 grade_submission reference
 check "the entry point grades the reference into a valid results.json: score 1, the points of check --all" \
@@ -80,7 +112,7 @@ check "no submission at all: still a results.json, not gradable" \
   validate prairielearn "$grade/results/results.json" --gradable no
 
 rm -rf "$grade/results"
-GRADE_ROOT=$grade SIMLAB=/nonexistent/simlab question/tests/run_autograder >broken.out 2>&1
+GRADE_ROOT=$grade SIMLAB=/nonexistent/simlab "$grade/tests/run_autograder" >broken.out 2>&1
 check "an image without simlab: a results.json that says so" \
   bash -c "python3 '$SOURCE_DIR/tests/tools/validate_platforms.py' prairielearn '$grade/results/results.json' --gradable no &&
            grep -q 'simlab is not in the grading image' '$grade/results/results.json'"

@@ -1,4 +1,4 @@
-# simlab's grading engine and its command pass clang-tidy with the project's .clang-tidy (every finding an error):
+# simlab's grading engine, its isolation and its command pass clang-tidy with the project's .clang-tidy (every finding an error):
 # each of their translation units in the build's compile_commands.json, read without GCC's precompiled header
 # (clang cannot read it; every source includes what it uses), two at a time. glibc's <sys/platform/x86.h> spells
 # bool as C's _Bool, which GCC reads in C++ and clang does not: clang is told it is bool.
@@ -18,7 +18,9 @@ import json, shlex, sys
 entries = []
 for e in json.load(open(sys.argv[1])):
     f = e["file"]
-    if not any(part in f for part in ("/simlab_engine.dir/", "/simlab.dir/", "/grader/engine/", "/grader/cli/")):
+    if not any(part in f for part in ("/simlab_engine.dir/", "/simlab.dir/", "/simlab_isolation.dir/",
+                                      "/simlab-probe-host.dir/", "/simlab_filter.dir/", "/grader/engine/",
+                                      "/grader/cli/", "/grader/isolation/")):
         continue
     if f.endswith("cmake_pch.hxx.cxx") or f.endswith("cmake_pch.hxx.cpp"):
         continue

@@ -29,10 +29,23 @@
 //                                              # text = "..." (with percent = true for raw bytes)
 //
 // In a symlink target, {class} is the class folder (to point at another student's file). In a symlink target and
-// in an edit's `replace`, {source_dir} and {build_dir} are this tree's folders (an attacker may guess them).
+// in an edit's `replace`, {source_dir} and {build_dir} are this tree's folders (an attacker may guess them). In a
+// `replace`, {witness} is tests/corpus/witness.inc, code that records where it runs, as whom, with what, and which
+// of simlab's secrets it can read ({secrets}: their paths for the build graded with, one per line).
+//
+// A case of the isolation's invariants (tests/corpus/<id>/invariants/) also says which of its code must be
+// recorded, or must never run:
+//
+//     [invariant]
+//     entry = "a local ifunc's resolver"     # the record its entry point makes
+//     runs = true                            # false: it must never run (a shared object's .preinit_array)
 //
 //   simlab-corpus materialize <assignment> <case.toml>... --out DIR   write DIR/<case>/<files>
 //   simlab-corpus check <assignment> <case.toml>                      grade it and compare; exit 1 on a mismatch
+//   simlab-corpus invariants <assignment> <case.toml>...               grade each with the object check off, in the
+//       sandbox this machine and environment give, and fail on any record of the witness made as root, with a
+//       capability, or having read a secret, and on an entry point that did not run where it must (or ran where it
+//       must not)
 //   simlab-corpus class <assignment> <case.toml>... --simlab PATH     grade them all as one class with
 //       `simlab grade` (--env NAME=VALUE for it, --docker-capabilities to run it with Docker's default capabilities),
 //       while listening on 127.0.0.1:47810, and compare every student; also check that no process a submission
@@ -55,6 +68,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -66,12 +80,13 @@
 #include "simlab/engine/files.h"
 #include "simlab/engine/grade.h"
 #include "simlab/engine/manifest.h"
-#include "simlab/engine/process.h"
+#include "simlab/isolation/process.h"
 #include "simlab/engine/report.h"
 #include "simlab/engine/text.h"
 
 namespace fs = std::filesystem;
 using namespace simlab::engine;
+using namespace simlab::isolation;
 
 namespace {
 
@@ -85,6 +100,8 @@ struct File {
 
 struct Case {
     std::string name;
+    std::string invariantEntry;  // [invariant] entry: the witness's record that must be there
+    bool invariantRuns = true;   // [invariant] runs
     std::string folder;  // the student's folder name in a class (raw bytes)
     std::string description;
     std::map<std::string, File> files;  // what the student hands in
@@ -97,9 +114,12 @@ struct Case {
 };
 
 std::string gSourceDir, gBuildDir;  // this tree's, for {source_dir} and {build_dir}
+std::string gWitness;               // tests/corpus/witness.inc with {secrets} written in, for {witness}
+std::vector<std::string> gSecrets;  // the witness's paths, by line
 
 std::string withFolders(std::string text) {
-    for (const auto& [name, value] : {std::pair<std::string, std::string>{"{source_dir}", gSourceDir}, {"{build_dir}", gBuildDir}}) {
+    for (const auto& [name, value] : {std::pair<std::string, std::string>{"{source_dir}", gSourceDir}, {"{build_dir}", gBuildDir},
+                                      {"{witness}", gWitness}}) {
         for (std::size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + value.size())) {
             text.replace(at, name.size(), value);
         }
@@ -214,6 +234,8 @@ Case loadCase(const Assignment& assignment, const simlab::Rubric& rubric, const 
     if (const toml::table* outcomes = t["outcomes"].as_table()) {
         for (auto&& [test, outcome] : *outcomes) c.outcomes[std::string(test.str())] = outcome.value_or(std::string());
     }
+    c.invariantEntry = t["invariant"]["entry"].value_or(std::string());
+    c.invariantRuns = t["invariant"]["runs"].value_or(true);
     return c;
 }
 
@@ -626,6 +648,179 @@ int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, con
     return problems.empty() ? 0 : 1;
 }
 
+
+// ---- the isolation's invariants ------------------------------------------------------------------------------------
+
+// What no test's code may read, for the witness to try: every assignment's hidden tests, solution and judge, the
+// sample class and the object cache (every student's source), the machine's secrets (root's passwords, the kernel's
+// memory, log and pages, simlab's environment), and `extra` (the canaries of `invariants`).
+std::vector<std::string> witnessSecrets(const Manifest& manifest, const std::vector<std::string>& extra) {
+    std::vector<std::string> paths;
+    for (const Assignment& a : manifest.assignments) {
+        paths.insert(paths.end(), a.hiddenTests.begin(), a.hiddenTests.end());
+        if (!a.solution.empty()) paths.push_back(a.solution);
+        paths.push_back(a.judge);
+    }
+    const char* cache = std::getenv("SIMLAB_CACHE");
+    paths.push_back(manifest.sampleClass);
+    paths.push_back(cache && *cache ? std::string(cache) : manifest.cacheDir + "/objects");
+    for (const char* file : {"/etc/shadow", "/proc/kcore", "/proc/kmsg", "/proc/kpagecount", "/proc/kpageflags",
+                             "/proc/kpagecgroup", "/proc/sysrq-trigger", "/proc/mtrr", "/proc/timer_list"}) {
+        paths.push_back(file);
+    }
+    // This program's environment: simlab's, where a sandbox shares its view of the processes.
+    paths.push_back("/proc/" + std::to_string(::getpid()) + "/environ");
+    paths.insert(paths.end(), extra.begin(), extra.end());
+    return paths;
+}
+
+// The paths as a C++ string literal, one per line, for {secrets}.
+std::string secretsLiteral(const std::vector<std::string>& paths) {
+    std::string literal = "\"";
+    for (const std::string& path : paths) {
+        for (const char c : path) {
+            if (c == '"' || c == '\\') literal += '\\';
+            literal += c;
+        }
+        literal += "\\n";
+    }
+    return literal + "\"";
+}
+
+// One record of the witness: W{e=ENTRY,ENTRY...;u=UID/EUID;c=EFF/PRM/INH/AMB/BND;nnp=N;o=I,J,} (capabilities in
+// hexadecimal): the entry points that saw one state.
+struct Record {
+    std::vector<std::string> entries;
+    unsigned long uid = 0, euid = 0;
+    std::map<std::string, unsigned long> caps;  // effective, permitted, inheritable, ambient, bounding
+    std::vector<std::size_t> seen;               // indices into gSecrets
+};
+
+std::vector<Record> records(const std::string& text) {
+    std::vector<Record> found;
+    std::set<std::string> distinct;
+    for (std::size_t at = text.find("W{e="); at != std::string::npos; at = text.find("W{e=", at + 4)) {
+        const std::size_t end = text.find('}', at);
+        if (end == std::string::npos) break;
+        const std::string body = text.substr(at + 4, end - at - 4);
+        if (!distinct.insert(body).second) continue;
+        Record r;
+        std::istringstream fields(body);
+        std::string field;
+        bool first = true;
+        while (std::getline(fields, field, ';')) {
+            if (first) {
+                std::istringstream names(field);
+                for (std::string name; std::getline(names, name, ',');) r.entries.push_back(name);
+                first = false;
+                continue;
+            }
+            const std::size_t eq = field.find('=');
+            if (eq == std::string::npos) continue;
+            const std::string key = field.substr(0, eq), value = field.substr(eq + 1);
+            if (key == "u") {
+                r.uid = std::stoul(value.substr(0, value.find('/')));
+                r.euid = std::stoul(value.substr(value.find('/') + 1));
+            } else if (key == "o") {
+                std::istringstream list(value);
+                for (std::string index; std::getline(list, index, ',');) {
+                    if (!index.empty()) r.seen.push_back(std::stoul(index));
+                }
+            } else if (key == "c") {
+                std::istringstream sets(value);
+                std::string bits;
+                for (const char* set : {"effective", "permitted", "inheritable", "ambient", "bounding"}) {
+                    if (std::getline(sets, bits, '/')) r.caps[set] = std::stoul(bits, nullptr, 16);
+                }
+            }
+        }
+        found.push_back(r);
+    }
+    return found;
+}
+
+// Grades each case with the object check off, in the sandbox this machine and its environment give
+// (SIMLAB_NO_BUBBLEWRAP, SIMLAB_NO_LANDLOCK, SIMLAB_NO_TEST_SERVER; a capability set from setpriv; an installed
+// simlab's manifest from SIMLAB_MANIFEST), on one test, and reads the witness's records from the report.
+int invariants(const Manifest& manifest, const Assignment& assignment, const simlab::Rubric& rubric,
+               const std::vector<std::string>& paths, const std::vector<std::string>& canaries) {
+    const SandboxSupport& sandbox = sandboxSupport();
+    const bool root = ::geteuid() == 0;
+    std::cout << "sandbox: " << sandbox.summary << (testServers() ? "; tests forked by a probe's server" : "; a probe per test")
+              << "\nmanifest: " << manifest.path << "\n";
+    // Where files are kept apart by their modes alone, the course's own files may be readable (simlab then refuses
+    // to run hidden tests, and says so in one line): the witness's reading them is that mode's known limit.
+    std::set<std::string> byModesAlone;
+    if (!sandbox.bubblewrap && !sandbox.landlock) {
+        const std::string refusal = secretsExposed(manifest, assignment);
+        std::cout << "limits only: " << (refusal.empty() ? "the course's files are closed to other users" : "simlab refuses hidden tests here: " + refusal) << "\n";
+        if (!refusal.empty()) {
+            for (const std::string& path : gSecrets) {
+                if (std::find(canaries.begin(), canaries.end(), path) == canaries.end() && path.rfind("/proc/", 0) != 0 &&
+                    path != "/etc/shadow") {
+                    byModesAlone.insert(path);
+                }
+            }
+        }
+        byModesAlone.insert("/proc/mtrr");  // readable by every user, and no mount namespace to hide it
+    }
+    int failures = 0;
+    for (const std::string& path : paths) {
+        const Case c = loadCase(assignment, rubric, path);
+        TempDir dir("simlab-invariant-");
+        writeCase(c, dir.path() + "/student", dir.path());
+        GradeOptions options;
+        options.checkObject = false;
+        options.onlyTests = {rubric.tests.front().name};
+        const GradeReport report =
+            gradeFolder(Builder(manifest), assignment, rubric, dir.path() + "/student", false, false, options);
+        const std::string text = renderText(report);
+        std::vector<std::string> problems;
+        const std::vector<Record> made = records(text);
+        bool entryRan = false;
+        for (const Record& r : made) {
+            entryRan = entryRan || std::find(r.entries.begin(), r.entries.end(), c.invariantEntry) != r.entries.end();
+            std::string where;
+            for (const std::string& e : r.entries) where += (where.empty() ? "'" : ", '") + e + "'";
+            if (r.uid == 0 || r.euid == 0) problems.push_back(where + " ran as root");
+            for (const auto& [set, bits] : r.caps) {
+                // The bounding set is a user's own business when simlab does not run as root.
+                if (bits != 0 && (set != "bounding" || root)) {
+                    char hex[32];
+                    std::snprintf(hex, sizeof hex, "%#lx", bits);
+                    problems.push_back(where + " held capabilities (" + set + " set " + hex + ")");
+                }
+            }
+            for (const std::size_t i : r.seen) {
+                const std::string secret = i < gSecrets.size() ? gSecrets[i] : "secret #" + std::to_string(i);
+                if (!byModesAlone.count(secret)) problems.push_back(where + " read " + secret);
+            }
+        }
+        if (made.empty()) problems.push_back("no record of the witness in the report: " + report.status);
+        if (c.invariantRuns && !entryRan) problems.push_back("'" + c.invariantEntry + "' never ran");
+        if (!c.invariantRuns && entryRan) problems.push_back("'" + c.invariantEntry + "' ran, and must not");
+        if (problems.empty()) {
+            std::set<unsigned long> users;
+            std::size_t entries = 0;
+            for (const Record& r : made) {
+                users.insert(r.uid);
+                entries += r.entries.size();
+            }
+            std::cout << "OK       " << c.name << ": "
+                      << (c.invariantRuns ? "'" + c.invariantEntry + "' ran" : "'" + c.invariantEntry + "' never ran") << "; "
+                      << entries << " entry point(s) recorded, as uid " << *users.begin()
+                      << (users.size() > 1 ? " and others" : "") << ", with no capability, having read nothing secret\n";
+        } else {
+            ++failures;
+            std::cout << "FAILED   " << c.name << ":\n";
+            for (const std::string& p : problems) std::cout << "    " << p << "\n";
+            std::cout << text;
+        }
+    }
+    std::cout << (failures == 0 ? "OK: no student code ran with privilege or read a secret\n" : "FAILED\n");
+    return failures == 0 ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -652,9 +847,34 @@ int main(int argc, char** argv) {
     classCommand->add_option("--env", environment, "NAME=VALUE for simlab grade (SIMLAB_NO_BUBBLEWRAP=1, say)");
     classCommand->add_flag("--docker-capabilities", dockerCapabilities,
                            "run simlab grade as root with Docker's default capabilities only (setpriv)");
+    CLI::App* invariantsCommand =
+        app.add_subcommand("invariants", "Grade each case with the object check off and check the witness's records.");
+    invariantsCommand->add_option("assignment", assignmentId)->required();
+    invariantsCommand->add_option("cases", cases)->required()->check(CLI::ExistingFile);
     CLI11_PARSE(app, argc, argv);
     try {
         const Manifest manifest = loadManifest();
+        // Canaries for the witness: a file only root may read and one of another user's, in a folder anyone may
+        // enter.
+        std::optional<TempDir> canaryDir;
+        std::vector<std::string> canaries;
+        if (invariantsCommand->parsed()) {
+            canaryDir.emplace("simlab-canaries-");
+            fs::permissions(canaryDir->path(), fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
+            for (const char* name : {"root-only", "another-user"}) {
+                const std::string canary = canaryDir->path() + "/" + name;
+                writeFileAtomically(canary, std::string("a secret of ") + name + "\n");
+                fs::permissions(canary, fs::perms::owner_read | fs::perms::owner_write);
+                if (std::string(name) == "another-user" && ::geteuid() == 0 && ::chown(canary.c_str(), 12345, 12345) != 0) {
+                    throw std::runtime_error("cannot give " + canary + " to another user");
+                }
+                canaries.push_back(canary);
+            }
+        }
+        gSecrets = witnessSecrets(manifest, canaries);
+        gWitness = readFile(SIMLAB_CORPUS_DIR "/witness.inc");
+        const std::size_t at = gWitness.find("{secrets}");
+        if (at != std::string::npos) gWitness.replace(at, 9, secretsLiteral(gSecrets));
         gSourceDir = manifest.sourceDir;
         gBuildDir = manifest.buildDir;
         const Assignment& assignment = manifest.find(assignmentId);
@@ -663,6 +883,7 @@ int main(int argc, char** argv) {
         if (classCommand->parsed()) {
             return gradeAsClass(assignment, rubric, cases, simlab, jobs, environment, dockerCapabilities);
         }
+        if (invariantsCommand->parsed()) return invariants(manifest, assignment, rubric, cases, canaries);
         return check(manifest, assignment, rubric, cases.front());
     } catch (const std::exception& e) {
         std::cerr << "simlab-corpus: error: " << e.what() << '\n';

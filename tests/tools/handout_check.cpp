@@ -22,10 +22,11 @@
 
 #include "simlab/engine/files.h"
 #include "simlab/engine/manifest.h"
-#include "simlab/engine/process.h"
+#include "simlab/isolation/process.h"
 
 namespace fs = std::filesystem;
 using namespace simlab::engine;
+using namespace simlab::isolation;
 
 namespace {
 

@@ -8,9 +8,10 @@
 #include "simlab/engine/build.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/manifest.h"
-#include "simlab/engine/process.h"
+#include "simlab/isolation/process.h"
 
 using namespace simlab::engine;
+using namespace simlab::isolation;
 namespace fs = std::filesystem;
 
 TEST_CASE("keys are SHA-256 of their fields, each field kept apart", "[build]") {

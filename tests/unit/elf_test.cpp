@@ -6,10 +6,11 @@
 #include <cstdlib>
 #include <string>
 
-#include "simlab/engine/elf.h"
+#include "simlab/isolation/elf.h"
 #include "simlab/engine/files.h"
 
 using namespace simlab::engine;
+using namespace simlab::isolation;
 
 namespace {
 

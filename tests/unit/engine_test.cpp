@@ -5,18 +5,18 @@
 #include <unistd.h>
 #include <string>
 
-#include "simlab/engine/process.h"
+#include "simlab/isolation/process.h"
 
-using simlab::engine::ProcessRequest;
-using simlab::engine::ProcessResult;
-using simlab::engine::runProcess;
+using simlab::isolation::ProcessRequest;
+using simlab::isolation::ProcessResult;
+using simlab::isolation::runProcess;
 
 namespace {
 
 ProcessResult shell(const std::string& script, double wallSeconds = 5, bool channel = false) {
     ProcessRequest r;
     r.argv = {"/bin/sh", "-c", script};
-    r.env = simlab::engine::childEnvironment();
+    r.env = simlab::isolation::childEnvironment();
     r.workDir = ".";
     r.limits.wallSeconds = wallSeconds;
     r.limits.cpuSeconds = wallSeconds;
@@ -45,7 +45,7 @@ TEST_CASE("a child that runs past the wall-clock limit is killed with everything
 TEST_CASE("a child that spins is stopped by the CPU limit", "[process]") {
     ProcessRequest r;
     r.argv = {"/bin/sh", "-c", "while :; do :; done"};
-    r.env = simlab::engine::childEnvironment();
+    r.env = simlab::isolation::childEnvironment();
     r.workDir = ".";
     r.limits.cpuSeconds = 1;
     r.limits.wallSeconds = 10;
@@ -57,13 +57,13 @@ TEST_CASE("a child that spins is stopped by the CPU limit", "[process]") {
 TEST_CASE("a crash is reported with its signal's name", "[process]") {
     const ProcessResult crash = shell("kill -SEGV $$");
     CHECK(crash.signal == SIGSEGV);
-    CHECK(simlab::engine::signalName(crash.signal) == "SIGSEGV");
+    CHECK(simlab::isolation::signalName(crash.signal) == "SIGSEGV");
 }
 
 TEST_CASE("a child that floods its output is stopped at the limit", "[process]") {
     ProcessRequest r;
     r.argv = {"/bin/sh", "-c", "yes flood"};
-    r.env = simlab::engine::childEnvironment();
+    r.env = simlab::isolation::childEnvironment();
     r.workDir = ".";
     r.limits.outputKiB = 64;
     const ProcessResult flood = runProcess(r);
@@ -84,7 +84,7 @@ TEST_CASE("descriptors handed to a child arrive where asked, and simlab keeps no
     REQUIRE(::pipe2(pipe, O_CLOEXEC) == 0);
     ProcessRequest r;
     r.argv = {"/bin/sh", "-c", "echo through >&5"};
-    r.env = simlab::engine::childEnvironment();
+    r.env = simlab::isolation::childEnvironment();
     r.workDir = ".";
     r.passFds = {{5, pipe[1]}};
     const ProcessResult result = runProcess(r);

@@ -1,10 +1,15 @@
 // The platforms' writers: PrairieLearn's results.json, GitHub Classroom's runner result, Canvas's gradebook CSV
 // and the roster it is made with. Each takes a student's bytes as they come and says them safely.
 #include <catch2/catch.hpp>
+#include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 
 #include "simlab/engine/errors.h"
+#include "simlab/engine/files.h"
+#include "simlab/engine/intake.h"
 #include "simlab/engine/manual.h"
 #include "simlab/engine/report.h"
 #include "simlab/engine/roster.h"
@@ -369,4 +374,40 @@ TEST_CASE("manual.csv: rows for every student and item, what a person typed kept
     CHECK(manualCsv(back, {"bob ", "'=x"}, rubric).size() == written.size() + 1);  // the 4, and no second row
     CHECK(strayManualRows(sheet, {"ada", "bob", "cy"}, rubric) == std::vector<std::string>{"gone / the schematic"});
     CHECK(error("") == "(no error)");
+}
+
+TEST_CASE("Gradescope: every submission keeps a folder of its own, whatever SIDs the students typed", "[platforms]") {
+    namespace fs = std::filesystem;
+    // A SID that is literally what a clash would be renamed to, before or after the two submissions that clash.
+    for (const bool literalFirst : {true, false}) {
+        TempDir dir("simlab-intake-test-");
+        const std::string download = dir.path() + "/download";
+        const std::vector<std::pair<std::string, std::string>> submissions =
+            literalFirst ? std::vector<std::pair<std::string, std::string>>{{"submission_101", "s42-submission_103"},
+                                                                            {"submission_102", "s42"},
+                                                                            {"submission_103", "s42"}}
+                         : std::vector<std::pair<std::string, std::string>>{{"submission_102", "s42"},
+                                                                            {"submission_103", "s42"},
+                                                                            {"submission_201", "s42-submission_103"}};
+        std::string metadata;
+        for (const auto& [submission, sid] : submissions) {
+            fs::create_directories(download + "/" + submission);
+            writeFileAtomically(download + "/" + submission + "/NewtonsApple.cpp", "// handed in as " + submission + "\n");
+            metadata += submission + ":\n  :submitters:\n  - {\":sid\": \"" + sid + "\"}\n";
+        }
+        writeFileAtomically(download + "/submission_metadata.yml", metadata);
+        const std::vector<IntakeStudent> students =
+            takeIn("gradescope", download, dir.path() + "/class", {"NewtonsApple.cpp"}, 1 << 20);
+        REQUIRE(students.size() == 3);
+        std::set<std::string> ids;
+        for (std::size_t i = 0; i < students.size(); ++i) {
+            ids.insert(students[i].id);
+            // Each folder holds its own submission's file: none was dropped or overwritten.
+            CHECK(readFile(dir.path() + "/class/" + students[i].id + "/NewtonsApple.cpp") ==
+                  "// handed in as " + submissions[i].first + "\n");
+        }
+        CHECK(ids.size() == 3);
+        CHECK(ids.count("s42"));
+        CHECK(ids.count("s42-submission_103"));
+    }
 }

@@ -80,7 +80,7 @@ struct ClassOptions {
 
 /// Grade every student folder of `submissionsDir` into `outDir`. Returns the records of every student in the
 /// folder, including those reused from an earlier run, and what was skipped. Throws Interrupted after writing
-/// what finished if interruptChildren() was called.
+/// what finished if isolation::interruptChildren() was called.
 ClassResult gradeClass(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
                        const std::string& submissionsDir, const std::string& outDir, const ClassOptions& options,
                        const std::function<void(const ClassProgress&)>& onProgress);

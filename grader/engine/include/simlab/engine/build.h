@@ -6,11 +6,11 @@
 #include <cstdint>
 #include <map>
 #include <string>
-
-#include "simlab/engine/process.h"
 #include <vector>
 
 #include "simlab/engine/manifest.h"
+#include "simlab/isolation/object_check.h"
+#include "simlab/isolation/process.h"
 
 namespace simlab::engine {
 
@@ -26,29 +26,6 @@ struct BuildResult {
     double linkSeconds = 0;
     std::string binary;
 };
-
-/// A symbol the course's side of a probe defines or refers to - in its objects, the libraries it links or the C
-/// and C++ runtime.
-struct CourseSymbol {
-    bool defined = false;     ///< somewhere in the course
-    bool strong = false;      ///< some definition of it is strong (not weak or inline)
-    bool inObjects = false;   ///< the course's objects define it (their copy is the one linked)
-    bool inLibraries = false; ///< a shared library or the runtime defines it
-    bool required = false;    ///< the course's objects need it and nothing of the course's defines it: a contract
-                              ///< function the student writes
-    bool referenced = false;  ///< something of the course's refers to it
-    std::string from;         ///< where it is defined: "course", or a library's file name such as "libc.so.6"
-};
-using CourseSymbols = std::map<std::string, CourseSymbol>;
-
-/// What a student's object may not do, one line each ("NewtonsApple.cpp defines simlab::describeModel(...), which
-/// the course's code defines: a submission may define only the contract's functions and its own helpers"): hold
-/// a section a compiler does not make from C++ (LTO code, .preinit_array, .init, a constructor or destructor with a
-/// priority, ...), define an ifunc, define a symbol the course defines (or redefine inline one it defines out of
-/// line, or export its own copy of one a library exports, which would take the library's place for every caller),
-/// or define a hook the course's runtime calls when it exists (__gmon_start__, say). Empty when it is clean.
-std::vector<std::string> forbiddenCode(const std::string& objectPath, const std::string& sourceName,
-                                       const CourseSymbols& course);
 
 /// Where the sandbox's users could not reach what a build lends them (the contract's headers, the precompiled
 /// header, the course's objects and libraries) - as root without bubblewrap each tool runs as a throwaway user,
@@ -68,10 +45,11 @@ public:
     /// Objects are cached in <cache>/objects (Manifest::cacheDir), or in $SIMLAB_CACHE.
     explicit Builder(const Manifest& manifest);
 
-    /// Compile the student's file (`name`, its bytes `text`) in `workDir` in the sandbox, check the object, and link
-    /// it after the course's probe objects into the program `binary`.
+    /// Compile the student's file (`name`, its bytes `text`) in `workDir` in the sandbox, check the object (unless
+    /// `checkObject` is false: GradeOptions::checkObject), and link it after the course's probe objects into the
+    /// probe `binary`, a shared object the probe's host loads.
     BuildResult buildProbe(const Assignment& assignment, const std::string& name, const std::string& text,
-                           const std::string& workDir, const std::string& binary) const;
+                           const std::string& workDir, const std::string& binary, bool checkObject = true) const;
     /// Compile the student's file and link it with the course's main into the lab program at `output`.
     BuildResult buildProgram(const Assignment& assignment, const std::string& name, const std::string& text,
                              const std::string& output) const;
@@ -91,9 +69,11 @@ public:
     /// has the same key, wherever it is and whatever its files' times, so a class's records are reused there.
     std::string gradingKey(const Assignment& assignment) const;
     /// The course's symbols for `assignment`'s probe, found once (and kept in the cache).
-    const CourseSymbols& courseSymbols(const Assignment& assignment) const;
+    const isolation::CourseSymbols& courseSymbols(const Assignment& assignment) const;
     /// The folder of the object cache (SIMLAB_CACHE, or the build's cache/).
     const std::string& cacheDir() const { return cacheDir_; }
+    /// simlab-probe-host, the program every probe of this build runs in.
+    const std::string& probeHost() const { return manifest_.probeHost; }
 
 private:
     /// The student's file compiled and linked first, before `objects` and `libraries`, into `output`.
@@ -105,7 +85,7 @@ private:
     void link(const std::vector<std::string>& inputs, const std::vector<std::string>& flags, const std::string& output,
               BuildResult& result) const;
     /// Runs the compiler on `name` (holding `text`) in `workDir`, in the sandbox, into `output`.
-    ProcessResult runCompiler(const Assignment& assignment, const std::string& name, const std::string& text,
+    isolation::ProcessResult runCompiler(const Assignment& assignment, const std::string& name, const std::string& text,
                               const std::string& workDir, const std::string& output) const;
     /// Throws SetupError if the precompiled header is older than a file it was made from (as its dependency file
     /// lists them): a header of the system changed since simlab was built (a package upgrade), and the compiler
@@ -119,9 +99,6 @@ private:
     const Manifest& manifest_;
     std::string cacheDir_;
 };
-
-/// At most `maxLines` lines of a tool's output, the rest summarized as "... (N more lines)".
-std::string firstLines(const std::string& text, int maxLines);
 
 /// The object cache's size cap: $SIMLAB_CACHE_MIB MiB (default 2048); a UsageError for a value that is no size.
 std::uintmax_t objectCacheCap();

@@ -65,7 +65,7 @@ struct GradeReport {
                                     ///< "did not compile", "forbidden code", "did not link"
     std::string note;               ///< about the files: "graded apple.cpp; expected NewtonsApple.cpp"
     std::string graderOutput;       ///< what the judge printed (Catch2's account of the tests), for instructors
-    std::string sandbox;            ///< the sandbox it ran in, one line (SandboxSupport::summary)
+    std::string sandbox;            ///< the sandbox it ran in, one line (isolation::SandboxSupport::summary)
 
     double score() const;
     double maxScore() const;
@@ -96,6 +96,9 @@ struct GradeOptions {
     std::map<std::string, TestCost> expected;
     /// Told what grading is doing as it goes ("compiling", a test starting), for a person to watch; may be empty.
     std::function<void(const std::string&)> progress;
+    /// The object check before the link (isolation::forbiddenCode). Off only where the corpus proves that the
+    /// isolation holds without it (`simlab-corpus invariants`); no command of simlab's turns it off.
+    bool checkObject = true;
 };
 
 /// The judge (0 to judges - 1) each of `tests` runs in, so that the last judge ends as soon as it can: round-robin
@@ -116,13 +119,13 @@ struct SubmissionFiles {
 };
 
 /// Grade `files` for `assignment` with `rubric`. Never throws for anything the student's code or files do; throws
-/// UsageError for a test name the rubric does not have, Interrupted if interruptChildren() cut it short.
+/// UsageError for a test name the rubric does not have, Interrupted if isolation::interruptChildren() cut it short.
 GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
                             const SubmissionFiles& files, const GradeOptions& options);
 
 /// What hidden tests must be kept from: the hidden tests' sources, the solution, the judge (which holds the hidden
 /// tests), the object cache (every student's source), the sample class and the corpus, and `more` (the class's
-/// folder, the grades). Tried as a test's probe is run (readableInSandbox): where any of them can be read, one line
+/// folder, the grades). Tried as a test's probe is run (isolation::readableInSandbox): where any of them can be read, one line
 /// saying which and how to close it, for the caller to refuse hidden tests with; empty where none can.
 std::string secretsExposed(const Manifest& manifest, const Assignment& assignment,
                            const std::vector<std::string>& more = {});

@@ -52,7 +52,9 @@ struct Manifest {
                                        ///< precompiled header: Assignment::compile)
     std::vector<std::string> link;     ///< linker driver and flags
     std::vector<std::string> probeLibraries;  ///< shared libraries a probe links after the student's object
-    std::vector<std::string> probeLink;       ///< flags a probe's link adds: export nothing (see cmake/Simlab.cmake)
+    std::vector<std::string> probeLink;       ///< flags a probe's link adds: a shared object exporting its entry
+                                              ///< point alone (see cmake/Simlab.cmake)
+    std::string probeHost;                    ///< simlab-probe-host, the program every probe runs in
     std::vector<std::string> floorLibraries;
     std::vector<std::string> programLibraries;
     std::vector<std::string> studyLibraries;
@@ -68,8 +70,10 @@ struct Manifest {
 /// caller's to add where they exist (a build tree; the user's cache).
 std::vector<std::string> secretPaths(const Manifest& manifest, const Assignment& assignment);
 
-/// The manifest at SIMLAB_MANIFEST if set, else the one of the build this engine was built in.
-/// Throws UsageError if it is missing or unreadable.
+/// The manifest at SIMLAB_MANIFEST if set, else the one of the build this engine was built in. simlab's places it
+/// names - its sources, its build or installation, its cache, the sample class, every assignment's secrets - are
+/// hidden from every sandbox from then on (isolation::hideFromSandboxes). Throws UsageError if it is missing or
+/// unreadable.
 Manifest loadManifest();
 Manifest loadManifest(const std::string& path);
 

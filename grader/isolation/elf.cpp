@@ -1,6 +1,6 @@
 // Reading ELF files with bounds checks throughout (see elf.h). Only what the object check needs: sections, the
 // symbol tables and COMDAT groups of 64-bit little-endian files.
-#include "simlab/engine/elf.h"
+#include "simlab/isolation/elf.h"
 
 #include <cxxabi.h>
 #include <ar.h>
@@ -10,13 +10,13 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <set>
 #include <stdexcept>
 
-#include "simlab/engine/files.h"
 
-namespace simlab::engine {
+namespace simlab::isolation {
 
 namespace {
 
@@ -59,6 +59,13 @@ private:
     std::string name_;
 };
 
+// The whole file (its size was checked by the caller).
+std::string bytesOf(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(path + ": cannot be read");
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
 std::string withoutVersion(const std::string& name) { return name.substr(0, name.find('@')); }
 
 bool isElf64(const std::string& b) {
@@ -98,6 +105,9 @@ void readSymbols(const Reader& r, const Sections& s, const Elf64_Shdr& table, co
     for (std::uint64_t i = 1; i < count; ++i) {
         const Elf64_Sym sym = r.entry<Elf64_Sym>(table.sh_offset, table.sh_entsize, count, i);
         const unsigned bind = ELF64_ST_BIND(sym.st_info), type = ELF64_ST_TYPE(sym.st_info);
+        if (type == STT_GNU_IFUNC && sym.st_shndx != SHN_UNDEF) {
+            out.ifuncs.push_back(withoutVersion(r.text(strings.sh_offset, strings.sh_size, sym.st_name)));
+        }
         if (bind != STB_GLOBAL && bind != STB_WEAK && bind != STB_GNU_UNIQUE) continue;
         if (type == STT_SECTION || type == STT_FILE) continue;
         if (sym.st_shndx == SHN_UNDEF) {
@@ -158,12 +168,12 @@ ElfObject readElfObjectFromMemory(const std::string& bytes, const std::string& n
 
 ElfObject readElfObject(const std::string& path) {
     if (std::filesystem::file_size(path) > kMaxFile) throw std::runtime_error(path + ": larger than 512 MiB");
-    return readElfObjectFromMemory(readFile(path), path);
+    return readElfObjectFromMemory(bytesOf(path), path);
 }
 
 ElfObject readSharedLibrary(const std::string& path) {
     if (std::filesystem::file_size(path) > kMaxFile) throw std::runtime_error(path + ": larger than 512 MiB");
-    const std::string bytes = readFile(path);
+    const std::string bytes = bytesOf(path);
     const Reader r(bytes, path);
     const Sections s = sections(r);
     if (s.header.e_type != ET_DYN) r.fail("not a shared library");
@@ -176,7 +186,7 @@ ElfObject readSharedLibrary(const std::string& path) {
 
 ElfObject readArchive(const std::string& path) {
     if (std::filesystem::file_size(path) > kMaxFile) throw std::runtime_error(path + ": larger than 512 MiB");
-    const std::string bytes = readFile(path);
+    const std::string bytes = bytesOf(path);
     if (bytes.compare(0, SARMAG, ARMAG) != 0) throw std::runtime_error(path + ": not an archive");
     ElfObject out;
     for (std::size_t at = SARMAG; at + 60 <= bytes.size();) {
@@ -220,4 +230,4 @@ std::string demangle(const std::string& name) {
     return status == 0 && text ? text.get() : name;
 }
 
-}  // namespace simlab::engine
+}  // namespace simlab::isolation

@@ -1,12 +1,12 @@
 // Reading ELF files: what a compiled object, a static archive or a shared library defines. The grader uses it
-// to check a student's object before linking it (build.h: forbiddenCode): the object comes from untrusted
+// to check a student's object before linking it (object_check.h): the object comes from untrusted
 // source, inline assembly included, so every offset and size is checked against the file.
 #pragma once
 
 #include <string>
 #include <vector>
 
-namespace simlab::engine {
+namespace simlab::isolation {
 
 struct ElfSymbol {
     std::string name;       ///< as linked (mangled), without a "@VERSION" suffix
@@ -20,6 +20,8 @@ struct ElfObject {
     std::vector<ElfSymbol> defined;         ///< global, weak and unique symbols defined here
     std::vector<ElfSymbol> undefined;       ///< global and weak symbols referred to but not defined here
     std::vector<std::string> sectionNames;  ///< every section's name (relocatable objects only)
+    std::vector<std::string> ifuncs;        ///< every symbol typed STT_GNU_IFUNC, whatever its binding (a local
+                                            ///< one too: the loader runs its resolver all the same)
 };
 
 /// A relocatable object (.o): its symbol table and sections. Throws std::runtime_error("<path>: <what>") for a
@@ -36,4 +38,4 @@ ElfObject readElfFile(const std::string& path);
 /// "simlab::describeModel(...)" for its mangled name; a name that does not demangle comes back unchanged.
 std::string demangle(const std::string& name);
 
-}  // namespace simlab::engine
+}  // namespace simlab::isolation

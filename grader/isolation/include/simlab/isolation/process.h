@@ -1,25 +1,34 @@
-// Running untrusted programs: one child process group with resource limits, a CPU-time limit that decides
-// "timed out", a generous wall-clock net for what sleeps or blocks, a cap on its output, optionally a report
-// channel (descriptor 3) and other descriptors handed to it, and a sandbox.
+// Isolation: running what simlab does not trust. Every sandboxed process simlab starts - a compiler, a linker, a
+// judge, a probe and its host, a program built from a student's file, a tool - is built here (one place for each
+// mode's sandbox), watched here (one supervisor: its CPU time and memory together with everything it started, its
+// output, the wall clock, an interruption) and ended here with everything it left behind.
 //
-// The sandbox. Run as root (CI, Gradescope), the child becomes a throwaway user of its own, so the process limit
-// applies to it alone (root is exempt from that limit); a judge and the probe it questions get different users.
-// With bubblewrap it also gets no network, its own process namespace and a filesystem holding only the system's
-// programs and libraries, the paths it is lent read-only and a working directory: nothing of other students' or
-// of simlab's. Its /tmp and, for tests, its working directory are memory file systems capped at the file-size
-// limit. Without bubblewrap it gets a private network namespace where the kernel allows one, and the limits.
+// What holds in every mode, for every sandboxed process:
+//  - no student's code runs as root or with a capability: a probe's host holds none of it and loads it only as
+//    the test's own user, after every capability is gone (host/probe_host.cpp); a program built from a student's
+//    file is started as a user of its own (as root) or as the user who started simlab;
+//  - the paths simlab hides (hideFromSandboxes: its sources, build or installation, caches, the class and the
+//    grades) are not in the sandbox, whatever folder holds them; a path lent to the process is;
+//  - code built from a student's file runs under the students' system-call filter, an allow-list (filter.h);
+//  - each process is in a session of its own with no terminal, its limits its own and its processes' together.
+//
+// The modes, the first this machine allows (sandboxSupport): bubblewrap (namespaces: a filesystem of the system
+// and what is lent, no network, its own processes); Landlock (where bubblewrap cannot make namespaces, as in
+// Docker's default profile: the kernel lets it read only the system and what is lent, write only its folder); limits
+// only (no bubblewrap, no Landlock: files are kept apart by their permissions alone, which simlab audits before it
+// runs hidden tests). As root each process runs as a throwaway user of its own; not as root, as simlab's user.
 #pragma once
 
 #include <functional>
 #include <mutex>
 #include <optional>
-#include <thread>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "simlab/rubric.h"
 
-namespace simlab::engine {
+namespace simlab::isolation {
 
 struct ProcessRequest {
     std::vector<std::string> argv;  ///< argv[0] is a path; nothing is looked up in PATH
@@ -32,17 +41,19 @@ struct ProcessRequest {
     std::size_t keepOutput = 16 * 1024;  ///< bytes of output kept for the report (all of it is counted)
     std::function<void(const std::string&)> onOutputLine;  ///< called with each line of output as it comes
                                                             ///< (stdout and stderr together), all of them
-    bool isolate = false;           ///< run in the sandbox (see above)
-    std::vector<std::string> readOnlyPaths;  ///< with isolate: what the child may read, at the same paths
-    std::vector<std::string> maskedPaths;    ///< with bubblewrap: never visible, even inside a system folder
+    bool isolate = false;           ///< run in the sandbox
+    bool studentCode = false;       ///< with isolate: the program is built from a student's file, so it runs under
+                                    ///< the students' system-call filter (an allow-list) instead of the tools'
+    std::vector<std::string> readOnlyPaths;  ///< with isolate: what the child may read, at the same paths (lent
+                                             ///< even where it lies inside a hidden folder)
     std::vector<std::string> handOver;       ///< with isolate as root: paths the throwaway user owns for the run
                                              ///< (with what is in them), shut to every other user
     bool scratchWorkDir = false;    ///< with bubblewrap: the working directory is an empty memory file system
                                     ///< (nothing the child writes there comes back) instead of workDir itself
     bool ownUser = true;            ///< with isolate as root: run as a throwaway user, new for this run
-    bool serveTests = false;        ///< with isolate, where testServers(): the child stays root, able to do nothing
-                                    ///< as root but become another user (it keeps CAP_SETUID and CAP_SETGID alone),
-                                    ///< and starts each test's process as a user of its own (see TestServer)
+    bool serveTests = false;        ///< with isolate, where testServers(): a probe's host serving a submission's
+                                    ///< tests; it keeps CAP_SETUID, CAP_SETGID and CAP_SETPCAP alone, to start each
+                                    ///< test's probe as a user of its own with none (see TestServer)
 };
 
 struct ProcessResult {
@@ -58,7 +69,7 @@ struct ProcessResult {
     double wallSeconds = 0;
     double cpuSeconds = 0;
     long maxRssKiB = 0;          ///< the peak resident memory of its processes together (as often as it looked)
-    long ownPeakKiB = 0;         ///< the child's own peak resident memory, without what it started
+    long ownPeakKiB = 0;         ///< the child's own peak resident memory, without what it started (0: unknown)
     int leftBehind = 0;          ///< processes of its throwaway user that could not be ended (0: none)
     std::size_t outputBytes = 0; ///< everything it printed, counted
     std::string output;          ///< the first keepOutput bytes of stdout and stderr, interleaved
@@ -70,26 +81,36 @@ struct ProcessResult {
 /// Run the request to completion. Never throws for anything the child does.
 ProcessResult runProcess(const ProcessRequest& request);
 
+/// Paths no sandboxed process may see from now on, added to those before: bubblewrap binds nothing of them (an
+/// empty folder or file stands in where a system folder holds them), Landlock grants nothing of them, and what a
+/// process is lent inside one is still lent. Relative paths are taken from the working directory. The engine adds
+/// simlab's own places when it reads its manifest and a class's folder and grades when it grades them.
+void hideFromSandboxes(const std::vector<std::string>& paths);
+/// What is hidden so far, each an absolute, normal path.
+std::vector<std::string> hiddenFromSandboxes();
+/// Whether every sandbox shows `path` without lending it: inside a system folder (/usr, /bin, /lib...) and not
+/// inside a hidden path.
+bool visibleInSandboxes(const std::string& path);
+
 /// Sends `size` bytes from `data` and the descriptors `fds` (SCM_RIGHTS) as one message on the socket `socket`;
 /// true if all of it went. The descriptors stay open here.
 bool sendWithDescriptors(int socket, const void* data, std::size_t size, const std::vector<int>& fds);
 
-/// Whether a test's processes can be forked from a program started once for them (TestServer): as root, with
+/// Whether a test's processes can be forked from a host started once for them (TestServer): as root, with
 /// bubblewrap or Landlock, unless $SIMLAB_NO_TEST_SERVER=1.
 bool testServers();
 
-/// A probe's server: the probe's program, started once in the sandbox for a submission's tests, that forks each
-/// test's probe on request - so that a test pays neither for a sandbox of its own nor for loading the program and
-/// its libraries again. The server serves from the course's first constructor, before any of the student's code
-/// has run (the object check refuses what would run earlier: constructors with priorities, ifuncs, .preinit_array,
-/// definitions of what the course's code calls), and never calls it. Every test's probe goes on from there as a user
-/// of its own, never used before or again, with no capability, the test's limits and a folder of its own (its HOME
-/// and TMPDIR: nothing else is writable, so nothing one test leaves reaches the next); its CPU time and memory are
-/// its user's processes together, and every one of them ends with the test. What the server says of a probe (that
-/// it started, how it ended) comes from the kernel (waitpid), never from the probe.
+/// A submission's probe server: simlab-probe-host started once in the sandbox for a submission's tests, which
+/// forks each test's probe on request - so that a test pays neither for a sandbox of its own nor for loading the
+/// host and its libraries again. The host holds no student code; each test's child takes a user of its own, never
+/// used before or again, with no capability, the test's limits and a folder of its own (its HOME and TMPDIR:
+/// nothing else is writable, so nothing one test leaves reaches the next), and only then loads the submission's
+/// probe. Its CPU time and memory are its user's processes together, and every one of them ends with the test.
+/// What the server says of a probe (that it started, how it ended) comes from the kernel (waitpid), never from the
+/// probe.
 class TestServer {
 public:
-    /// Starts `server` (a request with serveTests set; its argv asks the program to serve, and its limits are the
+    /// Starts `server` (a request with serveTests set, whose argv asks the host to serve; its limits are the
     /// server's own, its tests' included) on a thread of its own.
     explicit TestServer(ProcessRequest server);
     /// Ends the server, whatever tests it still runs, and waits for it.
@@ -112,21 +133,13 @@ private:
     std::mutex lock_;
 };
 
-/// What the sandbox can do on this machine, found once by trying it. Three modes, the first that works:
-///  - bubblewrap: namespaces (its own filesystem of the system and what it is lent, no network, its own
-///    processes), the system-call filter;
-///  - Landlock (where bubblewrap cannot make namespaces, as in Docker's default profile): the kernel lets the child
-///    read only the system and what it is lent and write only its working directory, whatever the files'
-///    permissions; no network (sockets are filtered); the system-call filter;
-///  - limits only: the filter and the limits; files are kept apart by permissions alone.
-/// In every mode, as root, each sandboxed process runs as a user of its own, never used before or again in this
-/// simlab, and when it ends every process of that user is ended; each runs in a session of its own with no
-/// terminal; its CPU time and memory are those of all its processes together.
+/// What the sandbox can do on this machine, found once by trying it: the first of bubblewrap, Landlock and
+/// limits only that works (see the top of this file).
 struct SandboxSupport {
     std::string mode;         ///< "bubblewrap", "Landlock" or "limits only"
     bool bubblewrap = false;  ///< namespaces and a private filesystem
     bool landlock = false;    ///< without bubblewrap: Landlock's file rules
-    bool filter = false;      ///< the system-call filter is loaded
+    bool filter = false;      ///< the system-call filters are loaded
     std::string bwrap;        ///< bubblewrap's path
     bool ownUser = false;     ///< each child runs as a throwaway user (we are root)
     bool rootBubblewrap = false;  ///< as root, bubblewrap runs as root and setpriv hands over to that user, so that
@@ -158,4 +171,7 @@ std::string runTool(const std::vector<std::string>& argv, const std::string& dir
 /// "SIGSEGV" for SIGSEGV, "signal 42" for what has no name.
 std::string signalName(int signal);
 
-}  // namespace simlab::engine
+/// At most `maxLines` lines of a tool's output, the rest summarized as "... (N more lines)".
+std::string firstLines(const std::string& text, int maxLines);
+
+}  // namespace simlab::isolation

@@ -1,11 +1,14 @@
-// How a test's process is made what it runs as: its limits, its user, and the message that asks a probe's server
-// to start one. Shared by the engine, which sets up each process it starts between fork and exec, and by the
-// probe's server (probe_main.cpp), which forks each test's probe from one started program.
+// How a sandboxed process is made what it runs as - its limits, its user, no capability - and the messages between
+// the engine and a probe's host serving a submission's tests (simlab-probe-host --serve). Shared by the engine,
+// which sets up each process it starts between fork and exec, and by the host, which forks each test from one
+// started program.
 //
 // Everything here is a system call and nothing else: safe between vfork (or fork) and exec, and in a child of a
 // process that may have had other threads.
 #pragma once
 
+#include <linux/capability.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -13,7 +16,40 @@
 #include <cmath>
 #include <cstdint>
 
-namespace simlab::test_process {
+namespace simlab::isolation::host {
+
+/// Empties the calling process's capability bounding set, ambient set and inheritable set, keeping CAP_SETUID and
+/// CAP_SETGID in its permitted and effective sets (for becomeUser, which then clears them): nothing it runs, or
+/// anything that runs it, can gain a capability again. Needs CAP_SETPCAP to empty the bounding set (root has it;
+/// so does a probe's server); without it the bounding set is left as it is. False if the kernel refused.
+inline bool leaveCapabilities() {
+    const bool mayDrop = ::prctl(PR_CAPBSET_READ, CAP_SETPCAP, 0, 0, 0) == 1;
+    for (int cap = 0; mayDrop && cap <= 63; ++cap) ::prctl(PR_CAPBSET_DROP, cap, 0, 0, 0);
+    ::prctl(PR_CAP_AMBIENT, PR_CAP_AMBIENT_CLEAR_ALL, 0, 0, 0);
+    struct __user_cap_header_struct header = {_LINUX_CAPABILITY_VERSION_3, 0};
+    struct __user_cap_data_struct caps[2] = {};
+    if (::syscall(SYS_capget, &header, caps) != 0) return false;
+    const std::uint32_t keep = (1U << CAP_SETUID) | (1U << CAP_SETGID);
+    caps[0].effective &= keep;
+    caps[0].permitted &= keep;
+    caps[0].inheritable = 0;
+    caps[1].effective = caps[1].permitted = caps[1].inheritable = 0;
+    return ::syscall(SYS_capset, &header, caps) == 0;
+}
+
+/// True when the calling process holds no capability at all: none effective, permitted, inheritable or ambient.
+inline bool holdsNoCapability() {
+    struct __user_cap_header_struct header = {_LINUX_CAPABILITY_VERSION_3, 0};
+    struct __user_cap_data_struct caps[2] = {};
+    if (::syscall(SYS_capget, &header, caps) != 0) return false;
+    for (const auto& c : caps) {
+        if (c.effective || c.permitted || c.inheritable) return false;
+    }
+    for (int cap = 0; cap <= 63; ++cap) {
+        if (::prctl(PR_CAP_AMBIENT, PR_CAP_AMBIENT_IS_SET, cap, 0, 0) == 1) return false;
+    }
+    return true;
+}
 
 /// Makes the calling process `uid` (and group `uid`, with no supplementary groups) by the system calls themselves:
 /// the C library's wrappers would change the ids of every thread of the process. A process that was root loses
@@ -55,6 +91,10 @@ inline void setLimits(double cpuSeconds, std::uint64_t memoryBytes, std::uint64_
 /// A probe's server reads its requests on this descriptor.
 constexpr int kServerFd = 7;
 
+/// A probe's descriptors: 3 carries events to the engine (running out of memory, std::terminate with what was in
+/// flight, a system call the filter refused), 4 brings the judge's requests, 5 takes the answers to it.
+constexpr int kEventFd = 3, kRequestFd = 4, kAnswerFd = 5;
+
 /// "Start a test's probe": what the engine sends the server on kServerFd, with five descriptors (SCM_RIGHTS): the
 /// test's own socket to the engine (the server answers there), its output (descriptors 1 and 2 of the probe), its
 /// event channel (3), the judge's requests (4) and the answers to the judge (5).
@@ -80,4 +120,4 @@ struct TestEvent {
     std::int64_t cpuMicroseconds = 0;
 };
 
-}  // namespace simlab::test_process
+}  // namespace simlab::isolation::host

@@ -1,17 +1,6 @@
-#include "sandbox.h"
-
 #include <dirent.h>
 #include <fcntl.h>
-#include <grp.h>
-#include <linux/filter.h>
-#include <linux/seccomp.h>
-#include <sched.h>
-#include <seccomp.h>
-#include <sys/ioctl.h>
-#include <sys/mman.h>
-#include <sys/prctl.h>
 #include <sys/stat.h>
-#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -22,135 +11,17 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <mutex>
 #include <random>
 #include <set>
 
-#include "simlab/test_process.h"
+#include "internal.h"
+#include "simlab/isolation/host_protocol.h"
 
-namespace simlab::engine::sandbox {
+namespace simlab::isolation {
 
 namespace {
-
-// ---- the system-call filter --------------------------------------------------------------------------------------
-
-// Refused with EPERM, whatever their arguments.
-const char* const kRefused[] = {
-    // The kernel keyrings outlive a process: one test could leave a note there for the next.
-    "add_key", "request_key", "keyctl",
-    // Other processes: their memory, their descriptors, their details.
-    "ptrace", "process_vm_readv", "process_vm_writev", "pidfd_getfd", "process_madvise", "kcmp",
-    // Namespaces and mounts.
-    "unshare", "setns", "mount", "umount2", "pivot_root", "chroot", "move_mount", "open_tree", "fsopen", "fsconfig",
-    "fsmount", "fspick", "mount_setattr",
-    // System V and POSIX IPC: named objects that outlive a process and are shared by every user of the machine.
-    "msgget", "msgsnd", "msgrcv", "msgctl", "semget", "semop", "semtimedop", "semctl", "shmget", "shmat", "shmdt",
-    "shmctl", "mq_open", "mq_unlink", "mq_timedsend", "mq_timedreceive", "mq_notify", "mq_getsetattr",
-    // The network, and abstract sockets between students: a test talks to simlab over the pipes it is given.
-    "socket",
-    // Leaving the process group or the session: the whole group is ended when the test ends.
-    "setsid", "setpgid",
-    // The kernel's own interfaces.
-    "perf_event_open", "bpf", "userfaultfd", "io_uring_setup", "io_uring_enter", "io_uring_register", "kexec_load",
-    "kexec_file_load", "init_module", "finit_module", "delete_module", "swapon", "swapoff", "reboot", "acct",
-    "syslog", "quotactl", "quotactl_fd", "lookup_dcookie", "vhangup", "iopl", "ioperm", "settimeofday",
-    "clock_settime", "clock_adjtime", "adjtimex", "open_by_handle_at", "name_to_handle_at", "fanotify_init"};
-
-std::string buildFilter() {
-    scmp_filter_ctx ctx = seccomp_init(SCMP_ACT_ALLOW);
-    if (!ctx) return "";
-    struct Release {
-        scmp_filter_ctx ctx;
-        ~Release() { seccomp_release(ctx); }
-    } release{ctx};
-    bool ok = seccomp_attr_set(ctx, SCMP_FLTATR_ACT_BADARCH, SCMP_ACT_KILL_PROCESS) == 0;
-    // No PR_SET_NO_NEW_PRIVS from libseccomp: installFilter sets it, and bubblewrap for its own child.
-    ok = ok && seccomp_attr_set(ctx, SCMP_FLTATR_CTL_NNP, 0) == 0;
-    for (const char* name : kRefused) {
-        const int nr = seccomp_syscall_resolve_name(name);
-        if (nr == __NR_SCMP_ERROR) continue;  // not a call of this architecture
-        ok = ok && seccomp_rule_add(ctx, SCMP_ACT_ERRNO(EPERM), nr, 0) == 0;
-    }
-    // Threads come from clone; clone3 says it does not exist, so that the C library falls back to clone.
-    ok = ok && seccomp_rule_add(ctx, SCMP_ACT_ERRNO(ENOSYS), SCMP_SYS(clone3), 0) == 0;
-    for (const std::uint64_t flag : {CLONE_NEWUSER, CLONE_NEWNS, CLONE_NEWPID, CLONE_NEWNET, CLONE_NEWIPC,
-                                     CLONE_NEWUTS, CLONE_NEWCGROUP, CLONE_NEWTIME}) {
-        ok = ok && seccomp_rule_add(ctx, SCMP_ACT_ERRNO(EPERM), SCMP_SYS(clone), 1,
-                                    SCMP_A0(SCMP_CMP_MASKED_EQ, flag, flag)) == 0;
-    }
-    // The terminal: typing into its input queue, the Linux console's own requests, taking the console over. An
-    // ioctl's request is 32 bits; the mask keeps a request with high bits set from slipping past.
-    for (const std::uint64_t request : {TIOCSTI, TIOCLINUX, TIOCCONS}) {
-        ok = ok && seccomp_rule_add(ctx, SCMP_ACT_ERRNO(EPERM), SCMP_SYS(ioctl), 1,
-                                    SCMP_A1(SCMP_CMP_MASKED_EQ, 0xffffffffULL, request)) == 0;
-    }
-    if (!ok) return "";
-    const int fd = static_cast<int>(::syscall(SYS_memfd_create, "simlab-seccomp", MFD_CLOEXEC));
-    if (fd < 0) return "";
-    std::string program;
-    if (seccomp_export_bpf(ctx, fd) == 0 && ::lseek(fd, 0, SEEK_SET) == 0) {
-        char buffer[4096];
-        for (ssize_t n; (n = ::read(fd, buffer, sizeof buffer)) > 0;) program.append(buffer, static_cast<std::size_t>(n));
-    }
-    ::close(fd);
-    if (program.size() % sizeof(struct sock_filter) != 0) return "";
-    return program;
-}
-
-// ---- Landlock ------------------------------------------------------------------------------------------------------
-// The constants of linux/landlock.h up to ABI 6, spelled out: Debian 12's kernel headers stop at ABI 2.
-
-constexpr std::uint64_t kExecute = 1ULL << 0, kWriteFile = 1ULL << 1, kReadFile = 1ULL << 2, kReadDir = 1ULL << 3,
-                        kRemoveDir = 1ULL << 4, kRemoveFile = 1ULL << 5, kMakeChar = 1ULL << 6,
-                        kMakeDir = 1ULL << 7, kMakeReg = 1ULL << 8, kMakeSock = 1ULL << 9, kMakeFifo = 1ULL << 10,
-                        kMakeBlock = 1ULL << 11, kMakeSym = 1ULL << 12, kRefer = 1ULL << 13,
-                        kTruncate = 1ULL << 14, kIoctlDev = 1ULL << 15;
-constexpr std::uint64_t kBindTcp = 1ULL << 0, kConnectTcp = 1ULL << 1;
-constexpr std::uint64_t kScopeAbstractSocket = 1ULL << 0, kScopeSignal = 1ULL << 1;
-constexpr int kRulePathBeneath = 1;
-constexpr unsigned kCreateRulesetVersion = 1U << 0;
-
-struct RulesetAttr {
-    std::uint64_t handledFs;
-    std::uint64_t handledNet;
-    std::uint64_t scoped;
-};
-
-struct __attribute__((packed)) PathBeneathAttr {
-    std::uint64_t allowed;
-    std::int32_t parentFd;
-};
-
-#ifndef SYS_landlock_create_ruleset
-#define SYS_landlock_create_ruleset 444
-#define SYS_landlock_add_rule 445
-#define SYS_landlock_restrict_self 446
-#endif
-
-// Every file-system right the kernel's ABI knows.
-std::uint64_t fsRights(int abi) {
-    std::uint64_t rights = kExecute | kWriteFile | kReadFile | kReadDir | kRemoveDir | kRemoveFile | kMakeChar |
-                           kMakeDir | kMakeReg | kMakeSock | kMakeFifo | kMakeBlock | kMakeSym;
-    if (abi >= 2) rights |= kRefer;
-    if (abi >= 3) rights |= kTruncate;
-    if (abi >= 5) rights |= kIoctlDev;
-    return rights;
-}
-
-bool addRule(int ruleset, const std::string& path, std::uint64_t dirRights, std::uint64_t fileRights, int abi,
-             std::string* error) {
-    struct stat info {};
-    if (::stat(path.c_str(), &info) != 0) return true;  // nothing there to allow
-    const int fd = ::open(path.c_str(), O_PATH | O_CLOEXEC);
-    if (fd < 0) return true;
-    PathBeneathAttr rule{(S_ISDIR(info.st_mode) ? dirRights : fileRights) & fsRights(abi), fd};
-    const bool ok = ::syscall(SYS_landlock_add_rule, ruleset, kRulePathBeneath, &rule, 0) == 0;
-    if (!ok && error) *error = "Landlock refused a rule for " + path + ": " + std::strerror(errno);
-    ::close(fd);
-    return ok;
-}
-
-// ---- processes -----------------------------------------------------------------------------------------------------
 
 bool isNumber(const char* name) {
     if (!*name) return false;
@@ -290,65 +161,6 @@ ProcessStat statOf(pid_t pid) {
 
 }  // namespace
 
-const std::string& filterProgram() {
-    static const std::string program = buildFilter();
-    return program;
-}
-
-std::vector<std::string> refusedCalls() { return {std::begin(kRefused), std::end(kRefused)}; }
-
-bool installFilter(const std::string& program) {
-    if (program.empty()) return false;
-    if (::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0) return false;
-    struct sock_fprog filter;
-    filter.len = static_cast<unsigned short>(program.size() / sizeof(struct sock_filter));
-    filter.filter = reinterpret_cast<struct sock_filter*>(const_cast<char*>(program.data()));
-    return ::prctl(PR_SET_SECCOMP, SECCOMP_MODE_FILTER, &filter, 0, 0) == 0;
-}
-
-int landlockAbi() {
-    static const int abi = [] {
-        const long version = ::syscall(SYS_landlock_create_ruleset, nullptr, 0, kCreateRulesetVersion);
-        return version > 0 ? static_cast<int>(version) : 0;
-    }();
-    return abi;
-}
-
-int makeRuleset(const FileRules& rules, std::string* error) {
-    const int abi = landlockAbi();
-    if (abi == 0) {
-        if (error) *error = "this kernel has no Landlock, or it is blocked here";
-        return -1;
-    }
-    RulesetAttr attr{fsRights(abi), abi >= 4 ? kBindTcp | kConnectTcp : 0,
-                     abi >= 6 ? kScopeAbstractSocket | kScopeSignal : 0};
-    // The attribute's size says which fields this kernel reads.
-    const std::size_t size = abi >= 6 ? sizeof attr : abi >= 4 ? 2 * sizeof(std::uint64_t) : sizeof(std::uint64_t);
-    const int ruleset = static_cast<int>(::syscall(SYS_landlock_create_ruleset, &attr, size, 0));
-    if (ruleset < 0) {
-        if (error) *error = std::string("cannot create a Landlock ruleset: ") + std::strerror(errno);
-        return -1;
-    }
-    ::fcntl(ruleset, F_SETFD, FD_CLOEXEC);
-    const std::uint64_t read = kExecute | kReadFile | kReadDir;
-    const std::uint64_t write = fsRights(abi) & ~(kMakeChar | kMakeBlock | kMakeSock);
-    const std::uint64_t device = kReadFile | kWriteFile | kTruncate | kIoctlDev;
-    bool ok = true;
-    for (const std::string& path : rules.readable) ok = ok && addRule(ruleset, path, read, kExecute | kReadFile, abi, error);
-    for (const std::string& path : rules.writable) ok = ok && addRule(ruleset, path, write, write, abi, error);
-    for (const std::string& path : rules.devices) ok = ok && addRule(ruleset, path, device, device, abi, error);
-    if (!ok) {
-        ::close(ruleset);
-        return -1;
-    }
-    return ruleset;
-}
-
-bool restrictSelf(int ruleset) {
-    if (::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0) return false;
-    return ::syscall(SYS_landlock_restrict_self, ruleset, 0) == 0;
-}
-
 uid_t freshUser() {
     static std::mutex lock;
     static std::set<uid_t> given;
@@ -381,7 +193,7 @@ int endProcessesOf(uid_t uid) {
             // times over: a child whose fork was under way during one signal is listed by the next. (A zombie can
             // be signalled too, so "no process left" is never the answer while one waits to be reaped: the rounds
             // below count what is left, zombies aside.)
-            if (!test_process::becomeUser(uid)) ::_exit(2);
+            if (!host::becomeUser(uid)) ::_exit(2);
             for (int i = 0; i < 8; ++i) {
                 if (::kill(-1, SIGKILL) != 0) ::_exit(errno == ESRCH ? 0 : 3);
             }
@@ -455,4 +267,36 @@ long peakResidentOf(pid_t pid) {
     return std::max(0L, statusField(readProcFile(procPath(path, id, "status")), "VmHWM:"));
 }
 
-}  // namespace simlab::engine::sandbox
+// Hands `path` (and what is in it) to `uid`, shut to everyone else: the sandbox user owns its working directory
+// and what it is lent for the run, and no other sandbox user can enter them. Handed back to root (uid 0) after.
+bool handTo(const std::string& path, uid_t uid) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    auto give = [&](const fs::path& p) {
+        struct stat info {};
+        if (::lstat(p.c_str(), &info) != 0 || S_ISLNK(info.st_mode)) return true;
+        return ::lchown(p.c_str(), uid, uid) == 0 && ::chmod(p.c_str(), info.st_mode & 0700) == 0;
+    };
+    if (!give(path)) return false;
+    if (!fs::is_directory(path, error)) return true;
+    for (auto it = fs::recursive_directory_iterator(path, error); !error && it != fs::recursive_directory_iterator();
+         it.increment(error)) {
+        if (!give(it->path())) return false;
+    }
+    return !error;
+}
+
+// Without bubblewrap or Landlock a sandbox user could write to the machine's shared temporary folders: what it
+// left there goes with it.
+void removeFilesOf(uid_t uid) {
+    namespace fs = std::filesystem;
+    for (const char* dir : {"/tmp", "/var/tmp", "/dev/shm"}) {
+        std::error_code error;
+        for (auto it = fs::directory_iterator(dir, error); !error && it != fs::directory_iterator(); it.increment(error)) {
+            struct stat info {};
+            if (::lstat(it->path().c_str(), &info) == 0 && info.st_uid == uid) fs::remove_all(it->path(), error);
+        }
+    }
+}
+
+}  // namespace simlab::isolation
