@@ -52,7 +52,7 @@ void runCheck(const CheckOptions& o) {
     // an #include of one would show its lines in the compiler's messages.
     const bool amongSystemFiles = manifest.sourceDir.rfind("/usr/", 0) == 0 || manifest.buildDir.rfind("/usr/", 0) == 0;
     if (o.all || amongSystemFiles) {
-        if (const std::string exposed = secretsExposed(manifest, assignment); !exposed.empty()) throw UsageError(exposed);
+        if (const std::string exposed = secretsExposed(manifest); !exposed.empty()) throw UsageError(exposed);
     }
     GradeOptions options;
     options.includeHidden = o.all;

@@ -147,7 +147,7 @@ void runGrade(const GradeCommandOptions& o) {
     // The class's files and the grades are no sandbox's to see, wherever they lie.
     hideFromSandboxes({root, out});
     // Hidden tests run only where no test's code can read them, nor the class's files.
-    if (const std::string exposed = secretsExposed(manifest, assignment, {root, out}); !exposed.empty()) {
+    if (const std::string exposed = secretsExposed(manifest, {root, out}); !exposed.empty()) {
         throw UsageError(exposed);
     }
     std::printf("Grading %s (%s) from %s into %s%s: %d jobs, sandbox: %s\n", assignment.id.c_str(),

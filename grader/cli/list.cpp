@@ -1,6 +1,8 @@
-// simlab list: the assignments this build knows.
+// simlab list: the assignments this build knows (or, with --secrets, what simlab keeps from tests' code).
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
+#include <memory>
 
 #include "commands.h"
 #include "simlab/engine/manifest.h"
@@ -10,8 +12,20 @@ namespace simlab::cli {
 
 void addList(CLI::App& app) {
     CLI::App* list = app.add_subcommand("list", "List the assignments, their files and points.");
-    list->callback([] {
+    auto secrets = std::make_shared<bool>(false);
+    list->add_flag("--secrets", *secrets,
+                   "list instead, one per line, what no test's code may read - every assignment's hidden tests, "
+                   "solutions, judges and what the build made of them, the corpus, the object cache, the sources' "
+                   "history - where it exists (what scripts/lock-course closes)");
+    list->callback([secrets] {
         const engine::Manifest manifest = engine::loadManifest();
+        if (*secrets) {
+            for (const std::string& path : engine::courseSecrets(manifest)) {
+                std::error_code error;
+                if (std::filesystem::exists(path, error)) std::printf("%s\n", path.c_str());
+            }
+            return;
+        }
         for (const engine::Assignment& a : manifest.assignments) {
             const Rubric rubric = loadRubric(a.rubric);
             int visible = 0;

@@ -62,7 +62,9 @@ void runAutograde(const AutogradeOptions& o) {
         if (!fs::is_directory(o.submission)) throw UsageError("no submission folder " + o.submission);
         const Rubric rubric = loadRubric(assignment.rubric);
         if (const std::string closed = sandboxCannotReach(manifest, assignment); !closed.empty()) throw UsageError(closed);
-        if (const std::string exposed = secretsExposed(manifest, assignment); !exposed.empty()) throw UsageError(exposed);
+        if (const std::string exposed = secretsExposed(manifest, {assignment.judge}); !exposed.empty()) {
+            throw UsageError(exposed);
+        }
         GradeOptions options;
         options.includeHidden = true;
         options.judges = cores();  // one submission

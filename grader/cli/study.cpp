@@ -72,8 +72,92 @@ const char* const kIntegrators[] = {"RungeKuttaMerson", "RungeKutta3", "RungeKut
                                     "ExplicitEuler",    "SemiExplicitEuler", "SemiExplicitEuler2", "Verlet",
                                     "CPodes"};
 
-/// Runs a study program, handing each line it prints to `onLine` as it comes; what is not a JSON line (a progress
-/// line, an error) goes to our standard error. A student's study program runs in the sandbox, as a probe does
+/// Runs `work` on `count` threads at once (at least one), and waits for them all; the first exception one of them
+/// threw is thrown here, once they have ended.
+void inWorkers(int count, const std::function<void()>& work) {
+    std::mutex lock;
+    std::exception_ptr failure;
+    std::vector<std::thread> workers;
+    for (int k = 0; k < std::max(1, count); ++k) {
+        workers.emplace_back([&] {
+            try {
+                work();
+            } catch (...) {
+                std::lock_guard<std::mutex> guard(lock);
+                if (!failure) failure = std::current_exception();
+            }
+        });
+    }
+    for (std::thread& w : workers) w.join();
+    if (failure) std::rethrow_exception(failure);
+}
+
+/// A study program's line as simlab takes it - the type ("subject", "point", "minimal"), and for each field the
+/// type it must have: what a program built from a student's file prints is data, never trusted. A subject's name
+/// is a plain word (letters, digits, '.', '_', '-'), since it names files and plots; texts are made printable and
+/// cut at 300 bytes; numbers are finite or null; an integrator, a mode and a status are among the known ones.
+/// Empty, with `why` saying what is wrong, for a line no study prints.
+std::optional<json> wellFormedLine(const json& line, std::string& why) {
+    auto fail = [&](const std::string& what) -> std::optional<json> {
+        why = what;
+        return std::nullopt;
+    };
+    if (!line.is_object() || !line.contains("type") || !line["type"].is_string()) return fail("a line without a type");
+    const std::string type = line["type"];
+    if (type != "subject" && type != "point" && type != "minimal") return fail("a line of type '" + engine::printable(type) + "'");
+    json out = {{"type", type}};
+    auto textField = [&](const char* key) {
+        const std::string value = line.contains(key) && line[key].is_string() ? line[key].get<std::string>() : "";
+        out[key] = engine::printable(value.substr(0, 300));
+    };
+    auto numberField = [&](const char* key) {
+        const bool finite = line.contains(key) && line[key].is_number() && std::isfinite(line[key].get<double>());
+        out[key] = finite ? line[key] : json();
+    };
+    const std::string subject = line.contains("subject") && line["subject"].is_string() ? line["subject"].get<std::string>() : "";
+    const bool plainWord = !subject.empty() && subject.size() <= 64 && subject[0] != '.' &&
+                           std::all_of(subject.begin(), subject.end(), [](char c) {
+                               return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
+                           });
+    if (!plainWord) return fail("a subject named '" + engine::printable(subject.substr(0, 80)) + "'");
+    out["subject"] = subject;
+    if (type == "subject") {
+        for (const char* key : {"lab", "figure", "conserved", "reference"}) textField(key);
+        for (const char* key : {"final_time", "reference_digits", "cap", "max_evaluations", "repeats", "starts"}) numberField(key);
+        return out;
+    }
+    const std::string integrator = line.contains("integrator") && line["integrator"].is_string() ? line["integrator"].get<std::string>() : "";
+    if (std::find(std::begin(kIntegrators), std::end(kIntegrators), integrator) == std::end(kIntegrators)) {
+        return fail("an integrator named '" + engine::printable(integrator.substr(0, 80)) + "'");
+    }
+    out["integrator"] = integrator;
+    const std::string mode = line.contains("mode") && line["mode"].is_string() ? line["mode"].get<std::string>() : "";
+    if (mode != "accuracy" && mode != "fixed step") return fail("a mode named '" + engine::printable(mode.substr(0, 80)) + "'");
+    out["mode"] = mode;
+    const std::string status = line.contains("status") && line["status"].is_string() ? line["status"].get<std::string>() : "";
+    static const char* const kStatuses[] = {"ok", "too costly", "failed", "blew up", "no error control"};
+    if (std::find_if(std::begin(kStatuses), std::end(kStatuses), [&](const char* k) { return status == k; }) == std::end(kStatuses)) {
+        return fail("a status '" + engine::printable(status.substr(0, 80)) + "'");
+    }
+    out["status"] = status;
+    textField("message");
+    for (const char* key : {"accuracy", "step", "reached", "final_digits", "worst_digits", "drift", "steps_taken",
+                            "steps_attempted", "evaluations", "seconds", "repeats"}) {
+        numberField(key);
+    }
+    if (type == "minimal") {
+        textField("lab");
+        textField("model");
+        out["over_modelled"] = line.contains("over_modelled") && line["over_modelled"].is_boolean() && line["over_modelled"].get<bool>();
+        numberField("dof");
+        numberField("coordinates");
+    }
+    return out;
+}
+
+/// Runs a study program, handing each line it prints to `onLine` as it comes, made well formed (wellFormedLine; a
+/// line that is not stops the study, saying what it was); what is not a JSON line (a progress line, an error) goes
+/// to our standard error, printable. A student's study program runs in the sandbox, as a probe does
 /// (its folder lent read-only, a scratch working directory, no network); the course's runs as a tool. Returns its
 /// exit status (128 + N for signal N).
 int runStudyProgram(const std::vector<std::string>& argv, bool sandboxed,
@@ -90,10 +174,16 @@ int runStudyProgram(const std::vector<std::string>& argv, bool sandboxed,
     request.limits.fileMiB = 64;
     request.limits.processes = 16;
     request.keepOutput = 0;
+    std::string malformed;
     request.onOutputLine = [&](const std::string& line) {
         const json j = json::parse(line, nullptr, false);
-        if (!j.is_discarded() && j.is_object()) onLine(j);
-        else if (!line.empty()) std::cerr << engine::printable(line) << '\n';
+        if (!j.is_discarded() && j.is_object()) {
+            std::string why;
+            if (const std::optional<json> taken = wellFormedLine(j, why)) onLine(*taken);
+            else if (malformed.empty()) malformed = why;
+        } else if (!line.empty()) {
+            std::cerr << engine::printable(line) << '\n';
+        }
     };
     if (sandboxed) {
         // A student's file built into a study program: the students' system-call filter, as for a probe.
@@ -104,6 +194,10 @@ int runStudyProgram(const std::vector<std::string>& argv, bool sandboxed,
     }
     const isolation::ProcessResult result = isolation::runProcess(request);
     if (!result.started) throw std::runtime_error("cannot run " + argv.front() + ": " + result.error);
+    if (!malformed.empty()) {
+        throw std::runtime_error(fs::path(argv.front()).filename().string() + " printed a line no study prints (" +
+                                 malformed + "): the study stops");
+    }
     if (result.cpuTimeout || result.wallTimeout) throw std::runtime_error(argv.front() + " ran past its time net");
     if (result.signal != 0) return 128 + result.signal;
     return result.exitCode;
@@ -186,9 +280,16 @@ void writeCsv(const fs::path& path, const std::vector<SubjectRun>& runs) {
 
 /// Draws the subject's points from trade.csv: worst digits against evaluations and against time, one curve per
 /// integrator (dashed: its fixed-step sweep), as PNG and SVG. Returns the files made, or says why none were.
-std::vector<std::string> plot(const fs::path& dir, const std::string& subject) {
+std::vector<std::string> plot(const fs::path& dir, const std::string& name) {
     const std::string gnuplot = "/usr/bin/gnuplot";  // Debian's gnuplot-nox (scripts/install-deps)
     if (!fs::exists(gnuplot)) return {};
+    // A subject's name is a plain word (wellFormedLine); quoted as gnuplot quotes (a ' doubled) all the same, and
+    // never a path.
+    std::string subject;
+    for (const char c : name) {
+        if (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-') subject += c;
+    }
+    if (subject.empty() || subject[0] == '.') return {};
     std::string names;
     for (const char* n : kIntegrators) names += std::string(names.empty() ? "" : " ") + n;
     std::ostringstream gp;
@@ -232,7 +333,8 @@ void printTable(std::ostream& out, const SubjectRun& run) {
     const double referenceDigits = s["reference_digits"].is_number() ? s["reference_digits"].get<double>() : 0;
     // The reference's accuracy, floored to a tenth: a bound, never rounded up past what was measured.
     out << '\n'
-        << text(s["subject"]) << ": " << text(s["figure"]) << "\n  reference: " << text(s["reference"]) << ", good to "
+        << engine::printable(text(s["subject"])) << ": " << engine::printable(text(s["figure"])) << "\n  reference: "
+        << engine::printable(text(s["reference"])) << ", good to "
         << number(json(std::floor(referenceDigits * 10) / 10), "%.1f") << " digits at t = "
         << number(s["final_time"]) << " s\n";
     std::vector<const json*> ok, failed;
@@ -530,9 +632,7 @@ void writeFronts(const StudyOptions& o, const std::vector<const engine::Assignme
             });
         }
     };
-    std::vector<std::thread> workers;
-    for (int k = 0; k < std::max(1, std::min<int>(o.jobs, static_cast<int>(tasks.size()))); ++k) workers.emplace_back(work);
-    for (std::thread& w : workers) w.join();
+    inWorkers(std::min<int>(o.jobs, static_cast<int>(tasks.size())), work);
     // Each file once, with every scene's front in it.
     std::map<std::string, json> written;
     for (Task& t : tasks) {
@@ -653,9 +753,7 @@ void runTradeInParts(const StudyOptions& o, const std::vector<const engine::Assi
             std::fflush(stdout);
         }
     };
-    std::vector<std::thread> workers;
-    for (int k = 0; k < std::max(1, std::min<int>(o.jobs, static_cast<int>(mine.size()))); ++k) workers.emplace_back(work);
-    for (std::thread& w : workers) w.join();
+    inWorkers(std::min<int>(o.jobs, static_cast<int>(mine.size())), work);
     std::cout << measured << " part(s) measured, " << reused << " up to date and kept, of "
               << (o.shard.empty() ? "the study's " : "shard " + o.shard + "'s ") << mine.size() << '\n';
     if (!failure.empty()) throw std::runtime_error(failure);
@@ -828,9 +926,7 @@ void runTrade(const StudyOptions& o) {
             });
         }
     };
-    std::vector<std::thread> workers;
-    for (int k = 0; k < std::max(1, std::min<int>(o.jobs, static_cast<int>(labs.size()))); ++k) workers.emplace_back(work);
-    for (std::thread& w : workers) w.join();
+    inWorkers(std::min<int>(o.jobs, static_cast<int>(labs.size())), work);
     for (std::size_t i = 0; i < labs.size(); ++i) {
         if (results[i].status != 0) {
             throw std::runtime_error("the study of " + labs[i]->id + " stopped with status " +

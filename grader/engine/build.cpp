@@ -60,6 +60,9 @@ std::string stoppedByLimit(const char* tool, const isolation::ProcessResult& run
     } else if (run.outputLimit) {
         std::snprintf(line, sizeof line, "the %s was stopped: it printed more than %ld KiB", tool,
                       static_cast<long>(limits.outputKiB));
+    } else if (run.diskLimit) {
+        std::snprintf(line, sizeof line, "the %s was stopped: its files took more than %ld MiB", tool,
+                      static_cast<long>(3 * limits.fileMiB));
     } else {
         return "";
     }

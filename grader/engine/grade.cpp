@@ -162,6 +162,10 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
     } else if (probe.outputLimit) {
         t.outcome = Outcome::OutputTruncated;
         t.reason = "output truncated: it printed more than " + std::to_string(limits.outputKiB) + " KiB, and was stopped";
+    } else if (probe.diskLimit) {
+        t.outcome = Outcome::OutputTruncated;
+        t.reason = "output truncated: its files together took more than " + std::to_string(3 * limits.fileMiB) +
+                   " MiB, the space a test has, and it was stopped";
     } else if (probe.cpuTimeout) {
         t.outcome = Outcome::TimedOut;
         t.reason = "timed out after " + seconds(std::ceil(limits.cpuSeconds)) + " of CPU time";
@@ -503,12 +507,8 @@ GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, 
     return report;
 }
 
-std::string secretsExposed(const Manifest& manifest, const Assignment& assignment,
-                           const std::vector<std::string>& more) {
-    std::vector<std::string> secrets = secretPaths(manifest, assignment);
-    const char* cache = std::getenv("SIMLAB_CACHE");
-    secrets.push_back(manifest.sourceDir + "/tests/corpus");
-    secrets.push_back(cache && *cache ? std::string(cache) : manifest.cacheDir + "/objects");
+std::string secretsExposed(const Manifest& manifest, const std::vector<std::string>& more) {
+    std::vector<std::string> secrets = courseSecrets(manifest);
     secrets.insert(secrets.end(), more.begin(), more.end());
     for (std::string& path : secrets) {
         std::error_code ignored;
@@ -520,8 +520,8 @@ std::string secretsExposed(const Manifest& manifest, const Assignment& assignmen
     for (const std::string& path : readable) paths += " " + path;
     return "in this sandbox (" + isolation::sandboxSupport().mode + ") a test's code could read " + readable.front() +
            (readable.size() > 1 ? " and " + std::to_string(readable.size() - 1) + " more" : "") +
-           ", so hidden tests are not run: make them unreadable to other users (chmod -R go-rwx" + paths +
-           "), or install bubblewrap";
+           ", so hidden tests are not run: make them unreadable to other users (scripts/lock-course, or chmod -R "
+           "go-rwx" + paths + "), or install bubblewrap";
 }
 
 double roundScore(double points) { return std::round(points * 100.0) / 100.0; }
@@ -828,8 +828,11 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
     TempDir work("simlab-" + assignment.id + "-", options.workRoot);
     Workspace w{work.path(), work.path() + "/build", work.path() + "/probe", builder.probeHost()};
     for (const std::string& dir : {w.build, w.probe}) fs::create_directory(dir);
-    // Each folder below is handed to the sandbox user of the process that works in it, for that run (0700).
+    // Each folder below is handed to the sandbox user of the process that works in it, for that run (0700); the
+    // probe's is simlab's alone (each test gets a copy of its own): where files are kept apart by their modes
+    // alone, no other student's test may read this one's probe.
     makePassable(w.root);
+    fs::permissions(w.probe, fs::perms::owner_all);
     if (options.progress) options.progress("building");
     report.build =
         builder.buildProbe(assignment, files.name, files.text, w.build, w.probe + "/probe.so", options.checkObject);

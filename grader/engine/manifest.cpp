@@ -4,6 +4,7 @@
 #include <pwd.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -71,11 +72,34 @@ void placePrecompiledHeaders(Manifest& m) {
 
 std::vector<std::string> secretPaths(const Manifest& manifest, const Assignment& assignment) {
     std::vector<std::string> secrets = assignment.hiddenTests;
-    for (const std::string& path : {assignment.solution.empty() ? std::string()
-                                                                : fs::path(assignment.solution).parent_path().string(),
-                                    assignment.judge, manifest.sampleClass}) {
+    // What the build made of them: the judge, its tests' objects and the hidden trade question's text; the programs
+    // built from the solution (the reference lab program, its study).
+    std::error_code error;
+    const fs::path relative = fs::path(assignment.dir).lexically_relative(manifest.sourceDir);
+    const bool inTree = !relative.empty() && *relative.begin() != "..";
+    const fs::path built = fs::path(manifest.buildDir) / relative;
+    for (const std::string& path :
+         {assignment.solution.empty() ? std::string() : fs::path(assignment.solution).parent_path().string(),
+          assignment.judge, manifest.sampleClass, assignment.referenceProgramPath, assignment.studyProgramPath,
+          inTree ? (built / "CMakeFiles" / (assignment.id + "_grader_tests.dir")).string() : std::string(),
+          inTree ? (built / "trade").string() : std::string()}) {
         if (!path.empty()) secrets.push_back(path);
     }
+    return secrets;
+}
+
+std::vector<std::string> courseSecrets(const Manifest& manifest) {
+    std::vector<std::string> secrets;
+    for (const Assignment& a : manifest.assignments) {
+        for (const std::string& secret : secretPaths(manifest, a)) {
+            if (std::find(secrets.begin(), secrets.end(), secret) == secrets.end()) secrets.push_back(secret);
+        }
+    }
+    const char* cache = std::getenv("SIMLAB_CACHE");
+    secrets.push_back(manifest.sourceDir + "/tests/corpus");
+    secrets.push_back(cache && *cache ? std::string(cache) : manifest.cacheDir + "/objects");
+    secrets.push_back(manifest.sourceDir + "/.git");
+    secrets.push_back(manifest.buildDir + "/Testing");
     return secrets;
 }
 
@@ -184,6 +208,7 @@ Manifest loadManifest(const std::string& path) {
         for (const std::string& secret : secretPaths(m, a)) hidden.push_back(secret);
     }
     isolation::hideFromSandboxes(hidden);
+    isolation::useProbeHost(m.probeHost);
     return m;
 }
 

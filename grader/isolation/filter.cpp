@@ -68,7 +68,7 @@ const char* const kAllowed[] = {
     "ftruncate", "truncate", "fsync", "fdatasync", "sync_file_range", "fcntl", "dup", "dup2", "dup3", "pipe",
     "pipe2", "getcwd", "chdir", "fchdir", "umask", "chmod", "fchmod", "fchmodat", "utimensat", "utime", "utimes",
     "futimesat", "statfs", "fstatfs", "fadvise64", "fallocate", "flock", "sendfile", "copy_file_range", "splice",
-    "tee", "memfd_create", "poll", "ppoll", "select", "pselect6", "epoll_create", "epoll_create1", "epoll_ctl",
+    "tee", "poll", "ppoll", "select", "pselect6", "epoll_create", "epoll_create1", "epoll_ctl",
     "epoll_wait", "epoll_pwait", "epoll_pwait2", "eventfd", "eventfd2", "timerfd_create", "timerfd_settime",
     "timerfd_gettime", "signalfd", "signalfd4", "readahead", "getxattr", "lgetxattr", "fgetxattr",
     // Processes and threads of its own (clone is below: without new namespaces).
@@ -90,8 +90,11 @@ const char* const kAllowed[] = {
 // much it holds), and close-on-exec and non-blocking flags: the ioctls the students' filter allows.
 const std::uint64_t kAllowedIoctls[] = {TCGETS, TIOCGWINSZ, TIOCGPGRP, FIONREAD, FIONBIO, FIOCLEX, FIONCLEX};
 
-constexpr std::uint64_t kNamespaceFlags[] = {CLONE_NEWUSER, CLONE_NEWNS, CLONE_NEWPID, CLONE_NEWNET, CLONE_NEWIPC,
-                                             CLONE_NEWUTS, CLONE_NEWCGROUP, CLONE_NEWTIME};
+// New namespaces, and a child made the caller's sibling (CLONE_PARENT: a child of its parent - a probe's server, or
+// simlab - that no one of the test waits for).
+constexpr std::uint64_t kRefusedCloneFlags[] = {CLONE_NEWUSER, CLONE_NEWNS,     CLONE_NEWPID,  CLONE_NEWNET,
+                                                CLONE_NEWIPC,  CLONE_NEWUTS,    CLONE_NEWCGROUP, CLONE_NEWTIME,
+                                                CLONE_PARENT};
 
 std::string exported(scmp_filter_ctx ctx) {
     const int fd = static_cast<int>(::syscall(SYS_memfd_create, "simlab-seccomp", MFD_CLOEXEC));
@@ -116,8 +119,8 @@ struct Context {
 
 // What both filters share: another architecture's calls end the process; no PR_SET_NO_NEW_PRIVS from libseccomp
 // (install sets it, and bubblewrap for its own child); the refusals, the terminal's dangerous ioctls among them;
-// clone without a new namespace (clone3, whose flags a filter cannot read, says it does not exist, so that the C
-// library falls back to clone).
+// clone without a new namespace or CLONE_PARENT (clone3, whose flags a filter cannot read, says it does not exist,
+// so that the C library falls back to clone).
 bool addCommon(scmp_filter_ctx ctx, bool student) {
     bool ok = seccomp_attr_set(ctx, SCMP_FLTATR_ACT_BADARCH, SCMP_ACT_KILL_PROCESS) == 0;
     ok = ok && seccomp_attr_set(ctx, SCMP_FLTATR_CTL_NNP, 0) == 0;
@@ -137,7 +140,7 @@ bool addCommon(scmp_filter_ctx ctx, bool student) {
     }
     ok = ok && seccomp_rule_add(ctx, SCMP_ACT_ERRNO(ENOSYS), SCMP_SYS(clone3), 0) == 0;
     std::uint64_t all = 0;
-    for (const std::uint64_t flag : kNamespaceFlags) {
+    for (const std::uint64_t flag : kRefusedCloneFlags) {
         all |= flag;
         ok = ok && seccomp_rule_add(ctx, SCMP_ACT_ERRNO(EPERM), SCMP_SYS(clone), 1,
                                     SCMP_A0(SCMP_CMP_MASKED_EQ, flag, flag)) == 0;

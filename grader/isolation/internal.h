@@ -7,6 +7,7 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -70,6 +71,10 @@ long tasksOf(uid_t uid);
 /// The peak resident memory of process `pid` itself (VmHWM, KiB), not of what it started; 0 if it is gone.
 long peakResidentOf(pid_t pid);
 
+/// The bytes the files under `path` take on disk, counted until past `stopAt` (or past 20,000 entries, which count
+/// as past it): what a run wrote where no memory file system caps it.
+std::uintmax_t folderBytes(const std::string& path, std::uintmax_t stopAt);
+
 /// Hands `path` (and what is in it) to `uid`, shut to everyone else; to root (0) hands it back.
 bool handTo(const std::string& path, uid_t uid);
 
@@ -128,11 +133,14 @@ struct Watched {
     std::function<Usage()> usage;
     /// The first process's own peak resident memory (KiB); none where it cannot be seen.
     std::function<long()> ownPeak;
+    /// The folder the run writes in, where no memory file system of bubblewrap's caps it: its files together may
+    /// take what bubblewrap's three give a run (its folder, /tmp and /dev/shm, each of the file-size limit).
+    std::string folder;
 };
 
 /// The one loop every sandboxed run is watched by: output drained and counted (the output limit), the report
-/// channel read, the processes' CPU time and memory added up every 100 ms (the CPU and memory limits), the wall
-/// clock (stalled), an interruption, and orphans reaped; until the first process has ended and its pipes are
+/// channel read, the processes' CPU time and memory added up every 100 ms (the CPU and memory limits) and the
+/// files of its folder (the disk limit), the wall clock (stalled), an interruption, and orphans reaped; until the first process has ended and its pipes are
 /// closed (or half a second after, if something it started holds them). Fills `result` but its starting facts.
 void supervise(const ProcessRequest& r, Watched& w, Clock::time_point start, ProcessResult& result);
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <mutex>
 #include <set>
 #include <sstream>
@@ -360,10 +361,26 @@ const SandboxSupport& sandboxSupport() {
 }
 
 std::vector<std::string> readableInSandbox(const std::vector<std::string>& paths, const std::vector<std::string>& lent) {
-    std::vector<std::string> existing;
+    // Each path, and of a folder its files too (up to 200 of each, named here: a folder others may pass through but
+    // not list can still hold files they can open by name). A file found readable counts for its folder.
+    std::vector<std::string> existing, tried;
+    std::map<std::string, std::string> folderOf;
     for (const std::string& path : paths) {
         std::error_code error;
-        if (!path.empty() && fs::exists(path, error)) existing.push_back(path);
+        if (path.empty() || !fs::exists(path, error)) continue;
+        existing.push_back(path);
+        tried.push_back(path);
+        if (!fs::is_directory(path, error)) continue;
+        int files = 0;
+        for (auto it = fs::recursive_directory_iterator(path, fs::directory_options::skip_permission_denied, error);
+             !error && it != fs::recursive_directory_iterator() && files < 200; it.increment(error)) {
+            if (!it->is_regular_file(error)) continue;
+            // A file asked about itself is answered for itself.
+            if (std::find(paths.begin(), paths.end(), it->path().string()) != paths.end()) continue;
+            tried.push_back(it->path().string());
+            folderOf[it->path().string()] = path;
+            ++files;
+        }
     }
     if (existing.empty()) return {};
     char dir[] = "/tmp/simlab-audit-XXXXXX";
@@ -374,7 +391,7 @@ std::vector<std::string> readableInSandbox(const std::vector<std::string>& paths
                     "for f; do if [ -d \"$f\" ]; then ls -- \"$f\" >/dev/null 2>&1 && echo \"$f\"; "
                     "else head -c 1 -- \"$f\" >/dev/null 2>&1 && echo \"$f\"; fi; done",
                     "simlab-audit"};
-    request.argv.insert(request.argv.end(), existing.begin(), existing.end());
+    request.argv.insert(request.argv.end(), tried.begin(), tried.end());
     request.env = childEnvironment({"LC_ALL=C"});
     request.workDir = dir;
     request.isolate = true;
@@ -389,7 +406,12 @@ std::vector<std::string> readableInSandbox(const std::vector<std::string>& paths
     std::vector<std::string> readable;
     std::istringstream lines(result.output);
     for (std::string line; std::getline(lines, line);) {
-        if (std::find(existing.begin(), existing.end(), line) != existing.end()) readable.push_back(line);
+        const auto folder = folderOf.find(line);
+        const std::string path = folder != folderOf.end() ? folder->second : line;
+        if (std::find(existing.begin(), existing.end(), path) != existing.end() &&
+            std::find(readable.begin(), readable.end(), path) == readable.end()) {
+            readable.push_back(path);
+        }
     }
     return readable;
 }

@@ -20,6 +20,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <sstream>
 
 #include "internal.h"
@@ -32,6 +33,14 @@ namespace simlab::isolation {
 namespace {
 
 std::atomic<bool> gInterrupted{false};
+
+std::mutex gHostLock;
+std::string gHost;  // simlab-probe-host (useProbeHost)
+
+std::string probeHost() {
+    std::lock_guard<std::mutex> guard(gHostLock);
+    return gHost;
+}
 
 // Whether the child may borrow simlab's memory until it execs (vfork: no copy of simlab's page tables, which
 // costs a millisecond or more per process): not when it may have to make a user namespace of its own, which a
@@ -156,6 +165,11 @@ rlim_t taskLimitFor(long processes) {
 
 bool interrupted() { return gInterrupted.load(); }
 
+void useProbeHost(const std::string& path) {
+    std::lock_guard<std::mutex> guard(gHostLock);
+    gHost = path;
+}
+
 void interruptChildren() { gInterrupted.store(true); }
 
 bool childrenInterrupted() { return gInterrupted.load(); }
@@ -266,8 +280,14 @@ ProcessResult runProcess(const ProcessRequest& r) {
         }
         if (support.bubblewrap) {
             const bool handOver = support.rootBubblewrap && support.ownUser && r.ownUser;
-            // The system-call filter travels on a pipe that bubblewrap reads whole.
-            const std::string* program = filterFor(r);
+            // The system-call filter travels on a pipe that bubblewrap reads whole. bubblewrap loads it before
+            // setpriv hands the program over to its user: a program of a student's gets the tools' filter there,
+            // and the host loads the students' after the handover.
+            const std::string host = probeHost();
+            const bool viaHost = r.studentCode && handOver && !host.empty();
+            ProcessRequest forFilter = r;
+            if (viaHost) forFilter.studentCode = false;
+            const std::string* program = filterFor(forFilter);
             int filter[2] = {-1, -1};
             if (program && ::pipe2(filter, O_CLOEXEC) == 0) {
                 if (::write(filter[1], program->data(), program->size()) == static_cast<ssize_t>(program->size())) {
@@ -278,8 +298,11 @@ ProcessResult runProcess(const ProcessRequest& r) {
                 }
                 ::close(filter[1]);
             }
-            launch.argv = bubblewrapArguments(support.bwrap, r, handOver ? launch.uid : 0, filter[0] >= 0);
+            ProcessRequest lent = r;
+            if (viaHost) lent.readOnlyPaths.push_back(host);
+            launch.argv = bubblewrapArguments(support.bwrap, lent, handOver ? launch.uid : 0, filter[0] >= 0);
             launch.ownPids = true;
+            if (viaHost) launch.argv.insert(launch.argv.end(), {host, "--exec"});
             launch.argv.insert(launch.argv.end(), r.argv.begin(), r.argv.end());
         } else {
             launch.newNetwork = true;
@@ -409,6 +432,8 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
     // is needed. Otherwise, with a user of its own, every process of that user wherever it went.
     w.usage = [&] { return usageOf(pid, launch.ownPids ? 0 : launch.uid); };
     w.ownPeak = [&] { return peakResidentOf(pid); };
+    // Sandboxed without bubblewrap, the run's folder is on a disk: its size is watched.
+    if (r.isolate && !launch.ownPids) w.folder = r.workDir;
     supervise(r, w, start, result);
     if (pidfd >= 0) ::close(pidfd);
     return result;

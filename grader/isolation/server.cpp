@@ -34,6 +34,7 @@ TestServer::TestServer(ProcessRequest server) {
         return;
     }
     control_ = ends[0];
+    folder_ = server.workDir;
     server.passFds.push_back({host::kServerFd, ends[1]});
     server.isolate = true;
     server.serveTests = true;
@@ -158,6 +159,8 @@ std::optional<ProcessResult> TestServer::run(ProcessRequest& t) {
     };
     w.kill = [uid] { endProcessesOf(uid); };
     w.usage = [uid] { return usageOf(0, uid); };
+    // Without bubblewrap the test's folder, in the server's, is on a disk: its size is watched.
+    if (!sandboxSupport().bubblewrap) w.folder = folder_ + "/" + ask.folder;
     supervise(t, w, start, result);
     if (w.wake >= 0) ::close(w.wake);
     result.leftBehind = endProcessesOf(uid);

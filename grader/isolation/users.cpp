@@ -267,6 +267,36 @@ long peakResidentOf(pid_t pid) {
     return std::max(0L, statusField(readProcFile(procPath(path, id, "status")), "VmHWM:"));
 }
 
+std::uintmax_t folderBytes(const std::string& path, std::uintmax_t stopAt) {
+    std::uintmax_t bytes = 0;
+    std::vector<std::string> pending = {path};
+    int entries = 0;
+    while (!pending.empty()) {
+        const std::string dir = pending.back();
+        pending.pop_back();
+        DIR* d = ::opendir(dir.c_str());
+        if (!d) continue;
+        while (const struct dirent* e = ::readdir(d)) {
+            if (e->d_name[0] == '.' && (e->d_name[1] == 0 || (e->d_name[1] == '.' && e->d_name[2] == 0))) continue;
+            if (++entries > 20000) {
+                ::closedir(d);
+                return stopAt + 1;
+            }
+            struct stat info {};
+            const std::string p = dir + "/" + e->d_name;
+            if (::lstat(p.c_str(), &info) != 0) continue;
+            bytes += static_cast<std::uintmax_t>(info.st_blocks) * 512;
+            if (S_ISDIR(info.st_mode)) pending.push_back(p);
+            if (bytes > stopAt) {
+                ::closedir(d);
+                return bytes;
+            }
+        }
+        ::closedir(d);
+    }
+    return bytes;
+}
+
 // Hands `path` (and what is in it) to `uid`, shut to everyone else: the sandbox user owns its working directory
 // and what it is lent for the run, and no other sandbox user can enter them. Handed back to root (uid 0) after.
 bool handTo(const std::string& path, uid_t uid) {
@@ -290,7 +320,7 @@ bool handTo(const std::string& path, uid_t uid) {
 // left there goes with it.
 void removeFilesOf(uid_t uid) {
     namespace fs = std::filesystem;
-    for (const char* dir : {"/tmp", "/var/tmp", "/dev/shm"}) {
+    for (const char* dir : {"/tmp", "/var/tmp", "/dev/shm", "/run/lock"}) {
         std::error_code error;
         for (auto it = fs::directory_iterator(dir, error); !error && it != fs::directory_iterator(); it.increment(error)) {
             struct stat info {};

@@ -50,6 +50,17 @@ run_capture reader "$SIMLAB" study trade apple --quick --no-plots --file Reader.
 check "and runs it in the sandbox, where the hidden tests cannot be read: the study completes" \
   bash -c "test $(status_of reader) -eq 0 && grep -q 'cheapest setting' reader.out"
 
+# What a student's study program prints is data: a line no study prints - a scene named with a newline and gnuplot's
+# commands after it, which would run a shell as simlab's user - stops the study in one line, and reaches no tool.
+{ cat "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp"
+  printf '%s\n' '#include <cstdio>' \
+    'static const bool forged = [] { std::fputs("{\"type\": \"subject\", \"lab\": \"apple\", \"subject\": \"x\\nsystem(\\\"touch PWNED\\\")\\n#\", \"figure\": \"f\", \"reference\": \"r\", \"final_time\": 1}\n", stdout); return true; }();'
+} >Forged.cpp
+run_capture forged "$SIMLAB" study trade apple --quick --repeats 1 --file Forged.cpp -o fs5
+check "a forged line stops the study of a student's file, in one line, and no command of it runs" \
+  bash -c "test $(status_of forged) -eq 1 && grep -q 'printed a line no study prints (a subject named' forged.err &&
+           test \$(grep -c 'simlab: error' forged.err) -eq 1 && test -z \"\$(find . -name PWNED)\""
+
 run_capture boot "$SIMLAB" study trade biosim --quick --max-evaluations 3e4 --no-plots -o boot
 check "the baby boot's study runs against its long-double reference, itself good to 13 digits or more, past the table's 12" \
   bash -c "test $(status_of boot) -eq 0 && grep -qE 'good to 1[3-9]\.[0-9] digits' boot.out"

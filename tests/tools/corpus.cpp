@@ -752,7 +752,7 @@ int invariants(const Manifest& manifest, const Assignment& assignment, const sim
     // to run hidden tests, and says so in one line): the witness's reading them is that mode's known limit.
     std::set<std::string> byModesAlone;
     if (!sandbox.bubblewrap && !sandbox.landlock) {
-        const std::string refusal = secretsExposed(manifest, assignment);
+        const std::string refusal = secretsExposed(manifest);
         std::cout << "limits only: " << (refusal.empty() ? "the course's files are closed to other users" : "simlab refuses hidden tests here: " + refusal) << "\n";
         if (!refusal.empty()) {
             for (const std::string& path : gSecrets) {

@@ -12,6 +12,7 @@
 // `simlab check <id>` grades by default) holds a copy of the solution's folder.
 //
 //   handout-check HANDOUT.md
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -164,8 +165,10 @@ int main(int argc, char** argv) {
             std::vector<std::string> expected = e.expected;
             while (!expected.empty() && expected.back().empty()) expected.pop_back();
             const std::vector<std::string> actual = splitLines(result.output);
+            char took[32];
+            std::snprintf(took, sizeof took, " (%.1f s)", result.wallSeconds);
             if (linesMatch(expected, 0, actual, 0)) {
-                std::cout << "ok: line " << e.line << ": $ " << e.command << "\n";
+                std::cout << "ok: line " << e.line << ": $ " << e.command << took << "\n";
                 continue;
             }
             ++failed;

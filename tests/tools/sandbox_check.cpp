@@ -178,6 +178,15 @@ int main(int argc, char** argv) {
     check("and two of 50 MiB are not (the limit is not too tight to pass)", !small.memoryLimit,
           "peak " + std::to_string(small.maxRssKiB / 1024) + " MiB");
 
+    // Its folder's space: many files, each under the file-size limit (16 MiB). bubblewrap's folder is a memory file
+    // system of that size; elsewhere the folder is on a disk, and simlab stops the test once its files take three
+    // times the limit (what bubblewrap's three memory folders give).
+    const ProcessResult disk = runTry(program, {"disk:16"}, lent);
+    const std::string wrote = resultsOf(disk.output)["disk"];
+    const long mib = wrote.rfind("wrote ", 0) == 0 ? std::atol(wrote.c_str() + 6) : -1;
+    check("files past the space a test has: refused (a full folder) or stopped, never 1 GiB",
+          disk.diskLimit || (mib >= 0 && mib <= 48), wrote + (disk.diskLimit ? ", stopped" : ""));
+
     // A call of the x32 ABI, which a filter for x86-64 alone would miss: the process is ended or the call refused.
     const ProcessResult x32 = runTry(program, {"x32"}, lent);
     const std::string x32Result = resultsOf(x32.output)["x32"];

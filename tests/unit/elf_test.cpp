@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <string>
 
@@ -110,4 +111,18 @@ TEST_CASE("what is not a well-formed ELF file is an error, never a crash", "[elf
 TEST_CASE("names demangle for messages", "[elf]") {
     CHECK(demangle("_ZN6simlab14accuracyDigitsEddd") == "simlab::accuracyDigits(double, double, double)");
     CHECK(demangle("main") == "main");
+}
+
+TEST_CASE("a name whose demangled text would grow past bounds stays mangled, and nothing is spent on it", "[elf]") {
+    // Each level repeats the two before it (S0_ S0_, S2_ S2_, ...): demangled, 2 to the power of the levels.
+    std::string bomb = "_Z1f1AIiiE";
+    for (int level = 0; level < 30; ++level) {
+        const std::string s = level == 0 ? "S_" : "S" + std::string(1, "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ"[2 * level - 2]) + "_";
+        bomb += "1AI" + s + s + "E";
+    }
+    const auto start = std::chrono::steady_clock::now();
+    CHECK(demangle(bomb) == bomb);
+    CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(1));
+    CHECK(demangle("_ZN6simlab13describeModelEv") == "simlab::describeModel()");
+    CHECK(demangle("_ZNSt6vectorIdSaIdEE9push_backEOd") == "std::vector<double, std::allocator<double> >::push_back(double&&)");
 }

@@ -9,6 +9,10 @@
 //   simlab-probe-host --serve PROBE.so   a submission's server (engine::TestServer): it keeps CAP_SETUID,
 //                                        CAP_SETGID and CAP_SETPCAP alone and, for each test the engine asks for,
 //                                        forks a child that drops them, becomes the test's user and loads PROBE.so
+//   simlab-probe-host --exec PROGRAM...  a program built from a student's file (a study of one): loads the
+//                                        students' filter, execs allowed, then runs PROGRAM - where the sandbox
+//                                        could not load that filter before the user was handed over (bubblewrap
+//                                        run as root, whose setpriv changes users)
 //
 // Descriptors (host_protocol.h): 3 events to the engine, 4 the judge's requests, 5 the answers; the server reads
 // the engine's requests on 7. What the server says of a probe (that it started, how it ended) comes from the
@@ -253,9 +257,20 @@ void serveTests() {
 
 int main(int argc, char** argv) {
     const bool serve = argc == 3 && std::strcmp(argv[1], "--serve") == 0;
-    if (!serve && argc != 2) {
-        std::fprintf(stderr, "usage: simlab-probe-host [--serve] PROBE.so (simlab starts it; it is not run by hand)\n");
+    const bool exec = argc >= 3 && std::strcmp(argv[1], "--exec") == 0;
+    if (!serve && !exec && argc != 2) {
+        std::fprintf(stderr, "usage: simlab-probe-host [--serve] PROBE.so | --exec PROGRAM [ARGUMENTS...] (simlab "
+                             "starts it; it is not run by hand)\n");
         return 2;
+    }
+    if (exec) {
+        if (!host::holdsNoCapability() || ::getuid() == 0 || ::geteuid() == 0) {
+            cannot("simlab: a student's program runs as a user of its own, never as root or with a capability");
+        }
+        const std::string& program = filter::studentProgram(true);
+        if (!program.empty() && !filter::install(program)) cannot("simlab: cannot load the program's system-call filter");
+        ::execv(argv[2], argv + 2);
+        cannot("simlab: cannot execute the program", ::strerrordesc_np(errno));
     }
     const char* probe = argv[argc - 1];
     // What a test's child will need, made before any fork: the filter's program and the calls' names.

@@ -123,13 +123,12 @@ struct SubmissionFiles {
 GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
                             const SubmissionFiles& files, const GradeOptions& options);
 
-/// What hidden tests must be kept from: the hidden tests' sources, the solution, the judge (which holds the hidden
-/// tests), the object cache (every student's source), the sample class and the corpus, and `more` (the class's
-/// folder, the grades). Tried as a test's probe is run (isolation::readableInSandbox): where any of them can be read, one line
-/// saying which and how to close it, for the caller to refuse hidden tests with; empty where none can.
-std::string secretsExposed(const Manifest& manifest, const Assignment& assignment,
-                           const std::vector<std::string>& more = {});
-
+/// What hidden tests must be kept from: everything simlab keeps from tests' code (courseSecrets: every
+/// assignment's hidden tests, solutions, judges and what the build made of them, the corpus, the object cache, the
+/// sources' history, the test logs), and `more` (the class's folder, the grades, a judge made apart). Tried as a
+/// test's probe is run (isolation::readableInSandbox, every file of a folder): where any of them can be read, one
+/// line saying which and how to close it, for the caller to refuse hidden tests with; empty where none can.
+std::string secretsExposed(const Manifest& manifest, const std::vector<std::string>& more = {});
 /// Round a score to hundredths, as reports show it.
 double roundScore(double points);
 

@@ -66,9 +66,15 @@ struct Manifest {
 };
 
 /// What no test's code may read, for one assignment: its hidden tests' sources, its solution's folder, its judge
-/// (which holds the hidden tests), and the course's sample class. The corpus and the object cache are the
-/// caller's to add where they exist (a build tree; the user's cache).
+/// (which holds the hidden tests) and its tests' objects, the hidden trade question's text as the build embeds
+/// it, the programs built from the solution (its reference lab program and study), and the course's sample class.
 std::vector<std::string> secretPaths(const Manifest& manifest, const Assignment& assignment);
+
+/// Everything simlab keeps from tests' code: every assignment's secretPaths, the corpus (the solutions' edits), the
+/// object cache (every student's source), the source tree's history (.git: every file it ever held) and the test
+/// logs (build/Testing). What a sandbox of limits only is audited for (secretsExposed) and scripts/lock-course
+/// closes (`simlab list --secrets`).
+std::vector<std::string> courseSecrets(const Manifest& manifest);
 
 /// The manifest at SIMLAB_MANIFEST if set, else the one of the build this engine was built in. simlab's places it
 /// names - its sources, its build or installation, its cache, the sample class, every assignment's secrets - are

@@ -35,7 +35,8 @@ ElfObject readArchive(const std::string& path);
 /// Any of the three, told apart by content. Throws for anything else (a linker script, say).
 ElfObject readElfFile(const std::string& path);
 
-/// "simlab::describeModel(...)" for its mangled name; a name that does not demangle comes back unchanged.
+/// "simlab::describeModel(...)" for its mangled name; a name that does not demangle comes back unchanged, and so
+/// does one whose demangled text could grow past bounds (over 1 KiB, or more than 12 substitutions).
 std::string demangle(const std::string& name);
 
 }  // namespace simlab::isolation

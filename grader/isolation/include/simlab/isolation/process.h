@@ -65,6 +65,8 @@ struct ProcessResult {
     bool cpuTimeout = false;     ///< stopped by the CPU-time limit
     bool outputLimit = false;    ///< killed for printing more than the output limit
     bool memoryLimit = false;    ///< killed when its processes together held more than the memory limit
+    bool diskLimit = false;      ///< killed when its files took more than its scratch space holds (three times the
+                                 ///< file-size limit, as bubblewrap's memory folders give it)
     bool interrupted = false;    ///< killed, or never started, because interruptChildren() was called
     double wallSeconds = 0;
     double cpuSeconds = 0;
@@ -91,6 +93,12 @@ std::vector<std::string> hiddenFromSandboxes();
 /// Whether every sandbox shows `path` without lending it: inside a system folder (/usr, /bin, /lib...) and not
 /// inside a hidden path.
 bool visibleInSandboxes(const std::string& path);
+
+/// simlab-probe-host, which the engine names when it reads its manifest: where bubblewrap, run as root, hands a
+/// program built from a student's file over to its user (setpriv), the host loads the students' filter after the
+/// handover and runs the program (bubblewrap itself could only load it before, and setpriv may not change users
+/// under it). Without it such a program runs under the tools' filter there.
+void useProbeHost(const std::string& path);
 
 /// Sends `size` bytes from `data` and the descriptors `fds` (SCM_RIGHTS) as one message on the socket `socket`;
 /// true if all of it went. The descriptors stay open here.
@@ -127,6 +135,7 @@ public:
 
 private:
     int control_ = -1;  // simlab's end of the server's requests
+    std::string folder_;  // the server's folder, where each test's is
     int tests_ = 0;
     ProcessResult result_;  // the server's own
     std::thread thread_;
