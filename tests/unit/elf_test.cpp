@@ -114,10 +114,20 @@ TEST_CASE("names demangle for messages", "[elf]") {
 }
 
 TEST_CASE("a name whose demangled text would grow past bounds stays mangled, and nothing is spent on it", "[elf]") {
-    // Each level repeats the two before it (S0_ S0_, S2_ S2_, ...): demangled, 2 to the power of the levels.
+    // Each level repeats the one before it twice (S_ S_, then S0_ S0_, S2_ S2_, ...: substitutions numbered in base
+    // 36): demangled, 2 to the power of the levels.
+    const auto base36 = [](int n) {
+        const char digits[] = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ";
+        std::string text;
+        do {
+            text.insert(text.begin(), digits[n % 36]);
+            n /= 36;
+        } while (n > 0);
+        return text;
+    };
     std::string bomb = "_Z1f1AIiiE";
     for (int level = 0; level < 30; ++level) {
-        const std::string s = level == 0 ? "S_" : "S" + std::string(1, "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ"[2 * level - 2]) + "_";
+        const std::string s = level == 0 ? "S_" : "S" + base36(2 * level - 2) + "_";
         bomb += "1AI" + s + s + "E";
     }
     const auto start = std::chrono::steady_clock::now();
