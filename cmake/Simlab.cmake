@@ -400,6 +400,12 @@ function(simlab_write_manifest)
   # exports its entry point alone: a function the student defines can never take the place of a library's, whoever
   # calls it; and it links only if every symbol it needs is there (-z defs), as a program would.
   file(WRITE ${PROJECT_BINARY_DIR}/probe-exports.map "{ global: simlab_probe_entry; local: *; };\n")
+  # A sanitizer build's probe leaves the sanitizers' runtime to the host, which holds it (clang links it into the
+  # program, not into each shared object): there it may not insist on every symbol at link time.
+  set(probe_link "[\"-shared\", \"-Wl,-z,defs\", \"-Wl,--version-script=${PROJECT_BINARY_DIR}/probe-exports.map\"]")
+  if(SIMLAB_SANITIZE)
+    set(probe_link "[\"-shared\", \"-Wl,--version-script=${PROJECT_BINARY_DIR}/probe-exports.map\"]")
+  endif()
   _simlab_json_list(floor_libraries
     $<TARGET_FILE:simlab_plot> $<TARGET_FILE:simlab_rubric> $<TARGET_FILE:Catch2::Catch2WithMain> $<TARGET_FILE:tomlplusplus::tomlplusplus>
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
@@ -420,7 +426,7 @@ function(simlab_write_manifest)
   \"compile\": ${compile},
   \"link\": ${link},
   \"probe_libraries\": ${probe_libraries},
-  \"probe_link\": [\"-shared\", \"-Wl,-z,defs\", \"-Wl,--version-script=${PROJECT_BINARY_DIR}/probe-exports.map\"],
+  \"probe_link\": ${probe_link},
   \"probe_host\": \"$<TARGET_FILE:simlab-probe-host>\",
   \"floor_libraries\": ${floor_libraries},
   \"program_libraries\": ${program_libraries},

@@ -1,8 +1,8 @@
 # simlab package prairielearn: the question folder PrairieLearn documents (info.json, question.html, tests/), its
-# image - no hidden test in it, since anyone may pull it - built from the package as its Dockerfile builds it, the
-# hidden tests' judge made with that build from the question's tests/ (scripts/prairielearn-judge), and the entry
-# point run in a temporary /grade with it: results.json in PrairieLearn's format, with the points simlab check --all
-# gives.
+# image - no hidden test in it, since anyone may pull it: its sources are the student bundle's, built by
+# cli/package-student - the hidden tests' judge made with that build from the question's tests/
+# (scripts/prairielearn-judge), and the entry point run in a temporary /grade with it: results.json in
+# PrairieLearn's format, with the points simlab check --all gives.
 # shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 validate() { python3 "$SOURCE_DIR/tests/tools/validate_platforms.py" "$@"; }
@@ -57,12 +57,13 @@ grade_submission() {  # grade_submission NAME: run the entry point on what is in
   echo $? >"$1.status"
 }
 
-# The image, as its Dockerfile builds it (the packages are there already: SIMLAB_SKIP_APT).
-image=question/image/simlab
-image_simlab=$PWD/$image/build/bin/simlab
-SIMLAB_SKIP_APT=1 SIMLAB_CMAKE_ARGS=-DBUILD_TESTING=OFF SIMLAB_TARGETS="simlab apple_grader" "$image/scripts/setup" \
-  >image-build.log 2>&1
-check "the image's simlab builds from its sources" test -x "$image_simlab" || tail -20 image-build.log
+# The image, as its Dockerfile builds it: its sources are the student bundle's (the bundle adds its README and the
+# handouts' pages), which cli/package-student builds with its own scripts/setup, from nothing ($FIXTURES/bundle).
+image=$FIXTURES/bundle
+image_simlab=$image/build/bin/simlab
+check "the image's sources are the student bundle's" \
+  diff -rq -x build -x README.md -x '*.html' -x '*-reference.svg' question/image/simlab "$image"
+check "which builds from them: the image's simlab is there" test -x "$image_simlab"
 cp -r question/tests "$grade/tests"
 mkdir -p "$grade/student"
 cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" "$grade/student/"

@@ -1,9 +1,13 @@
 # simlab package student: the bundle holds no solution, hidden test or expected value, builds from scratch with
-# its own scripts/setup, and self-checks: the starter low, a finished file full marks on the visible tests.
+# its own scripts/setup, and self-checks: the starter low, a finished file full marks on the visible tests. The
+# built bundle is kept in $FIXTURES/bundle: a PrairieLearn question's image is the same sources
+# (cli/package-prairielearn builds its judge there).
 # shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
-run_capture package "$SIMLAB" package student -o bundle
+rm -rf "$FIXTURES/bundle" && mkdir -p "$FIXTURES"
+ln -s "$FIXTURES/bundle" bundle
+run_capture package "$SIMLAB" package student -o "$FIXTURES/bundle"
 check "package student succeeds" test "$(status_of package)" -eq 0
 check "the bundle has no solutions/ but the worked example project's" \
   bash -c "test \"\$(ls bundle/solutions)\" = biosim -a -f bundle/solutions/biosim/Project.cpp"
@@ -28,15 +32,19 @@ if command -v chromium >/dev/null; then
   done
   check "  and so does a replay" "$SOURCE_DIR/tests/pages/page-check" bundle/handouts/book-replay.html
 fi
-run_capture again "$SIMLAB" package student -o bundle
+run_capture again "$SIMLAB" package student -o "$FIXTURES/bundle"
 check "it refuses to write into a folder that is not empty" test "$(status_of again)" -eq 2
 
-# Build it as a student would, from nothing (packages are already installed here), as on a system whose
-# Catch2 is not 2.13 (Ubuntu 24.04): from the header the bundle carries.
-SIMLAB_SKIP_APT=1 SIMLAB_JOBS=2 SIMLAB_CMAKE_ARGS=-DCMAKE_DISABLE_FIND_PACKAGE_Catch2=ON bundle/scripts/setup >build.log 2>&1
+# Build it as a student would, with its own scripts/setup in a folder of its own (packages are already installed
+# here), as on a system whose Catch2 is not 2.13 (Ubuntu 24.04): from the header the bundle carries. Every step is
+# run; an object whose source and flags are the same as one the build under test compiled comes from that build's
+# ccache (most of them: what differs, such as the carried Catch2 header, is compiled).
+shared_objects "$FIXTURES/bundle"
+SIMLAB_SKIP_APT=1 SIMLAB_JOBS=2 SIMLAB_CMAKE_ARGS="-DCMAKE_DISABLE_FIND_PACKAGE_Catch2=ON $shared_objects" \
+  "$FIXTURES/bundle/scripts/setup" >build.log 2>&1
 check "the bundle builds with its own scripts/setup and its Catch2 header" \
   bash -c "test $? -eq 0 && grep -q 'Catch2 2.13: the header in third_party/catch2' build.log" || tail -20 build.log
-bundled=bundle/build/bin/simlab
+bundled=$FIXTURES/bundle/build/bin/simlab
 run_capture starter "$bundled" check apple
 check "the bundle's simlab checks its starter: 0/76" grep -q '^Score: 0/76$' starter.out
 cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" finished.cpp

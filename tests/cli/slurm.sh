@@ -1,8 +1,9 @@
 # simlab on Slurm: a one-node cluster started here from Debian's packages (munge, slurmctld and slurmd on
 # localhost, every file of theirs in this test's folder) grades the sample class through the job array of
 # `simlab slurm grade --submit` (three shards, then the assembly), and measures the apple's quick trade study
-# through `simlab slurm study trade --submit`. The gradebook is the one a single machine writes; the study's
-# trade.csv has the single machine's points (all but the timings). Skipped, in one line, where no cluster can be
+# through `simlab slurm study trade --submit`. The gradebook is the one a single machine writes
+# (cli/grade-sample-class's); the study's trade.csv has the single machine's points, all but the timings (the
+# apple handout's run's). Skipped, in one line, where no cluster can be
 # started: not root, or the packages are missing (scripts/install-deps --with-slurm installs them).
 # shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
@@ -88,14 +89,10 @@ wait_for() {
 }
 jobs_of() { sed -n 's/^Submitted job \([0-9]*\) .* and job \([0-9]*\),.*/\1 \2/p' "$1"; }
 
-# The sample class, each side with an object cache of its own: nothing comes from an earlier grading.
+# The sample class, with an object cache of its own: nothing comes from an earlier grading. One machine's gradebook
+# of it is cli/grade-sample-class's ($FIXTURES/apple-graded).
 class=$BIN_DIR/../sample-class/apple
 students=$(ls "$class" | wc -l)
-start=$(date +%s%N)
-run_capture single env SIMLAB_CACHE="$work/cache-single" "$SIMLAB" grade apple "$class" --out "$work/single" --jobs 2
-single_s=$(( ($(date +%s%N) - start) / 1000000 ))
-check "one machine grades the class" test "$(status_of single)" -eq 0
-
 start=$(date +%s%N)
 run_capture submit env SIMLAB_CACHE="$work/cache-cluster" "$SIMLAB" slurm grade apple "$class" --out "$work/grades" \
   --tasks 3 --jobs 1 --submit
@@ -107,13 +104,13 @@ logs=$work/grades/slurm/logs
 check "each of the 3 tasks graded its share" \
   test "$(cat "$logs"/grade-*.out 2>/dev/null | grep -c 'once every shard has finished')" -eq 3
 check "the assembly graded nothing again" grep -q "^0 graded, $students up to date and kept" "$logs"/assemble-*.out
-check "the cluster's gradebook is the single machine's" cmp -s "$work/grades/gradebook.csv" "$work/single/gradebook.csv"
-check "and so is the summary" cmp -s "$work/grades/summary.csv" "$work/single/summary.csv"
-echo "sample class of $students: one machine (--jobs 2) $((single_s / 1000)).$(printf %03d $((single_s % 1000))) s;" \
-     "one-node cluster (3 tasks, submission to assembled gradebook) $((cluster_s / 1000)).$(printf %03d $((cluster_s % 1000))) s"
+check "the cluster's gradebook is one machine's" cmp -s "$work/grades/gradebook.csv" "$FIXTURES/apple-graded/gradebook.csv"
+check "and so is the summary" cmp -s "$work/grades/summary.csv" "$FIXTURES/apple-graded/summary.csv"
+echo "sample class of $students on a one-node cluster (3 tasks, submission to assembled gradebook):" \
+     "$((cluster_s / 1000)).$(printf %03d $((cluster_s % 1000))) s"
 
-# The apple's quick study: 9 parts (one per integrator) over 3 tasks, then trade.csv from them.
-run_capture study_single "$SIMLAB" study trade apple --quick --no-plots --output "$work/study-single"
+# The apple's quick study: 9 parts (one per integrator) over 3 tasks, then trade.csv from them. One machine's is
+# the apple handout's run (handouts/apple, $FIXTURES/handouts/apple).
 run_capture study_submit "$SIMLAB" slurm study trade apple --quick --no-plots --output "$work/study" --tasks 3 --submit
 read -r array assemble < <(jobs_of study_submit.out)
 check "simlab slurm study trade --submit submits the array and the assembly" test -n "${array:-}" -a -n "${assemble:-}"
@@ -121,5 +118,5 @@ check "the study's jobs end" wait_for "${array:-0}" "${assemble:-0}"
 check "the 9 parts are measured" test "$(ls "$work"/study/parts/apple.*.json 2>/dev/null | wc -l)" -eq 9
 # Columns 1-15: everything but the seconds, the repeats and the message (which may name a time).
 check "trade.csv has the single machine's points" \
-  cmp -s <(cut -d, -f1-15 "$work/study/trade.csv") <(cut -d, -f1-15 "$work/study-single/trade.csv")
+  cmp -s <(cut -d, -f1-15 "$work/study/trade.csv") <(cut -d, -f1-15 "$FIXTURES/handouts/apple/starter-tree/study/trade.csv")
 finish

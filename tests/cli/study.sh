@@ -1,18 +1,22 @@
 # simlab study trade: every integrator at every accuracy and fixed step, none missing, each under its cap; the
 # figures hold the physics (constant acceleration is integrated exactly by second-order methods, Euler is first
-# order); plots and the table are made; an unknown lab is a one-line error.
+# order); plots and the table are made; a student's file is studied in the sandbox, as data; an unknown lab is a
+# one-line error. The studies the handouts run (the apple's and the boot's quick and minimal studies) are read from
+# their handouts' runs ($FIXTURES/handouts/<lab>), not run again.
 # shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
-run_capture apple "$SIMLAB" study trade apple --quick -o st
-check "simlab study trade apple --quick succeeds" test "$(status_of apple)" -eq 0
+# The apple's quick study, as its handout runs it (handouts/apple, which compares the table it prints): kept in
+# $FIXTURES/handouts/apple.
+st=$FIXTURES/handouts/apple/starter-tree/study
+check "simlab study trade apple --quick (the handout's run) wrote trade.csv" test -s "$st/trade.csv"
 check "trade.csv has a row for each of 9 integrators x 14 accuracies and 8 methods x 4 fixed steps" \
-  test "$(tail -n +2 st/trade.csv | wc -l)" -eq 158
+  test "$(tail -n +2 "$st/trade.csv" | wc -l)" -eq 158
 check "every row has a named status" \
-  bash -c "! tail -n +2 st/trade.csv | cut -d, -f7 | grep -vxE 'ok|too costly|failed|blew up|no error control'"
+  bash -c "! tail -n +2 '$st/trade.csv' | cut -d, -f7 | grep -vxE 'ok|too costly|failed|blew up|no error control'"
 field() {  # field INTEGRATOR MODE SETTING COLUMN: one figure of trade.csv's apple rows
   awk -F, -v i="$1" -v m="$2" -v s="$3" -v c="$4" \
-    '$2 == "apple" && $3 == i && $4 == m && ($5 + 0 == s + 0 || $6 + 0 == s + 0) { print $c }' st/trade.csv
+    '$2 == "apple" && $3 == i && $4 == m && ($5 + 0 == s + 0 || $6 + 0 == s + 0) { print $c }' "$st/trade.csv"
 }
 check "Verlet integrates the apple's constant acceleration exactly (15 digits or more at accuracy 1e-4)" \
   awk "BEGIN { exit !($(field Verlet accuracy 1e-4 10) >= 15) }"
@@ -21,15 +25,18 @@ check "explicit Euler at a fixed step of 0.4 s is first order: under 2 digits" \
 check "ten times the steps buys explicit Euler one digit (0.4 s to 0.04 s)" \
   awk "BEGIN { d = $(field ExplicitEuler 'fixed step' 0.04 10) - $(field ExplicitEuler 'fixed step' 0.4 10); exit !(d > 0.8 && d < 1.2) }"
 check "the table gives the cheapest setting for 4 to 12 digits" \
-  bash -c "grep -q 'cheapest setting' apple.out && test \$(grep -cE '^  (4|6|8|10|12) ' apple.out) -eq 5"
+  bash -c "grep -q 'cheapest setting' $FIXTURES/handouts/apple/starter-tree/simlab-study-trade-apple-quick-no-plots-o-study.out &&
+           test \$(grep -cE '^  (4|6|8|10|12) ' $FIXTURES/handouts/apple/starter-tree/simlab-study-trade-apple-quick-no-plots-o-study.out) -eq 5"
 if command -v gnuplot >/dev/null; then
+  # Drawn from any study: a small one (points past 2000 evaluations too costly) is enough to draw.
+  run_capture plots "$SIMLAB" study trade apple --quick --max-evaluations 2000 -o plotted
   check "digits against evaluations and against time, as PNG and SVG" \
-    test -s st/apple-evaluations.png -a -s st/apple-evaluations.svg -a -s st/apple-time.png -a -s st/apple-time.svg
+    test -s plotted/apple-evaluations.png -a -s plotted/apple-evaluations.svg -a -s plotted/apple-time.png -a -s plotted/apple-time.svg
 fi
 
 run_capture file "$SIMLAB" study trade apple --quick --no-plots --file "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" -o fs
 check "--file studies a student's file: the solution's copy gives the reference's table" \
-  bash -c "test $(status_of file) -eq 0 && diff <(cut -d, -f1-15 st/trade.csv) <(cut -d, -f1-15 fs/trade.csv) >/dev/null"
+  bash -c "test $(status_of file) -eq 0 && diff <(cut -d, -f1-15 '$st/trade.csv') <(cut -d, -f1-15 fs/trade.csv) >/dev/null"
 run_capture starter "$SIMLAB" study trade apple --quick --no-plots --file "$SOURCE_DIR/starter/apple/NewtonsApple.cpp" -o fs2
 check "and an unfinished file stops the study, naming its first TODO" \
   bash -c "test $(status_of starter) -ne 0 && grep -q 'not done yet (NewtonsApple.cpp:' starter.err"
@@ -46,7 +53,7 @@ check "--file refuses what grading refuses (a prioritized constructor), exit 2" 
     'static const bool readIt = [] { std::ifstream in("'"$SOURCE_DIR"'/assignments/apple/tests/hidden.cpp");' \
     '  if (in) throw std::runtime_error("read the hidden tests"); return true; }();'
 } >Reader.cpp
-run_capture reader "$SIMLAB" study trade apple --quick --no-plots --file Reader.cpp -o fs4
+run_capture reader "$SIMLAB" study trade apple --quick --max-evaluations 2000 --no-plots --file Reader.cpp -o fs4
 check "and runs it in the sandbox, where the hidden tests cannot be read: the study completes" \
   bash -c "test $(status_of reader) -eq 0 && grep -q 'cheapest setting' reader.out"
 
@@ -56,17 +63,17 @@ check "and runs it in the sandbox, where the hidden tests cannot be read: the st
   printf '%s\n' '#include <cstdio>' \
     'static const bool forged = [] { std::fputs("{\"type\": \"subject\", \"lab\": \"apple\", \"subject\": \"x\\nsystem(\\\"touch PWNED\\\")\\n#\", \"figure\": \"f\", \"reference\": \"r\", \"final_time\": 1}\n", stdout); return true; }();'
 } >Forged.cpp
-run_capture forged "$SIMLAB" study trade apple --quick --repeats 1 --file Forged.cpp -o fs5
+run_capture forged "$SIMLAB" study trade apple --quick --max-evaluations 2000 --file Forged.cpp -o fs5
 check "a forged line stops the study of a student's file, in one line, and no command of it runs" \
   bash -c "test $(status_of forged) -eq 1 && grep -q 'printed a line no study prints (a subject named' forged.err &&
            test \$(grep -c 'simlab: error' forged.err) -eq 1 && test -z \"\$(find . -name PWNED)\""
 
-run_capture boot "$SIMLAB" study trade biosim --quick --max-evaluations 3e4 --no-plots -o boot
-check "the baby boot's study runs against its long-double reference, itself good to 13 digits or more, past the table's 12" \
-  bash -c "test $(status_of boot) -eq 0 && grep -qE 'good to 1[3-9]\.[0-9] digits' boot.out"
+# The boot's quick study and its minimal study, as its handout runs them (handouts/biosim, which compares what they
+# print, the reference's accuracy of 13.5 digits among it): kept in $FIXTURES/handouts/biosim.
+boot=$FIXTURES/handouts/biosim/solution-tree/study
 check "CPodes at accuracy 1e-10 keeps 4 digits or more of the chaotic boot over 5 s" \
   awk -F, '$3 == "CPodes" && $4 == "accuracy" && $5 + 0 == 1e-10 { found = 1; ok = $10 >= 4 } END { exit !(found && ok) }' \
-  boot/trade.csv
+  "$boot/trade.csv"
 
 run_capture minimal "$SIMLAB" study minimal book --repeats 1 -o min
 check "simlab study minimal book measures each spin's curve on its Ball (3 dof) and on a Free mobilizer (6 dof)" \
@@ -85,17 +92,15 @@ check "the table says how the costs were read and timed" \
   bash -c "grep -q 'at equal digits' minimal.out && grep -q 'read along its own curve of 23 accuracies' minimal.out && \
            grep -q 'fastest of alternating batches of runs at least' minimal.out"
 
-run_capture minimal-boot "$SIMLAB" study minimal biosim --repeats 1 -o minboot
 check "the over-modelled boot (a Free rod held by 5 constraints) has the boot's 2 dof in 8 coordinates" \
-  bash -c "test $(status_of minimal-boot) -eq 0 && test \$(grep -c ',two Pins (2 dof),no,2,2,' minboot/minimal-points.csv) -eq 23 && \
-           test \$(grep -c ',Free + 5 constraints,yes,2,8,RungeKuttaMerson,[0-9.e-]*,ok,' minboot/minimal-points.csv) -ge 20"
+  bash -c "test \$(grep -c ',two Pins (2 dof),no,2,2,' '$boot/minimal-points.csv') -eq 23 && \
+           test \$(grep -c ',Free + 5 constraints,yes,2,8,RungeKuttaMerson,[0-9.e-]*,ok,' '$boot/minimal-points.csv') -ge 20"
 check "and is compared with the two Pins at equal digits, three digits or more apart" \
   awk -F, 'NR > 1 && $5 == "along both curves" { n++; if (!lo || $4 < lo) lo = $4; if ($4 > hi) hi = $4 }
-           END { exit !(n >= 3 && hi - lo >= 3) }' minboot/minimal.csv
-run_capture minimal-apple "$SIMLAB" study minimal apple --repeats 1 -o minapple
+           END { exit !(n >= 3 && hi - lo >= 3) }' "$boot/minimal.csv"
 check "the apple, which every accuracy follows exactly, is compared at the digits both models keep at their loosest" \
-  bash -c "test $(status_of minimal-apple) -eq 0 && test \$(grep -c ',at a loosest accuracy,26,[0-9.e-]*,26,' minapple/minimal.csv) -eq 1 && \
-           grep -q 'the loosest accuracy already keeps these digits' minimal-apple.out"
+  bash -c "test \$(grep -c ',at a loosest accuracy,26,[0-9.e-]*,26,' '$st/minimal.csv') -eq 1 && \
+           grep -q 'the loosest accuracy already keeps these digits' $FIXTURES/handouts/apple/starter-tree/simlab-study-minimal-apple-repeats-1-o-study.out"
 
 # The extremes, without the slow cases (each of those runs into its cap): every outcome named, every promise kept.
 for lab in apple projectile book biosim; do

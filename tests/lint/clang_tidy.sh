@@ -1,7 +1,9 @@
-# simlab's grading engine, its isolation and its command pass clang-tidy with the project's .clang-tidy (every finding an error):
-# each of their translation units in the build's compile_commands.json, read without GCC's precompiled header
-# (clang cannot read it; every source includes what it uses), two at a time. glibc's <sys/platform/x86.h> spells
-# bool as C's _Bool, which GCC reads in C++ and clang does not: clang is told it is bool.
+# simlab's grading engine, its isolation and its command pass clang-tidy with the project's .clang-tidy (every finding
+# an error): each of their translation units in the build's compile_commands.json, read without GCC's precompiled
+# header (clang cannot read it; every source includes what it uses), two at a time.
+#   clang_tidy.sh            every unit (the whole suite's lint/clang-tidy, about two minutes)
+#   clang_tidy.sh --changed  the units holding a source changed since the branch left main, or not yet committed
+#                            (lint/clang-tidy-changed, in the `pr` tier)
 # shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
@@ -42,8 +44,29 @@ print(len(entries))
 PY
 mapfile -t units < <(python3 -c 'import json,sys; [print(e["file"]) for e in json.load(open(sys.argv[1]))]' db/compile_commands.json)
 check "the engine's and the command's translation units are found (${#units[@]})" test "${#units[@]}" -ge 4
+if [[ ${1:-} == --changed ]]; then
+  base=$(git -C "$SOURCE_DIR" merge-base HEAD main 2>/dev/null || git -C "$SOURCE_DIR" merge-base HEAD origin/main 2>/dev/null ||
+         git -C "$SOURCE_DIR" rev-parse HEAD)
+  mapfile -t changed < <({ git -C "$SOURCE_DIR" diff --name-only "$base"; git -C "$SOURCE_DIR" ls-files --others --exclude-standard; } |
+                         grep -E '\.(cpp|h)$' | sed "s|^|$SOURCE_DIR/|" | sort -u)
+  kept=()
+  for unit in "${units[@]}"; do
+    for file in "${changed[@]}"; do
+      # A unit is the source itself, or a batch of a unity build that includes it.
+      if [[ $unit == "$file" ]] || grep -qF "\"$file\"" "$unit" 2>/dev/null; then kept+=("$unit"); break; fi
+      # A changed header: every unit, as the full pass would.
+      [[ $file == *.h ]] && { kept+=("$unit"); break; }
+    done
+  done
+  echo "what changed since $(git -C "$SOURCE_DIR" rev-parse --short "$base"): ${#changed[@]} source(s), ${#kept[@]} unit(s) of ${#units[@]}"
+  if [[ ${#kept[@]} -eq 0 ]]; then
+    echo "nothing of the engine's or the command's changed"
+    finish
+  fi
+  units=("${kept[@]}")
+fi
 printf '%s\0' "${units[@]}" |
-  xargs -0 -P 2 -n 1 "$tidy" -p db --quiet --extra-arg=-Wno-unknown-warning-option --extra-arg=-D_Bool=bool >tidy.out 2>tidy.err
+  xargs -0 -P 2 -n 1 "$tidy" -p db --quiet --extra-arg=-Wno-unknown-warning-option >tidy.out 2>tidy.err
 status=$?
 check "clang-tidy finds nothing (.clang-tidy's checks, every finding an error)" test "$status" -eq 0
 [[ $status -eq 0 ]] || grep -E 'warning:|error:' tidy.out tidy.err | sort -u | head -n 30

@@ -35,3 +35,17 @@ closed_to_others() {
 build_closed=""
 # shellcheck disable=SC2034
 if [[ $(id -u) -eq 0 && -n ${BIN_DIR:-} ]]; then build_closed=$(closed_to_others "$BIN_DIR"); fi
+
+# shared_objects ROOT: sets $shared_objects to the cmake argument that compiles the copy of simlab in ROOT through
+# ccache, in the cache of the build under test (BUILD/ccache, which its own objects filled; CMakeLists.txt says
+# how): the same source with the same flags is the same object, taken from there (paths under ROOT are hashed as
+# relative to it, as the build's are to its sources, so copies in other folders match). Empty without ccache: then
+# each copy compiles everything.
+shared_objects=""
+shared_objects() {
+  command -v ccache >/dev/null || return 0
+  export CCACHE_DIR=$BIN_DIR/../ccache CCACHE_BASEDIR=$1 CCACHE_NOHASHDIR=1
+  export CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime
+  # shellcheck disable=SC2034  # read by the scripts that source this file
+  shared_objects=-DCMAKE_CXX_COMPILER_LAUNCHER=ccache
+}

@@ -17,6 +17,11 @@
 //     percent = true                           # optional: %XX in `replace` is the byte XX (TOML holds only UTF-8)
 //     [outcomes]                               # every test not listed must pass
 //     "y at the final time has the target accuracy digits" = "failed"
+//     tests = ["..."]                          # optional: the tests the edit concerns, which `check` runs (its
+//                                              # [outcomes] among them; default: the tests [outcomes] names, or
+//                                              # the rubric's first); a class grades every test of every case
+//     sandbox = true                           # optional: what it does depends on the sandbox's mode (a class
+//                                              # graded in each mode takes these)
 //
 // Attacks on the files themselves are [[file]] entries, applied after the edits, and a folder name:
 //
@@ -41,7 +46,11 @@
 //     runs = true                            # false: it must never run (a shared object's .preinit_array)
 //
 //   simlab-corpus materialize <assignment> <case.toml>... --out DIR   write DIR/<case>/<files>
-//   simlab-corpus check <assignment> <case.toml>                      grade it and compare; exit 1 on a mismatch
+//   simlab-corpus check <assignment> <case.toml>                      grade the tests its edit concerns and compare
+//       their outcomes; exit 1 on a mismatch (its score, and the text its report must show, are a class's to check:
+//       the class grades every test)
+//   simlab-corpus compare <assignment> <case.toml>... --grades DIR    compare a class graded into DIR (`simlab grade
+//       --out DIR` of the materialized cases) with every case's expectations: outcomes, score, status and text
 //   simlab-corpus invariants <assignment> <case.toml>...               grade each with the object check off, in the
 //       sandbox this machine and environment give, and fail on any record of the witness made as root, with a
 //       capability, or having read a secret, and on an entry point that did not run where it must (or ran where it
@@ -111,6 +120,8 @@ struct Case {
     std::vector<std::vector<std::string>> reportContains;  // each: any one of these
     std::vector<std::string> reportLacks;
     std::map<std::string, std::string> outcomes;
+    std::vector<std::string> tests;  // what `check` runs: the `tests` key, else the tests [outcomes] names
+    bool sandbox = false;            // `sandbox = true`: what it does depends on the sandbox's mode
 };
 
 std::string gSourceDir, gBuildDir;  // this tree's, for {source_dir} and {build_dir}
@@ -234,6 +245,25 @@ Case loadCase(const Assignment& assignment, const simlab::Rubric& rubric, const 
     if (const toml::table* outcomes = t["outcomes"].as_table()) {
         for (auto&& [test, outcome] : *outcomes) c.outcomes[std::string(test.str())] = outcome.value_or(std::string());
     }
+    if (const toml::array* tests = t["tests"].as_array()) {
+        for (const toml::node& node : *tests) {
+            const auto name = node.value<std::string>();
+            if (!name || !rubric.find(*name)) fail(path, "tests names '" + name.value_or("?") + "', which the rubric has not");
+            c.tests.push_back(*name);
+        }
+    }
+    for (const auto& [test, outcome] : c.outcomes) {
+        if (!rubric.find(test)) fail(path, "no test named '" + test + "' in " + assignment.rubric);
+        // A test the edit changes is one `check` runs: [outcomes] within `tests`.
+        if (!c.tests.empty() && std::find(c.tests.begin(), c.tests.end(), test) == c.tests.end()) {
+            fail(path, "'" + test + "' has an outcome of its own but is not among `tests`");
+        }
+    }
+    if (c.tests.empty()) {
+        for (const auto& [test, outcome] : c.outcomes) c.tests.push_back(test);
+    }
+    if (c.tests.empty() && !rubric.tests.empty()) c.tests.push_back(rubric.tests.front().name);
+    c.sandbox = t["sandbox"].value_or(false);
     c.invariantEntry = t["invariant"]["entry"].value_or(std::string());
     c.invariantRuns = t["invariant"]["runs"].value_or(true);
     return c;
@@ -339,8 +369,8 @@ std::string firstControl(const std::string& text) {
 }
 
 // What differs between a case's expectations and a grade: outcomes, the score, texts the report must show.
-std::vector<std::string> compare(const Case& c, const std::vector<TestResult>& tests, double score,
-                                 const std::string& status, const std::string& text) {
+std::vector<std::string> compare(const Case& c, const std::vector<TestResult>& tests, std::optional<double> score,
+                                 const std::string& status, const std::string& text, bool everyTest = true) {
     std::vector<std::string> mismatches;
     for (const TestResult& t : tests) {
         const auto listed = c.outcomes.find(t.name);
@@ -349,11 +379,11 @@ std::vector<std::string> compare(const Case& c, const std::vector<TestResult>& t
             mismatches.push_back("'" + t.name + "' " + outcomeName(t.outcome) + ", expected " + expected);
         }
     }
-    if (std::abs(score - c.score) > 0.005) {
-        mismatches.push_back("score " + points(score) + ", expected " + points(c.score));
+    if (score && std::abs(*score - c.score) > 0.005) {
+        mismatches.push_back("score " + points(*score) + ", expected " + points(c.score));
     }
     if (!c.status.empty() && status != c.status) mismatches.push_back("status '" + status + "', expected '" + c.status + "'");
-    for (const std::vector<std::string>& choice : c.reportContains) {
+    for (const std::vector<std::string>& choice : everyTest ? c.reportContains : std::vector<std::vector<std::string>>{}) {
         const bool said = std::any_of(choice.begin(), choice.end(),
                                       [&](const std::string& needle) { return text.find(needle) != std::string::npos; });
         if (said) continue;
@@ -374,19 +404,18 @@ int check(const Manifest& manifest, const Assignment& assignment, const simlab::
         std::cout << c.name << ": a folder simlab grade skips; graded only as part of a class\nOK: as expected\n";
         return 0;
     }
-    for (const auto& [test, outcome] : c.outcomes) {
-        if (!rubric.find(test)) fail(path, "no test named '" + test + "' in " + assignment.rubric);
-    }
     TempDir dir("simlab-corpus-");
     writeCase(c, dir.path() + "/student", dir.path());
     GradeOptions options;
     options.includeHidden = true;
+    options.onlyTests = c.tests;
     const GradeReport report =
         gradeFolder(Builder(manifest), assignment, rubric, dir.path() + "/student", false, false, options);
     const std::string text = renderText(report);
-    std::cout << c.name << ": " << c.description << "\n" << text;
+    std::cout << c.name << ": " << c.description << "\n" << text << "(the tests its edit concerns: " << c.tests.size()
+              << " of " << rubric.tests.size() << "; a class grades them all)\n";
 
-    std::vector<std::string> mismatches = compare(c, report.tests, report.score(), report.status, text);
+    std::vector<std::string> mismatches = compare(c, report.tests, std::nullopt, report.status, text, false);
     for (const std::string& leak : leaks(secrets(assignment), text)) mismatches.push_back(leak);
     for (const std::string& m : mismatches) std::cout << "MISMATCH: " << m << "\n";
     std::cout << (mismatches.empty() ? "OK: as expected\n" : "FAILED\n");
@@ -496,6 +525,52 @@ std::string closedToOthers(const std::string& path) {
 // What ctest counts as skipped (SKIP_RETURN_CODE): the class cannot be graded in this mode from where the build lies.
 constexpr int kSkipped = 77;
 
+// Each case's student as `out` (simlab grade's --out) has them: outcomes, score, status and text against the case's
+// expectations, and no report holding another student's file or a secret. What differs goes to `problems`.
+void compareGraded(const Assignment& assignment, const std::vector<Case>& cases, const std::string& out,
+                   std::vector<std::string>& problems) {
+    const auto secret = secrets(assignment);
+    for (const Case& c : cases) {
+        if (c.skipped) continue;
+        const std::string student = out + "/students/" + c.folder;
+        if (!fs::exists(student + "/results.json")) {
+            problems.push_back(c.name + ": no results.json");
+            continue;
+        }
+        const std::string results = readFile(student + "/results.json");
+        const std::string feedback = readFile(student + "/feedback.md");
+        if (!isValidUtf8(results)) problems.push_back(c.name + ": results.json is not valid UTF-8");
+        const nlohmann::json json = nlohmann::json::parse(results, nullptr, false);
+        if (json.is_discarded()) {
+            problems.push_back(c.name + ": results.json is not JSON");
+            continue;
+        }
+        if (const std::string control = firstControl(feedback); !control.empty()) {
+            problems.push_back(c.name + ": feedback.md holds a control character: " + control);
+        }
+        std::vector<TestResult> tests;
+        for (const nlohmann::json& t : json.at("tests")) {
+            TestResult r;
+            r.name = t.at("name");
+            r.outcome = outcomeNamed(t.at("extra_data").at("outcome"));
+            tests.push_back(r);
+        }
+        const std::string status = json.at("extra_data").value("status", "");
+        std::string seen = feedback;
+        jsonStrings(json, seen);
+        std::vector<std::string> mismatches = compare(c, tests, json.at("score"), status, seen);
+        for (const Case& other : cases) {
+            if (other.name != c.name && (results + feedback).find(marker(other.name)) != std::string::npos) {
+                mismatches.push_back("its report holds " + other.name + "'s file");
+            }
+        }
+        for (const std::string& leak : leaks(secret, results + seen)) mismatches.push_back(leak);
+        std::cout << (mismatches.empty() ? "OK       " : "MISMATCH ") << c.name << ": " << points(json.at("score"))
+                  << " (expected " << points(c.score) << ")\n";
+        for (const std::string& m : mismatches) problems.push_back(c.name + ": " + m);
+    }
+}
+
 int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, const std::vector<std::string>& paths,
                  const std::string& simlab, int jobs, const std::vector<std::string>& environment,
                  bool dockerCapabilities) {
@@ -603,51 +678,24 @@ int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, con
     }
     if (ids.size() != graded) problems.push_back("the gradebook has " + std::to_string(ids.size()) + " rows");
 
-    const auto secret = secrets(assignment);
-    for (const Case& c : cases) {
-        if (c.skipped) continue;
-        const std::string student = out + "/students/" + c.folder;
-        if (!fs::exists(student + "/results.json")) {
-            problems.push_back(c.name + ": no results.json");
-            continue;
-        }
-        const std::string results = readFile(student + "/results.json");
-        const std::string feedback = readFile(student + "/feedback.md");
-        if (!isValidUtf8(results)) problems.push_back(c.name + ": results.json is not valid UTF-8");
-        const nlohmann::json json = nlohmann::json::parse(results, nullptr, false);
-        if (json.is_discarded()) {
-            problems.push_back(c.name + ": results.json is not JSON");
-            continue;
-        }
-        if (const std::string control = firstControl(feedback); !control.empty()) {
-            problems.push_back(c.name + ": feedback.md holds a control character: " + control);
-        }
-        std::vector<TestResult> tests;
-        for (const nlohmann::json& t : json.at("tests")) {
-            TestResult r;
-            r.name = t.at("name");
-            r.outcome = outcomeNamed(t.at("extra_data").at("outcome"));
-            tests.push_back(r);
-        }
-        const std::string status = json.at("extra_data").value("status", "");
-        std::string seen = feedback;
-        jsonStrings(json, seen);
-        std::vector<std::string> mismatches = compare(c, tests, json.at("score"), status, seen);
-        for (const Case& other : cases) {
-            if (other.name != c.name && (results + feedback).find(marker(other.name)) != std::string::npos) {
-                mismatches.push_back("its report holds " + other.name + "'s file");
-            }
-        }
-        for (const std::string& leak : leaks(secret, results + seen)) mismatches.push_back(leak);
-        std::cout << (mismatches.empty() ? "OK       " : "MISMATCH ") << c.name << ": " << points(json.at("score"))
-                  << " (expected " << points(c.score) << ")\n";
-        for (const std::string& m : mismatches) problems.push_back(c.name + ": " + m);
-    }
+    compareGraded(assignment, cases, out, problems);
     for (const std::string& p : problems) std::cout << "MISMATCH: " << p << "\n";
     std::cout << (problems.empty() ? "OK: every student as expected\n" : "FAILED\n");
     return problems.empty() ? 0 : 1;
 }
 
+
+// Compares a class graded into `grades` (simlab grade of the materialized cases: the sample class) with the cases.
+int compareClass(const Assignment& assignment, const simlab::Rubric& rubric, const std::vector<std::string>& paths,
+                 const std::string& grades) {
+    std::vector<Case> cases;
+    for (const std::string& path : paths) cases.push_back(loadCase(assignment, rubric, path));
+    std::vector<std::string> problems;
+    compareGraded(assignment, cases, grades, problems);
+    for (const std::string& p : problems) std::cout << "MISMATCH: " << p << "\n";
+    std::cout << (problems.empty() ? "OK: every student as expected\n" : "FAILED\n");
+    return problems.empty() ? 0 : 1;
+}
 
 // ---- the isolation's invariants ------------------------------------------------------------------------------------
 
@@ -847,6 +895,11 @@ int main(int argc, char** argv) {
     classCommand->add_option("--env", environment, "NAME=VALUE for simlab grade (SIMLAB_NO_BUBBLEWRAP=1, say)");
     classCommand->add_flag("--docker-capabilities", dockerCapabilities,
                            "run simlab grade as root with Docker's default capabilities only (setpriv)");
+    std::string grades;
+    CLI::App* compareCommand = app.add_subcommand("compare", "Compare a class graded into --grades with the cases.");
+    compareCommand->add_option("assignment", assignmentId)->required();
+    compareCommand->add_option("cases", cases)->required()->check(CLI::ExistingFile);
+    compareCommand->add_option("--grades", grades, "simlab grade's --out")->required()->check(CLI::ExistingDirectory);
     CLI::App* invariantsCommand =
         app.add_subcommand("invariants", "Grade each case with the object check off and check the witness's records.");
     invariantsCommand->add_option("assignment", assignmentId)->required();
@@ -884,6 +937,7 @@ int main(int argc, char** argv) {
             return gradeAsClass(assignment, rubric, cases, simlab, jobs, environment, dockerCapabilities);
         }
         if (invariantsCommand->parsed()) return invariants(manifest, assignment, rubric, cases, canaries);
+        if (compareCommand->parsed()) return compareClass(assignment, rubric, cases, grades);
         return check(manifest, assignment, rubric, cases.front());
     } catch (const std::exception& e) {
         std::cerr << "simlab-corpus: error: " << e.what() << '\n';

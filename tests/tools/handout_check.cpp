@@ -11,7 +11,12 @@
 // build/bin/<program> is the program built from the reference solution, and the in-tree student folder (what
 // `simlab check <id>` grades by default) holds a copy of the solution's folder.
 //
-//   handout-check HANDOUT.md
+//   handout-check HANDOUT.md [--keep DIR]
+//
+// --keep DIR leaves the two trees in DIR (starter-tree, solution-tree) with what ran in them: the files the commands
+// wrote and each command's output, named by the command ("$ build/bin/simlab study trade apple --quick" prints to
+// simlab-study-trade-apple-quick.out), for tests that read a handout's runs instead of running them again.
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -131,18 +136,35 @@ void prepare(const Manifest& manifest, const std::string& root, bool solution) {
     writeFileAtomically(root + "/manifest.json", json.dump(2));
 }
 
+// The file a kept command's output goes to: its words, from the program's name on, joined by '-'.
+std::string outputName(const std::string& command) {
+    std::string name;
+    for (const char c : command.substr(command.rfind("build/bin/", 0) == 0 ? 10 : 0)) {
+        if (std::isalnum(static_cast<unsigned char>(c))) name += c;
+        else if (!name.empty() && name.back() != '-') name += '-';
+    }
+    while (!name.empty() && name.back() == '-') name.pop_back();
+    return name.substr(0, 120) + ".out";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 2) {
-        std::cerr << "usage: handout-check HANDOUT.md\n";
+    const bool keep = argc == 4 && std::string(argv[2]) == "--keep";
+    if (argc != 2 && !keep) {
+        std::cerr << "usage: handout-check HANDOUT.md [--keep DIR]\n";
         return 2;
     }
     try {
         const Manifest manifest = loadManifest();
         const std::vector<Example> examples = parse(argv[1]);
         TempDir scratch("simlab-handout-");
-        const std::string starterRoot = scratch.path() + "/starter-tree", solutionRoot = scratch.path() + "/solution-tree";
+        const std::string top = keep ? fs::absolute(argv[3]).string() : scratch.path();
+        if (keep) {
+            fs::remove_all(top);
+            fs::create_directories(top);
+        }
+        const std::string starterRoot = top + "/starter-tree", solutionRoot = top + "/solution-tree";
         prepare(manifest, starterRoot, false);
         prepare(manifest, solutionRoot, true);
 
@@ -162,6 +184,7 @@ int main(int argc, char** argv) {
             request.limits.memoryMiB = 8192;
             request.keepOutput = 1 << 20;
             const ProcessResult result = runProcess(request);
+            if (keep) writeFileAtomically(root + "/" + outputName(e.command), result.output);
             std::vector<std::string> expected = e.expected;
             while (!expected.empty() && expected.back().empty()) expected.pop_back();
             const std::vector<std::string> actual = splitLines(result.output);

@@ -20,7 +20,16 @@
 #include <string>
 
 #if defined(__x86_64__) && defined(__GLIBC__) && __has_include(<sys/platform/x86.h>)
+// glibc's header spells C's _Bool, which GCC reads in C++ and clang does not: for clang it is bool, in this header.
+#if defined(__clang__) && !defined(_Bool)
+#define _Bool bool
+#define SIMLAB_BOOL_FOR_GLIBC 1
+#endif
 #include <sys/platform/x86.h>
+#ifdef SIMLAB_BOOL_FOR_GLIBC
+#undef _Bool
+#undef SIMLAB_BOOL_FOR_GLIBC
+#endif
 #define SIMLAB_MASKABLE_MATH 1
 #endif
 

@@ -16,6 +16,15 @@
 #include <cmath>
 #include <cstdint>
 
+// Built with AddressSanitizer (SIMLAB_SANITIZE), by GCC or by clang.
+#if defined(__SANITIZE_ADDRESS__)
+#define SIMLAB_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SIMLAB_ADDRESS_SANITIZER 1
+#endif
+#endif
+
 namespace simlab::isolation::host {
 
 /// Empties the calling process's capability bounding set, ambient set and inheritable set, keeping CAP_SETUID and
@@ -75,7 +84,7 @@ inline void setLimits(double cpuSeconds, std::uint64_t memoryBytes, std::uint64_
     const rlim_t cpu = static_cast<rlim_t>(std::ceil(cpuSeconds)) + 2;
     const struct rlimit cpuLimit = {cpu, cpu + 1};
     ::setrlimit(RLIMIT_CPU, &cpuLimit);
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(SIMLAB_ADDRESS_SANITIZER)
     // A sanitizer build (SIMLAB_SANITIZE) maps terabytes of shadow memory at start: its address space cannot be
     // limited. The engine's own account of the memory a test's processes hold still stops a test that takes more.
     (void)memoryBytes;
