@@ -10,6 +10,7 @@
 #include "projectile/ProjectileMotion.h"
 #include "projectile/exact.h"
 #include "simlab/driver.h"
+#include "simlab/integrators.h"
 
 namespace projectile {
 
@@ -47,13 +48,15 @@ inline void startBelowGround(const Model& model, SimTK::State& state, double dep
 /// the simulation may stop, so with error control their interval is fitted to the flight: at most a twentieth of
 /// it, so that the ball is seen in the air before it comes down (a flight shorter than dt would otherwise start
 /// and end inside the first sampling interval), and no more than a hundred thousand of them over a flight of
-/// days. At fixed steps dt is the step, and a flight it cannot resolve is an error (std::invalid_argument). With a
+/// days. At fixed steps (--fixed-step, or an integrator without error control: SemiExplicitEuler) dt is the step
+/// the user asked for and is kept, and a flight it cannot resolve is an error (std::invalid_argument). With a
 /// `depth`, the ball starts that far below the ground's level (startBelowGround) and rises through it first.
 inline Landing simulateLanding(const Scene& scene, simlab::RunSettings run,
                                const std::function<void(const Sample&)>& onSample = {}, double depth = 0) {
     const double tStar = depth > 0 ? exact::flightTimeFrom(scene, depth) : exact::flightTime(scene);
     run.finalTime = 2 * tStar + std::min(1.0, 100 * std::min(run.dt, tStar / 20));
-    if (!run.fixedStep) {
+    const bool fixed = run.fixedStep || !simlab::hasErrorControl(run.integrator);
+    if (!fixed) {
         run.dt = std::max(std::min(run.dt, tStar / 20), run.finalTime / 1e5);
     } else if (run.dt > tStar / 4) {
         char what[200];

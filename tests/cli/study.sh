@@ -120,6 +120,14 @@ outcome "a cube's spin is right to 14 digits (its exact w is constant, not zero)
   '^book,a cube,.*,accurate,1[4-5]\.[0-9],'
 outcome "a flight shorter than one fixed step says it cannot see the ground hit" projectile \
   'fixed steps,.*trouble,.*No ground hit'
+outcome "an integrator whose steps cannot advance time says so, not Simbody's words" book \
+  '^book,RungeKutta3 at accuracy 1e-15.*the integrator could not advance past t = '
+outcome "a flight whose size a double's square cannot hold is refused for that, before Simbody asserts" projectile \
+  '^projectile,a speed of 1e80 m/s.*rejected,.*whose square Simbody'
+outcome "CPodes at fixed steps is refused before it runs, saying it has none" apple \
+  '^apple,CPodes at fixed steps.*rejected,.*CPodes takes no fixed steps'
+outcome "SemiExplicitEuler at steps too coarse for the flight is refused in one line, not run at finer ones" projectile \
+  '^projectile,SemiExplicitEuler at 2 s steps.*trouble,.*too short for fixed steps of --dt 2 s'
 outcome "the boot with no gravity and no motion stays exactly at rest, and says so" biosim \
   'no gravity,.*accurate,15.7,.*At rest, as the exact solution is'
 outcome "a value --set does not allow is a usage error (exit 2), like any option's" biosim \

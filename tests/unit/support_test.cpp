@@ -4,16 +4,21 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
 #include "apple/exact.h"
+#include "simlab/messages.h"
+#include "simlab/plot.h"
 #include "simlab/program.h"
 #include "simlab/recorder.h"
 #include "simlab/results_table.h"
@@ -168,4 +173,58 @@ TEST_CASE("an exception thrown where none may pass is one line and status 1", "[
     });
     CHECK(status == 1);
     CHECK(said == "demo: error: the run stopped on an exception where none may pass: the step size fell to zero\n");
+}
+
+TEST_CASE("an integrator's failed step is said with its cause, not Simbody's names", "[messages]") {
+    const std::string advance =
+        "SimTK Exception thrown at AbstractIntegrator.cpp:151:\n  Integrator step failed at time 0.7442289521733112 "
+        "apparently because: AbstractIntegrator::takeOneStep(): Unable to advance time past 0.744229.";
+    const std::string said = simlab::oneLineMessage(advance);
+    CHECK(said.rfind("the integrator could not advance past t = 0.744229 s: ", 0) == 0);
+    CHECK(said.find("coarser accuracy") != std::string::npos);
+    CHECK(said.find("AbstractIntegrator") == std::string::npos);
+    const std::string cpodes =
+        "Integrator step failed at time 0 apparently because: CPodes::step() returned an error\n[CPODES ERROR] ...";
+    CHECK(simlab::oneLineMessage(cpodes).rfind("CPodes gave up at t = 0 s: ", 0) == 0);
+    // Another reason keeps its words, with the time said once.
+    CHECK(simlab::oneLineMessage("Integrator step failed at time 2.5 apparently because: something new") ==
+          "the integrator's step failed at t = 2.5 s: something new");
+    // Any other message is untouched.
+    CHECK(simlab::oneLineMessage("the simulation recorded no samples") == "the simulation recorded no samples");
+}
+
+TEST_CASE("CPodes at fixed steps is refused before it runs", "[settings]") {
+    simlab::RunSettings run;
+    run.integrator = "CPodes";
+    run.fixedStep = true;
+    CHECK_THROWS_WITH(simlab::validate(run), Catch::Contains("CPodes takes no fixed steps"));
+    run.fixedStep = false;
+    CHECK_NOTHROW(simlab::validate(run));
+}
+
+TEST_CASE("a panel whose values differ in the sixth digit is drawn less a reference, its ticks apart", "[plot]") {
+    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+        WARN("gnuplot is not installed: the plot is not drawn");
+        return;
+    }
+    // A conserved energy: -2.12393142 J to within 3e-9 J. In '% g' every tick would read -2.12393.
+    simlab::PlotCurve energy("E");
+    for (int k = 0; k <= 100; ++k) {
+        energy.x.push_back(0.01 * k);
+        energy.y.push_back(-2.12393142 + 3e-9 * std::sin(0.3 * k));
+    }
+    simlab::Plot plot;
+    plot.title = "energy";
+    plot.panels.emplace_back("time t (s)", "J", std::vector<simlab::PlotCurve>{energy});
+    char folder[] = "/tmp/simlab-plot-test-XXXXXX";
+    REQUIRE(::mkdtemp(folder) != nullptr);
+    const std::string path = std::string(folder) + "/energy.svg";
+    simlab::drawPlot(plot, path);
+    std::ifstream in(path);
+    const std::string svg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::remove(path.c_str());
+    ::rmdir(folder);
+    CHECK(svg.find("J, less -2.12393142") != std::string::npos);
+    CHECK(svg.find(">-2.12393<") == std::string::npos);  // no tick label that says nothing
+    CHECK(svg.find("e-09<") != std::string::npos);         // the ticks tell the values apart
 }

@@ -107,7 +107,7 @@ inline Answers readAnswers() {
     for (const auto& [section, into] : {std::pair<const char*, std::map<std::string, std::string>*>{"conserved", &answers.conserved},
                                         {"stability", &answers.stability}}) {
         if (const toml::table* table = file[section].as_table()) {
-            for (auto&& [key, value] : *table) (*into)[std::string(key.str())] = value.value_or(std::string("?"));
+            for (auto&& [key, value] : *table) (*into)[std::string(key.str())] = value.value_or(std::string("(not text)"));
         }
     }
     return answers;

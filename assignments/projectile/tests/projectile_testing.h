@@ -76,8 +76,10 @@ inline HitDigits groundHitDigits(const Scene& scene, double dt) {
     simlab::RunSettings run = defaultRunSettings();
     run.dt = dt;
     const Landing landing = observeLanding(scene, run);
-    INFO("no ground hit was recorded (the simulation ran to t = " << landing.endTime << " s)");
-    CHECK(landing.hit.found);
+    {  // said only where nothing was recorded, not beside a later check on what was
+        INFO("no ground hit was recorded (the simulation ran to t = " << landing.endTime << " s)");
+        CHECK(landing.hit.found);
+    }
     if (!landing.hit.found) return {};
     const double tStar = exact::flightTime(scene);
     return {simlab::accuracyDigits(landing.hit.time, tStar),

@@ -73,8 +73,10 @@ TEST_CASE("only a descent through y = 0 is a ground hit: from a trench the ball 
     const Landing landing = observeLanding(scene, defaultRunSettings(), depth);
     const double tHit = exact::flightTimeFrom(scene, depth);
     const double tRise = 2 * exact::yVelocity0(scene) / scene.gravity - tHit;  // the two roots add up to 2 vy0 / g
-    INFO("no ground hit was recorded (the simulation ran to t = " << landing.endTime << " s)");
-    CHECK(landing.hit.found);
+    {  // said only where nothing was recorded, not beside a later check on what was
+        INFO("no ground hit was recorded (the simulation ran to t = " << landing.endTime << " s)");
+        CHECK(landing.hit.found);
+    }
     if (!landing.hit.found) return;
     if (std::abs(landing.hit.time - tRise) < 0.5 * (tHit - tRise)) {
         grading::feedback("the flight ended at t = " + grading::show(landing.hit.time) + " s, as the ball rose out of "
@@ -101,9 +103,11 @@ TEST_CASE("the simulation ends at the ground hit and records its state last", "[
     std::size_t repeats = 0;
     for (std::size_t k = 1; k < run.samples.size(); ++k) repeats += !(run.samples[k].time > run.samples[k - 1].time);
     const double tStar = exact::flightTime(scene);
-    INFO(repeats << " samples repeat an earlier time (the last at t = " << last.time
-                 << " s): once the handler has ended the simulation, stop the loop (integrator.isSimulationOver())");
-    CHECK(repeats == 0);
+    {  // the loop's advice with its own check only: a run that ends at the wrong time may have a correct loop
+        INFO(repeats << " samples repeat an earlier time (the last at t = " << last.time
+                     << " s): once the handler has ended the simulation, stop the loop (integrator.isSimulationOver())");
+        CHECK(repeats == 0);
+    }
     INFO("the last sample is at t = " << last.time << " s; the ball lands at t* = " << tStar << " s");
     CHECK(last.time == Approx(tStar).margin(1e-4));
 }

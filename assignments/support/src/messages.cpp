@@ -1,9 +1,37 @@
 #include "simlab/messages.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 namespace simlab {
+
+namespace {
+
+// An integrator's failed step, "Integrator step failed at time T apparently because: REASON", said with its cause
+// (what a user can change) instead of Simbody's internal names; any other message is returned as it is.
+std::string namedStepFailure(const std::string& message) {
+    const std::string head = "Integrator step failed at time ", because = " apparently because: ";
+    const std::size_t at = message.find(head);
+    const std::size_t reasonAt = message.find(because);
+    if (at == std::string::npos || reasonAt == std::string::npos || reasonAt < at) return message;
+    const std::string time = message.substr(at + head.size(), reasonAt - at - head.size());
+    const std::string reason = message.substr(reasonAt + because.size());
+    char t[32];
+    std::snprintf(t, sizeof t, "%.6g", std::strtod(time.c_str(), nullptr));
+    if (reason.find("Unable to advance time past") != std::string::npos) {
+        return std::string("the integrator could not advance past t = ") + t + " s: the steps its accuracy asks "
+               "for there are too small for time to move in double precision (too fine an accuracy for its order); "
+               "give a coarser accuracy or a higher-order integrator";
+    }
+    if (reason.find("CPodes::step() returned an error") != std::string::npos) {
+        return std::string("CPodes gave up at t = ") + t + " s: no step it can take there meets the accuracy "
+               "asked for; give a coarser accuracy or another integrator";
+    }
+    return std::string("the integrator's step failed at t = ") + t + " s: " + reason;
+}
+
+}  // namespace
 
 std::string oneLineMessage(const std::string& message, std::size_t maxLength) {
     // Simbody's messages read "SimTK Exception thrown at File.cpp:123:\n  Error detected by Simbody method
@@ -35,6 +63,7 @@ std::string oneLineMessage(const std::string& message, std::size_t maxLength) {
         else if (!out.empty() && out.back() != ' ') out += ' ';
     }
     while (!out.empty() && out.back() == ' ') out.pop_back();
+    out = namedStepFailure(out);
     if (out.size() > maxLength) out = out.substr(0, maxLength) + "...";
     return out;
 }

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -40,6 +41,29 @@ std::string number(double v) {
     return buffer;
 }
 
+// Where a panel's values differ by less than a ten-thousandth of their size (a conserved energy, say), six-digit
+// tick labels would all read the same: the panel then draws each value less one reference value, in the middle
+// of their range and written to 10 digits in the axis label, with ticks in scientific notation. Else 0 and "".
+struct Offset {
+    double value = 0;
+    std::string label;
+};
+
+Offset panelOffset(const PlotPanel& panel) {
+    double low = INFINITY, high = -INFINITY;
+    auto see = [&](double y) {
+        if (std::isfinite(y)) low = std::min(low, y), high = std::max(high, y);
+    };
+    for (const PlotCurve& curve : panel.curves) {
+        for (const double y : curve.y) see(y);
+    }
+    for (const PlotMark& mark : panel.marks) see(mark.y);
+    const double size = std::max(std::abs(low), std::abs(high));
+    if (!(high >= low) || !(size > 0) || high - low >= 1e-4 * size) return {};
+    const std::string written = number(low + (high - low) / 2);
+    return {std::strtod(written.c_str(), nullptr), written};
+}
+
 // The gnuplot script that draws `plot` into `output` with `terminal`. Each curve's points go in a datablock of
 // their own, so the script is the whole figure and reads no other file.
 std::string script(const Plot& plot, const std::string& terminal, const std::string& output) {
@@ -52,25 +76,32 @@ std::string script(const Plot& plot, const std::string& terminal, const std::str
        << "set grid\nset key below\nset datafile missing 'NaN'\n"
        << "set lmargin at screen 0.09\nset rmargin at screen 0.96\n";  // panels line up
     int block = 0;
+    std::vector<Offset> offsets;
     for (const PlotPanel& panel : plot.panels) {
+        const Offset offset = panelOffset(panel);
+        offsets.push_back(offset);
         for (const PlotCurve& curve : panel.curves) {
             gp << "$d" << block++ << " << EOD\n";
             for (std::size_t i = 0; i < curve.x.size() && i < curve.y.size(); ++i) {
                 if (std::isfinite(curve.x[i]) && std::isfinite(curve.y[i])) {
-                    gp << number(curve.x[i]) << ' ' << number(curve.y[i]) << '\n';
+                    gp << number(curve.x[i]) << ' ' << number(curve.y[i] - offset.value) << '\n';
                 }
             }
             gp << "EOD\n";
         }
         for (const PlotMark& mark : panel.marks) {
-            gp << "$d" << block++ << " << EOD\n" << number(mark.x) << ' ' << number(mark.y) << "\nEOD\n";
+            gp << "$d" << block++ << " << EOD\n" << number(mark.x) << ' ' << number(mark.y - offset.value) << "\nEOD\n";
         }
     }
     gp << "set multiplot layout " << std::max(panels, 1) << ",1 title " << quoted(plot.title) << "\n";
     block = 0;
-    for (const PlotPanel& panel : plot.panels) {
-        gp << "set xlabel " << quoted(panel.xLabel) << "\nset ylabel " << quoted(panel.yLabel) << "\n"
-           << (panel.scientificY ? "set format y '%.1e'\n" : "set format y '% g'\n") << "plot ";
+    for (std::size_t p = 0; p < plot.panels.size(); ++p) {
+        const PlotPanel& panel = plot.panels[p];
+        const Offset& offset = offsets[p];
+        const std::string yLabel = offset.label.empty() ? panel.yLabel : panel.yLabel + ", less " + offset.label;
+        gp << "set xlabel " << quoted(panel.xLabel) << "\nset ylabel " << quoted(yLabel) << "\n"
+           << (panel.scientificY || !offset.label.empty() ? "set format y '%.1e'\n" : "set format y '% g'\n")
+           << "plot ";
         int color = 1;
         for (std::size_t c = 0; c < panel.curves.size(); ++c) {
             const PlotCurve& curve = panel.curves[c];

@@ -9,7 +9,8 @@ namespace simlab {
 
 /// The part of an exception's message that says what went wrong, on one line of at most `maxLength` characters:
 /// without Simbody's "SimTK Exception thrown at file:line" preamble and "Error detected by Simbody method", and
-/// without the lines a solver adds after the reason (a line that only names the method keeps the next one).
+/// without the lines a solver adds after the reason (a line that only names the method keeps the next one). An
+/// integrator's failed step is said with its cause ("the integrator could not advance past t = 0.744 s: ...").
 std::string oneLineMessage(const std::string& message, std::size_t maxLength = 240);
 
 /// `value` in at most 6 significant digits ("%g"), for a message.
