@@ -230,42 +230,54 @@ std::vector<IntakeStudent> gradescope(const std::string& folder, const std::stri
     if (root.kind != Node::Kind::Map) throw UsageError(printable(metadata) + " is not a map of submissions");
     static const std::regex folderName(R"(^[A-Za-z0-9_.-]+$)");
     std::vector<IntakeStudent> out;
-    std::map<std::string, std::string> idOf;  // submission -> id, and the ids taken
-    std::set<std::string> taken;
-    for (const auto& [submission, info] : root.entries) {
-        if (idOf.count(submission)) throw UsageError(printable(metadata) + " names " + printable(submission) + " twice");
-        const Node* submitters = entryOf(info, "submitters");
+    // First each submission's own id: its SID (else the e-mail's name, else the submission); a group's, its
+    // members' ids joined.
+    struct Submission {
+        std::string name, id, names;
         std::vector<IntakeStudent> members;
+    };
+    std::vector<Submission> submissions;
+    std::set<std::string> seen, ownIds;
+    for (const auto& [submission, info] : root.entries) {
+        if (!seen.insert(submission).second) throw UsageError(printable(metadata) + " names " + printable(submission) + " twice");
+        Submission entry{submission, "", "", {}};
+        const Node* submitters = entryOf(info, "submitters");
         if (submitters && submitters->kind == Node::Kind::Sequence) {
             for (const Node& who : submitters->items) {
                 IntakeStudent s;
                 s.name = scalarOf(who, "name");
                 s.sid = scalarOf(who, "sid");
                 s.email = scalarOf(who, "email");
-                members.push_back(s);
+                entry.members.push_back(s);
             }
         }
-        if (members.empty()) members.push_back(IntakeStudent{});
-        // One member: their SID (else the e-mail's name, else the submission); a group: its members' ids joined.
-        std::string id, names;
-        for (IntakeStudent& s : members) {
+        if (entry.members.empty()) entry.members.push_back(IntakeStudent{});
+        for (IntakeStudent& s : entry.members) {
             const std::string own = !s.sid.empty() ? s.sid : !s.email.empty() ? s.email.substr(0, s.email.find('@')) : submission;
-            id += (id.empty() ? "" : "+") + safeId(own);
-            names += (names.empty() ? "" : ", ") + s.name;
+            entry.id += (entry.id.empty() ? "" : "+") + safeId(own);
+            entry.names += (entry.names.empty() ? "" : ", ") + s.name;
         }
+        ownIds.insert(entry.id);
+        submissions.push_back(std::move(entry));
+    }
+    std::set<std::string> taken;
+    for (Submission& entry : submissions) {
+        const std::string& submission = entry.name;
+        std::vector<IntakeStudent>& members = entry.members;
+        const std::string& names = entry.names;
+        std::string id = entry.id;
         // Ids are the students': two submissions whose students' ids are alike stay apart, and say so. The new id is
-        // one no submission has taken, whatever the SIDs (a SID may be "s42-submission_103" itself): a clash is
-        // never two submissions in one folder.
+        // one no submission has taken or has as its own, whatever the SIDs (a SID may be "s42-submission_103"
+        // itself, and keeps it): a clash is never two submissions in one folder.
         IntakeStudent first = members.front();
         if (taken.count(id)) {
             const std::string apart = id + "-" + safeId(submission);
             std::string unique = apart;
-            for (int n = 2; taken.count(unique); ++n) unique = apart + "-" + std::to_string(n);
+            for (int n = 2; taken.count(unique) || ownIds.count(unique); ++n) unique = apart + "-" + std::to_string(n);
             first.note = "the id " + id + " is another submission's too: this one is " + unique;
             id = unique;
         }
         taken.insert(id);
-        idOf[submission] = id;
         first.id = id;
         const std::string dir = folder + "/" + submission;
         std::error_code error;

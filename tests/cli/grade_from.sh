@@ -75,6 +75,34 @@ check "exported to Canvas with that roster, each member gets the group's grade" 
   bash -c "test $(status_of gs-canvas) -eq 0 && test '$(cell gs-canvas.csv 2 5)' = 100 &&
            test '$(cell gs-canvas.csv 3 5)' = 0 && test '$(cell gs-canvas.csv 4 5)' = 0"
 
+# Two submissions under one SID, and a third whose SID is literally the id the clash's second one would be renamed
+# to, listed after them: each keeps a row of its own, and the literal SID keeps its id and its own file (the
+# reference), not the clash's.
+mkdir -p gs-clash/submission_911 gs-clash/submission_912 gs-clash/submission_913
+cp "$reference" gs-clash/submission_911/
+cp "$starter" gs-clash/submission_912/
+cp "$reference" gs-clash/submission_913/
+cat >gs-clash/submission_metadata.yml <<'YML'
+---
+submission_911:
+  :submitters:
+  - :name: Sam One
+    :sid: s42
+submission_912:
+  :submitters:
+  - :name: Sam One
+    :sid: s42
+submission_913:
+  :submitters:
+  - :name: Sid Literal
+    :sid: s42-submission_912
+YML
+run_capture gs-clash "$SIMLAB" grade apple gs-clash -o gs-clash-grades --from gradescope -j 2
+check "Gradescope: three submissions, three rows, however the SIDs clash; the literal SID keeps its own file" \
+  bash -c "test $(status_of gs-clash) -eq 0 && test $(rows gs-clash-grades/gradebook.csv) -eq 3 &&
+           test '$(score_of gs-clash-grades s42-submission_912)' = '100 graded' &&
+           test \"\$(cut -d, -f2 gs-clash-grades/gradebook.csv | sort | tr '\\n' ' ')\" = '0 100 100 score '"
+
 # Moodle: "Full Name_participant_assignsubmission_file_" folders; an online text is the same student.
 mkdir -p "moodle/Ada Lovelace_123456_assignsubmission_file_" "moodle/Ada Lovelace_123456_assignsubmission_onlinetext_" \
          "moodle/Bob Byte_123457_assignsubmission_file_"

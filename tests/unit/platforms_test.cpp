@@ -409,5 +409,9 @@ TEST_CASE("Gradescope: every submission keeps a folder of its own, whatever SIDs
         CHECK(ids.size() == 3);
         CHECK(ids.count("s42"));
         CHECK(ids.count("s42-submission_103"));
+        // The student whose SID it is keeps it, whichever order the download lists them in.
+        for (const IntakeStudent& s : students) {
+            if (s.sid == "s42-submission_103") CHECK(s.id == "s42-submission_103");
+        }
     }
 }
