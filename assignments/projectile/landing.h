@@ -10,7 +10,6 @@
 #include "projectile/ProjectileMotion.h"
 #include "projectile/exact.h"
 #include "simlab/driver.h"
-#include "simlab/integrators.h"
 
 namespace projectile {
 
@@ -55,8 +54,7 @@ inline Landing simulateLanding(const Scene& scene, simlab::RunSettings run,
                                const std::function<void(const Sample&)>& onSample = {}, double depth = 0) {
     const double tStar = depth > 0 ? exact::flightTimeFrom(scene, depth) : exact::flightTime(scene);
     run.finalTime = 2 * tStar + std::min(1.0, 100 * std::min(run.dt, tStar / 20));
-    const bool fixed = run.fixedStep || !simlab::hasErrorControl(run.integrator);
-    if (!fixed) {
+    if (!simlab::takesFixedSteps(run)) {
         run.dt = std::max(std::min(run.dt, tStar / 20), run.finalTime / 1e5);
     } else if (run.dt > tStar / 4) {
         char what[200];

@@ -36,7 +36,7 @@ std::string at(double reached, double finalTime) {
 std::unique_ptr<SimTK::Integrator> integratorFor(const RunSettings& choice, const SimTK::System& system,
                                                  double finalTime) {
     requireIntegratorName(choice.integrator);
-    const bool fixed = choice.fixedStep || !hasErrorControl(choice.integrator);
+    const bool fixed = takesFixedSteps(choice);
     if (fixed && !(choice.dt > 0 && choice.dt <= finalTime)) {
         std::ostringstream s;
         s << "a fixed step must be a positive number of seconds no longer than the run (" << finalTime << " s), got "

@@ -18,9 +18,11 @@ double RunSettings::sampleTime(int k) const {
     return k >= sampleCount() ? finalTime : k * dt;
 }
 
+bool takesFixedSteps(const RunSettings& run) { return run.fixedStep || !hasErrorControl(run.integrator); }
+
 std::string describeStepping(const RunSettings& run) {
     char text[64];
-    if (run.fixedStep || run.integrator == "SemiExplicitEuler") {
+    if (takesFixedSteps(run)) {
         std::snprintf(text, sizeof text, "fixed step %g s", run.dt);
     } else {
         std::snprintf(text, sizeof text, "accuracy %g", run.accuracy);

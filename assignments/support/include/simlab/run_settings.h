@@ -19,6 +19,10 @@ struct RunSettings {
     double sampleTime(int k) const;
 };
 
+/// Whether the run steps at exactly dt: asked to (fixedStep), or by an integrator without error control
+/// (SemiExplicitEuler).
+bool takesFixedSteps(const RunSettings& run);
+
 /// How the run steps, for a title: "accuracy 1e-07", or "fixed step 0.01 s" (SemiExplicitEuler's always is). The
 /// trade question's lines say a setting the same way.
 std::string describeStepping(const RunSettings& run);
