@@ -250,7 +250,9 @@ Observed observe(const Declaration& declaration, const Parameters& parameters, c
             while (true) {
                 stepper.stepTo(target);
                 if (stepper.getState().getTime() >= target || integrator->isSimulationOver()) break;
-                atStep(stepper.getState());
+                // A state interpolated between steps (a report time, the replay's frames) is not one the
+                // integrator computed: counting its energy would make the figure depend on what else is watching.
+                if (!integrator->isStateInterpolated()) atStep(stepper.getState());
             }
         } catch (const std::exception& e) {
             throw std::runtime_error("the integrator failed between t = " + show(stepper.getState().getTime()) +

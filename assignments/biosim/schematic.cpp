@@ -313,6 +313,37 @@ void groundMark(std::ostringstream& svg, std::pair<double, double> at, double aw
     }
 }
 
+/// A Slider: a sleeve (a small rectangle) on a rail along its axis, the rail hatched on the side away from the body
+/// when it is fixed to the ground. `along` is a point one metre along the axis from `at`, on the page; an axis seen
+/// end on (along this view) draws the sleeve square, with no rail.
+void sliderMark(std::ostringstream& svg, std::pair<double, double> at, std::pair<double, double> along, bool ground,
+                double away) {
+    const auto [x, y] = at;
+    double dx = along.first - x, dy = along.second - y;
+    const double length = std::hypot(dx, dy);
+    if (!(length > 1e-9)) {
+        svg << "<rect x=\"" << px(x - 5) << "\" y=\"" << px(y - 5) << "\" width=\"10\" height=\"10\" fill=\"#fff\" "
+            << "stroke=\"#000\" stroke-width=\"1.5\"/>\n";
+        return;
+    }
+    dx /= length;
+    dy /= length;
+    const double nx = -dy, ny = dx;  // across the rail
+    line(svg, {x - 24 * dx, y - 24 * dy}, {x + 24 * dx, y + 24 * dy}, "stroke=\"#000\" stroke-width=\"1.5\"");
+    if (ground) {
+        const double side = ny * away >= 0 ? 1 : -1;  // the hatching goes on the side away from the body
+        for (int k = 0; k < 5; ++k) {
+            const double t = -20 + 10 * k;
+            line(svg, {x + t * dx, y + t * dy}, {x + t * dx + side * 6 * nx - 4 * dx, y + t * dy + side * 6 * ny - 4 * dy},
+                 "stroke=\"#000\" stroke-width=\"1\"");
+        }
+    }
+    svg << "<path d=\"M" << px(x - 8 * dx - 5 * nx) << " " << px(y - 8 * dy - 5 * ny) << " L" << px(x + 8 * dx - 5 * nx)
+        << " " << px(y + 8 * dy - 5 * ny) << " L" << px(x + 8 * dx + 5 * nx) << " " << px(y + 8 * dy + 5 * ny) << " L"
+        << px(x - 8 * dx + 5 * nx) << " " << px(y - 8 * dy + 5 * ny) << " Z\" fill=\"#fff\" stroke=\"#000\" "
+        << "stroke-width=\"1.5\"/>\n";
+}
+
 void drawPanel(std::ostringstream& svg, const Schematic& schematic, const View& view, double left,
                const Frame& frame) {
     svg << "<rect x=\"" << px(left) << "\" y=\"" << px(kPanelTop) << "\" width=\"" << px(kPanelWidth)
@@ -337,7 +368,12 @@ void drawPanel(std::ostringstream& svg, const Schematic& schematic, const View& 
         line(svg, {origin.first - 3, origin.second + 3}, {origin.first + 3, origin.second - 3},
              "stroke=\"#08c\" stroke-width=\"1\"");
         const auto joint = at(b.jointLocation);
-        if (b.parent == 0) groundMark(svg, joint, at(b.massCenter).second > joint.second + 0.5 ? -1 : 1);
+        const double away = at(b.massCenter).second > joint.second + 0.5 ? -1 : 1;
+        if (b.joint == "Slider" && !b.axes.empty()) {
+            sliderMark(svg, joint, at(b.jointLocation + b.axes.front()), b.parent == 0, away);
+            continue;
+        }
+        if (b.parent == 0) groundMark(svg, joint, away);
         svg << "<circle cx=\"" << px(joint.first) << "\" cy=\"" << px(joint.second)
             << "\" r=\"5\" fill=\"#fff\" stroke=\"#000\" stroke-width=\"1.5\"/>\n";
     }

@@ -163,39 +163,6 @@ inline void eulerEquations(const SimTK::Vec3& moments, const W& w, W& dwdt) {
     dwdt[2] = (I[0] - I[1]) * w[0] * w[1] / I[2];
 }
 
-/// w_B(t) found a second way, by integrating Euler's equations in long double (Runge-Kutta-Fehlberg 7(8) from
-/// Boost.Odeint), with `error` an upper estimate of its own error in rad/s: its distance from the same integration
-/// at a tolerance a hundred times looser. Good to about 1e-16 relative where the elliptic formula gets 13 digits
-/// or fewer (fast spins, long times, the intermediate axis).
-struct Reference {
-    SimTK::Vec3 w_B;
-    double error = 0;  ///< rad/s
-};
-
-inline Reference integratedAngularVelocity(const Scene& scene, double t) {
-    using W = std::array<long double, 3>;
-    const SimTK::Vec3 I = principalMoments(scene);
-    auto euler = [&I](const W& w, W& dwdt, long double) { eulerEquations(I, w, dwdt); };
-    long double rate = 0;
-    for (int i = 0; i < 3; ++i) rate = std::max(rate, std::abs(static_cast<long double>(scene.w_B0[i])));
-    auto solve = [&](long double tolerance) {
-        using namespace boost::numeric::odeint;
-        W w = {scene.w_B0[0], scene.w_B0[1], scene.w_B0[2]};
-        const long double step = rate > 0 ? 1e-3L / rate : 1e-3L;
-        integrate_adaptive(simlab::referenceStepper<W>(tolerance), euler, w, 0.0L, static_cast<long double>(t), step);
-        return w;
-    };
-    const W tight = solve(1e-18L), loose = solve(1e-16L);
-    Reference r;
-    long double error2 = 0;
-    for (int i = 0; i < 3; ++i) {
-        r.w_B[i] = static_cast<double>(tight[i]);
-        error2 += (tight[i] - loose[i]) * (tight[i] - loose[i]);
-    }
-    r.error = static_cast<double>(std::sqrt(error2));
-    return r;
-}
-
 /// The linear growth rate of a small perturbation of a spin of `rate` rad/s about the intermediate axis.
 inline double linearGrowthRate(const Scene& scene, double rate) {
     const SimTK::Vec3 I = principalMoments(scene);

@@ -117,11 +117,23 @@ projectile::GroundHit reportLanding(const Options& o) {
                 o.scene.groundHitWindow, landing.hit.time, landing.hit.x, landing.integrator.method.c_str(),
                 landing.integrator.stepsTaken);
     std::printf("  exact t* = 2 v0 sin(theta)/g = %.12g s: %.1f accurate digits\n", tStar, digits.time);
+    // Conditioning: x* = v0^2 sin(2 theta) / g magnifies a relative change of theta by |2 theta cot(2 theta)|, so near
+    // 90 degrees the angle's own rounding (half a unit in its last place) leaves x* fewer digits than a double holds,
+    // whatever the integrator. x* is printed to the digits it keeps.
+    const double theta = projectile::exact::launchAngle(o.scene);
+    const double magnified = std::abs(2 * theta * std::cos(2 * theta) / std::sin(2 * theta));
+    const double held = std::min(15.9, 15.9 - std::log10(std::max(1.0, magnified)));
+    const int shown = std::clamp(static_cast<int>(std::floor(held)), 1, 12);
     if (digits.rangeScale > 0) {
-        std::printf("  exact x* = v0 cos(theta) t*  = %.12g m: %.1f accurate digits of v0 t* = %.6g m (x* is near 0)\n",
-                    xStar, digits.range, digits.rangeScale);
+        std::printf("  exact x* = v0 cos(theta) t*  = %.*g m: %.1f accurate digits of v0 t* = %.6g m (x* is near 0)\n",
+                    shown, xStar, digits.range, digits.rangeScale);
     } else {
-        std::printf("  exact x* = v0 cos(theta) t*  = %.12g m: %.1f accurate digits\n", xStar, digits.range);
+        std::printf("  exact x* = v0 cos(theta) t*  = %.*g m: %.1f accurate digits\n", shown, xStar, digits.range);
+    }
+    if (held < 12) {
+        std::printf("  Conditioning: at %.10g degrees, x* = v0^2 sin(2 theta)/g magnifies the launch angle's rounding "
+                    "%.2g times, so x* itself holds only %.1f significant digits, whatever the integrator\n",
+                    o.scene.launchAngleDegrees, magnified, held);
     }
     return landing.hit;
 }

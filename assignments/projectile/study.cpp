@@ -52,7 +52,8 @@ simlab::study::Subject flightOf(const projectile::Scene& scene, double finalTime
     simlab::study::Subject flight;
     flight.name = "projectile";
     flight.finalTime = finalTime;
-    flight.figure = "the flight against the parabola at every step; at the end, the ground hit's time and range";
+    flight.figure = "the flight's x, y and speeds against the parabola at every step";
+    flight.finalFigure = "the ground hit's time and range against t* and x*";
     flight.conservedName = "mechanical energy (relative to the launch's kinetic energy)";
     flight.conservedScale = projectile::exact::mechanicalEnergy(scene);
     flight.reference = "the exact parabola and its hit, t* = 2 v0 sin(theta) / g, x* = v0 cos(theta) t*";

@@ -122,7 +122,7 @@ std::optional<json> wellFormedLine(const json& line, std::string& why) {
     if (!plainWord) return fail("a subject named '" + engine::printable(subject.substr(0, 80)) + "'");
     out["subject"] = subject;
     if (type == "subject") {
-        for (const char* key : {"lab", "figure", "conserved", "reference"}) textField(key);
+        for (const char* key : {"lab", "figure", "final_figure", "conserved", "reference"}) textField(key);
         for (const char* key : {"final_time", "reference_digits", "cap", "max_evaluations", "repeats", "starts"}) numberField(key);
         return out;
     }
@@ -328,15 +328,114 @@ std::vector<std::string> plot(const fs::path& dir, const std::string& name) {
 
 /// The table: the cheapest setting (fewest evaluations) whose worst digits reach each target, and the Pareto
 /// front of evaluations against digits.
+/// Whether a method's digits, as its setting tightens up to `chosen`, come within a digit of `target` and then fall
+/// below it again: then the digits at `chosen` are luck more than a trend, and a neighbouring setting or another
+/// scene may keep far fewer. Returns the dip ("accuracy 1e-10 keeps 8.0, accuracy 5e-11 keeps 6.2"), or "".
+std::string dipBefore(const std::vector<const json*>& ok, const json& chosen, const char* key, double target) {
+    std::vector<const json*> sweep;
+    for (const json* p : ok) {
+        if (text((*p)["integrator"]) == text(chosen["integrator"]) && text((*p)["mode"]) == text(chosen["mode"])) {
+            sweep.push_back(p);
+        }
+    }
+    const bool accuracy = text(chosen["mode"]) == "accuracy";
+    const char* by = accuracy ? "accuracy" : "step";
+    std::stable_sort(sweep.begin(), sweep.end(), [by](const json* a, const json* b) {
+        return (*a)[by].get<double>() > (*b)[by].get<double>();  // loosest first
+    });
+    const json* best = nullptr;  // the most digits of the looser settings so far
+    for (const json* p : sweep) {
+        if ((*p)[by].get<double>() < chosen[by].get<double>()) break;  // tighter than the one chosen
+        const double digits = (*p)[key].get<double>();
+        if (best && (*best)[key].get<double>() >= target - 1 && digits < target && digits < (*best)[key].get<double>() - 1) {
+            return setting(*best) + " keeps " + number((*best)[key], "%.1f") + ", " + setting(*p) + " keeps " +
+                   number((*p)[key], "%.1f");
+        }
+        if (!best || digits > (*best)[key].get<double>()) best = p;
+    }
+    return "";
+}
+
+/// A lab's study table for one figure (`key`: worst_digits, the fewest kept at the measured steps; or
+/// final_digits, the figure the lab reports at the end): the cheapest setting for 4 to 12 digits, a mark where the
+/// method's digits are not monotone up to it (with the cheapest setting whose method's are), then the Pareto front
+/// of evaluations against digits with the stretches of digits no measured setting keeps.
+void printFigureTable(std::ostream& out, std::vector<const json*> ok, double referenceDigits, const char* key) {
+    ok.erase(std::remove_if(ok.begin(), ok.end(), [key](const json* p) { return !(*p)[key].is_number(); }), ok.end());
+    char line[320];
+    std::snprintf(line, sizeof line, "  %-7s %-40s %12s %8s %12s\n", "digits", "cheapest setting", "evaluations",
+                  "reached", "seconds");
+    out << line;
+    const auto row = [&](const char* label, const json& p, const char* mark) {
+        const std::string how = text(p["integrator"]) + ", " + setting(p);
+        std::snprintf(line, sizeof line, "  %-7s %-40s %12s %8s %12s%s\n", label, how.c_str(),
+                      number(p["evaluations"], "%.0f").c_str(), number(p[key], "%.1f").c_str(),
+                      number(p["seconds"], "%.3g").c_str(), mark);
+        out << line;
+    };
+    for (const int target : {4, 6, 8, 10, 12}) {
+        if (target > referenceDigits) {
+            std::snprintf(line, sizeof line, "  %-7d beyond the reference's own accuracy: not judged\n", target);
+            out << line;
+            continue;
+        }
+        const auto reaches = [target, key](const json* p) { return (*p)[key].get<double>() >= target; };
+        const auto found = std::find_if(ok.begin(), ok.end(), reaches);
+        if (found == ok.end()) {
+            std::snprintf(line, sizeof line, "  %-7d no setting reached it within the cap\n", target);
+            out << line;
+            continue;
+        }
+        const std::string label = std::to_string(target);
+        const std::string dip = dipBefore(ok, **found, key, target);
+        row(label.c_str(), **found, dip.empty() ? "" : "  *");
+        if (dip.empty()) continue;
+        out << "          * " << text((**found)["integrator"]) << "'s digits are not monotone up to it (" << dip
+            << "): a neighbouring setting or another scene may keep far fewer\n";
+        const auto steady = std::find_if(ok.begin(), ok.end(), [&](const json* p) {
+            return reaches(p) && dipBefore(ok, *p, key, target).empty();
+        });
+        if (steady != ok.end()) row("", **steady, "  (cheapest whose method gains digits steadily)");
+    }
+    out << "  Pareto front (evaluations: digits, setting):";
+    std::vector<const json*> front;
+    double best = -1;
+    for (const json* p : ok) {
+        const double digits = (*p)[key].get<double>();
+        if (digits <= best + 0.05) continue;
+        best = digits;
+        front.push_back(p);
+    }
+    for (std::size_t i = 0; i < front.size(); ++i) {
+        const json& p = *front[i];
+        out << (i % 3 == 0 ? "\n    " : "; ") << number(p["evaluations"], "%.0f") << ": " << number(p[key], "%.1f")
+            << ", " << text(p["integrator"]) << " " << setting(p);
+    }
+    out << '\n';
+    // Between two neighbours of the front more than a digit apart, no measured setting keeps the digits between:
+    // a cost read there is the dearer neighbour's, never one a setting was seen to pay.
+    for (std::size_t i = 1; i < front.size(); ++i) {
+        const double low = (*front[i - 1])[key].get<double>(), high = (*front[i])[key].get<double>();
+        if (high - low > 1) {
+            out << "    no setting measured keeps " << number(json(low), "%.1f") << " to " << number(json(high), "%.1f")
+                << " digits: that stretch of the front is reached by none\n";
+        }
+    }
+}
+
+/// A lab's study table: the subject and how its figures were measured, then a table and front for each figure.
 void printTable(std::ostream& out, const SubjectRun& run) {
     const json& s = run.subject;
     const double referenceDigits = s["reference_digits"].is_number() ? s["reference_digits"].get<double>() : 0;
+    const double starts = s["starts"].is_number() ? s["starts"].get<double>() : 1;
     // The reference's accuracy, floored to a tenth: a bound, never rounded up past what was measured.
     out << '\n'
         << engine::printable(text(s["subject"])) << ": " << engine::printable(text(s["figure"])) << "\n  reference: "
         << engine::printable(text(s["reference"])) << ", good to "
         << number(json(std::floor(referenceDigits * 10) / 10), "%.1f") << " digits at t = "
-        << number(s["final_time"]) << " s\n";
+        << number(s["final_time"]) << " s\n  measured: the fewest digits kept at the run's steps (up to about a "
+        << "thousand, spread over the run)" << (starts > 1 ? ", the worst of " + number(json(starts), "%.0f") + " starts" : "")
+        << ", each setting's evaluations counted by Simbody\n";
     std::vector<const json*> ok, failed;
     int costly = 0;
     for (const json& p : run.points) {
@@ -350,41 +449,12 @@ void printTable(std::ostream& out, const SubjectRun& run) {
     std::stable_sort(ok.begin(), ok.end(), [](const json* a, const json* b) {
         return (*a)["evaluations"].get<double>() < (*b)["evaluations"].get<double>();
     });
-    char line[256];
-    std::snprintf(line, sizeof line, "  %-7s %-40s %12s %8s %12s\n", "digits", "cheapest setting", "evaluations",
-                  "reached", "seconds");
-    out << line;
-    for (const int target : {4, 6, 8, 10, 12}) {
-        if (target > referenceDigits) {
-            std::snprintf(line, sizeof line, "  %-7d beyond the reference's own accuracy: not judged\n", target);
-            out << line;
-            continue;
-        }
-        const auto found = std::find_if(ok.begin(), ok.end(),
-                                        [target](const json* p) { return (*p)["worst_digits"].get<double>() >= target; });
-        if (found == ok.end()) {
-            std::snprintf(line, sizeof line, "  %-7d no setting reached it within the cap\n", target);
-            out << line;
-            continue;
-        }
-        const json& p = **found;
-        const std::string how = text(p["integrator"]) + ", " + setting(p);
-        std::snprintf(line, sizeof line, "  %-7d %-40s %12s %8s %12s\n", target, how.c_str(),
-                      number(p["evaluations"], "%.0f").c_str(), number(p["worst_digits"], "%.1f").c_str(),
-                      number(p["seconds"], "%.3g").c_str());
-        out << line;
+    printFigureTable(out, ok, referenceDigits, "worst_digits");
+    if (!text(s["final_figure"]).empty()) {
+        out << "  At the end of the run, " << engine::printable(text(s["final_figure"])) << ":\n";
+        printFigureTable(out, ok, referenceDigits, "final_digits");
     }
-    out << "  Pareto front (evaluations: worst digits, setting):";
-    double best = -1;
-    int shown = 0;
-    for (const json* p : ok) {
-        const double digits = (*p)["worst_digits"].get<double>();
-        if (digits <= best + 0.05) continue;
-        best = digits;
-        out << (shown++ % 3 == 0 ? "\n    " : "; ") << number((*p)["evaluations"], "%.0f") << ": "
-            << number((*p)["worst_digits"], "%.1f") << ", " << text((*p)["integrator"]) << " " << setting(*p);
-    }
-    out << "\n  " << run.points.size() << " points: " << ok.size() << " ok, " << costly << " too costly (past "
+    out << "  " << run.points.size() << " points: " << ok.size() << " ok, " << costly << " too costly (past "
         << number(s["max_evaluations"], "%.0f") << " evaluations), " << failed.size() << " failed or blew up"
         << (failed.empty() ? "" : ":") << '\n';
     for (const json* p : failed) {
@@ -965,11 +1035,14 @@ struct Extreme {
     std::string lab, name, expect;
     std::vector<std::string> args;
     std::vector<std::string> troubleWords;  ///< the lab's: a finished run that prints one of these names trouble
+    std::vector<std::string> says;   ///< words the program's output must hold (a caveat, a cause)
+    std::vector<std::string> lacks;  ///< words it must not (a claim the case disproves)
     bool slow = false;
     std::string outcome;  ///< accurate, inaccurate, rejected, trouble, or SILENT: ... (a defect)
     double digits = NAN;
     double seconds = 0;
     std::string line;     ///< the program's own words for it
+    std::string output;   ///< all of them (as far as kept)
 };
 
 std::vector<Extreme> readExtremes(const engine::Assignment& a) {
@@ -996,8 +1069,11 @@ std::vector<Extreme> readExtremes(const engine::Assignment& a) {
             e.expect = (*c)["expect"].value_or(std::string());
             e.slow = (*c)["slow"].value_or(false);
             e.troubleWords = troubleWords;
-            if (const toml::array* args = (*c)["args"].as_array()) {
-                for (const toml::node& arg : *args) e.args.push_back(arg.value_or(std::string()));
+            for (const auto& [name, list] : {std::pair<const char*, std::vector<std::string>*>{"args", &e.args},
+                                             {"says", &e.says}, {"lacks", &e.lacks}}) {
+                if (const toml::array* values = (*c)[name].as_array()) {
+                    for (const toml::node& v : *values) list->push_back(v.value_or(std::string()));
+                }
             }
             cases.push_back(e);
         }
@@ -1039,6 +1115,7 @@ void runExtreme(const std::string& program, double cap, Extreme& e) {
     request.keepOutput = 256 * 1024;
     const isolation::ProcessResult r = isolation::runProcess(request);
     e.seconds = r.wallSeconds;
+    e.output = r.output;
     const std::regex nonFinite(R"((^|[^A-Za-z_])(nan|-?inf)([^A-Za-z_]|$))", std::regex::icase);
     if (!r.started) {
         e.outcome = "SILENT: did not start";
@@ -1135,13 +1212,21 @@ void runExtremes(const ExtremesOptions& o) {
             }
             runExtreme(a->referenceProgramPath, o.cap, e);
             const bool silent = e.outcome.rfind("SILENT", 0) == 0;
-            const bool promise = e.expect.empty() || e.outcome == e.expect;
+            // What the case promises: its outcome, and the words the program must and must not say.
+            std::string broke = e.expect.empty() || e.outcome == e.expect ? "" : e.expect;
+            for (const std::string& w : e.says) {
+                if (e.output.find(w) == std::string::npos) broke += (broke.empty() ? "" : "; ") + ("says \"" + w + "\"");
+            }
+            for (const std::string& w : e.lacks) {
+                if (e.output.find(w) != std::string::npos) broke += (broke.empty() ? "" : "; ") + ("not \"" + w + "\"");
+            }
+            const bool promise = broke.empty();
             if (silent || !promise) ++broken;
             std::snprintf(line, sizeof line, "  %-10s %6s %8.2f  %s%s%s%s\n", silent ? "SILENT" : e.outcome.c_str(),
                           std::isnan(e.digits) ? "" : number(json(e.digits), "%.1f").c_str(), e.seconds,
                           engine::printable(e.name).c_str(), e.line.empty() ? "" : ": ",
                           engine::printable(silent ? e.outcome + (e.line.empty() ? "" : " - " + e.line) : e.line).c_str(),
-                          promise ? "" : ("  [expected " + e.expect + "]").c_str());
+                          promise ? "" : ("  [expected " + broke + "]").c_str());
             std::cout << line << std::flush;
             all.push_back(e);
         }

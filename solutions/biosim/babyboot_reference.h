@@ -26,16 +26,19 @@ struct Parameters {  // SI units
 /// {qA, qB, uA, uB}: radians and radians per second.
 using State = std::vector<double>;
 
-/// x' for x = {qA, qB, uA, uB}, in the precision of X's values (double, or long double for the study's reference).
+/// x' for x = {qA, qB, uA, uB}, in the precision of X's values (double; long double for the study's reference;
+/// Boost.Multiprecision's floats, whose sin and cos are found beside them, to check it).
 template <class X>
 inline void derivative(const Parameters& p, const X& x, X& dxdt) {
     using Real = typename X::value_type;
+    using std::cos;
+    using std::sin;
     const Real qA = x[0], qB = x[1], uA = x[2], uB = x[3];
-    const Real s = std::sin(qB), c = std::cos(qB);
+    const Real s = sin(qB), c = cos(qB);
     const Real J = p.IAx + p.mA * p.LA * p.LA + p.mB * p.LB * p.LB + p.IBx - (p.IBx - p.IBy) * s * s;
     dxdt[0] = uA;
     dxdt[1] = uB;
-    dxdt[2] = (-p.g * (p.mA * p.LA + p.mB * p.LB) * std::sin(qA) + 2 * (p.IBx - p.IBy) * s * c * uA * uB) / J;
+    dxdt[2] = (-p.g * (p.mA * p.LA + p.mB * p.LB) * sin(qA) + 2 * (p.IBx - p.IBy) * s * c * uA * uB) / J;
     dxdt[3] = -(p.IBx - p.IBy) * s * c * uA * uA / p.IBz;
 }
 

@@ -14,6 +14,11 @@ check "a row for t = 0, 0.01, ..., 10" test "$(($(wc -l <boot.txt) - 1))" -eq 10
 # The energy starts at zero (the rod horizontal, at rest); the swing exchanges g (mA LA + mB LB) = 0.2 J.
 check "the energy stays within 1e-7 J of zero" awk -F'\t' 'NR > 1 && ($6 > 1e-7 || $6 < -1e-7) { bad = 1 } END { exit bad }' boot.txt
 
+# A replay watches the run at its own frame times; the figures the program prints must not depend on it.
+run_capture replayed "$boot" --quiet --output replayed.txt --replay replayed.html
+check "with --replay the results and the energy line are those of the run without it" \
+  bash -c "cmp -s boot.txt replayed.txt && test \"\$(grep '^Energy' default.out)\" = \"\$(grep '^Energy' replayed.out)\""
+
 run_capture still "$boot" --quiet --set g=0 --set uA=0 --set uB=0 --output still.txt
 check "--set g=0 with no initial rates: the boot stays at rest" \
   awk -F'\t' 'NR > 1 && ($2 != 90 || $3 != 1) { moved = 1 } END { exit moved }' still.txt

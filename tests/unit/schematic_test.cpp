@@ -193,6 +193,27 @@ TEST_CASE("a name with quotes, a line break and markup is escaped in DOT and SVG
     CHECK(rendered.find("say &quot;hi&quot;") != std::string::npos);
 }
 
+TEST_CASE("a Slider on the ground is drawn as a sleeve on a hatched rail, never with a pin's support", "[schematic]") {
+    biosim::Model model;
+    MobilizedBody::Slider slider(model.matter.Ground(), Transform(Vec3(0, 1, 0)), rigid(2, Vec3(0), Vec3(1)),
+                                 Transform());
+    model.bodies["cart"] = slider;
+    const std::string svg = biosim::pictureSvg(biosim::schematicOf(model, model.system.realizeTopology(), "cart"));
+    const auto count = [&svg](const std::string& what) {
+        std::size_t n = 0;
+        for (std::size_t at = svg.find(what); at != std::string::npos; at = svg.find(what, at + 1)) ++n;
+        return n;
+    };
+    CHECK(count("fill=\"#ddd\"") == 0);  // the pin's triangle
+    CHECK(count("r=\"5\" fill=\"#fff\" stroke=\"#000\" stroke-width=\"1.5\"") == 0);  // the pin's ring
+    // In the front view the x axis lies in the page (a sleeve and its rail); in the side view it points out of it.
+    CHECK(count("Z\" fill=\"#fff\" stroke=\"#000\" stroke-width=\"1.5\"") == 1);
+    CHECK(count("width=\"10\" height=\"10\" fill=\"#fff\"") == 1);
+    TwoPins t;
+    const std::string pins = biosim::pictureSvg(biosim::schematicOf(*t.model, t.state, "two pins"));
+    CHECK(pins.find("fill=\"#ddd\"") != std::string::npos);  // a Pin keeps its support
+}
+
 TEST_CASE("the picture is an SVG with both views, the names and a scale bar", "[schematic]") {
     TwoPins t;
     const std::string svg = biosim::pictureSvg(biosim::schematicOf(*t.model, t.state, "two pins"));

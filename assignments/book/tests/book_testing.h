@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <string>
@@ -21,6 +22,13 @@ namespace book::testing {
 namespace grading = simlab::grading;
 using namespace simlab::testing;
 using Run = simlab::RunResult<Sample>;
+
+/// A vector's components for a message, "7, 0.2, 0.2" (SimTK's own << writes "~[7,0.2,0.2]").
+inline std::string components(const SimTK::Vec3& v) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.9g, %.9g, %.9g", v[0], v[1], v[2]);
+    return text;
+}
 
 inline Run simulate(const Scene& scene, const simlab::RunSettings& settings = defaultRunSettings()) {
     return simlab::testing::simulate<Sample>(scene, settings);

@@ -11,8 +11,8 @@ double worstDigits(const std::vector<Scene>& scenes) {
     double worst = simlab::kMaxDigits;
     for (const Scene& scene : scenes) {
         const double digits = finalDigits(scene, simulate(scene, settingsFor(4.0, 0.01, 1e-12)));
-        INFO("w0 = (" << scene.w_B0 << ") rad/s on a " << scene.mass << " kg book of (" << scene.dimensions
-                      << ") m: " << digits << " digits");
+        INFO("w0 = (" << components(scene.w_B0) << ") rad/s on a " << scene.mass << " kg book of ("
+                      << components(scene.dimensions) << ") m: " << digits << " digits");
         worst = std::min(worst, digits);
     }
     return worst;

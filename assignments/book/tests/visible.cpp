@@ -28,7 +28,8 @@ TEST_CASE("the book starts with the spin asked for", "[book][initial]") {
     const Run run = simulate(scene);
     requireSamples(run);
     const Sample& first = run.samples.front();
-    INFO("w at t = " << first.time << " s is (" << first.w_B << ") rad/s; expected (" << scene.w_B0 << ")");
+    INFO("w at t = " << first.time << " s is (" << components(first.w_B) << ") rad/s; expected ("
+                        << components(scene.w_B0) << ")");
     CHECK(first.time == 0.0);
     CHECK((first.w_B - scene.w_B0).norm() < 1e-12);
 }

@@ -385,6 +385,7 @@ void runSubject(const std::string& lab, const Subject& subject, const Settings& 
     const double referenceDigits = subject.referenceDigits();
     std::cout << nlohmann::json{{"type", "subject"},       {"lab", lab},
                                 {"subject", subject.name}, {"figure", subject.figure},
+                                {"final_figure", subject.finalFigure},
                                 {"conserved", subject.conservedName}, {"final_time", subject.finalTime},
                                 {"reference", subject.reference},     {"reference_digits", number(referenceDigits)},
                                 {"cap", settings.cap},     {"max_evaluations", settings.maxEvaluations},

@@ -47,6 +47,9 @@ public:
 struct Subject {
     std::string name;               ///< e.g. "book-intermediate"
     std::string figure;             ///< what the digits measure, one line
+    /// What the final digits measure, where the lab reports a figure of its own when the run is over (the ground
+    /// hit's time and range): the study then gives that figure its own front. Empty: the final state's digits.
+    std::string finalFigure;
     std::string conservedName;      ///< e.g. "energy"
     double conservedScale = 1;      ///< the drift is the largest |change| over this
     double finalTime = 1;           ///< s
