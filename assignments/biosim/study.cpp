@@ -4,6 +4,7 @@
 #include "babyboot_reference.h"
 #include "biosim/course.h"
 #include "simlab/digits.h"
+#include "simlab/long_run.h"
 #include "simlab/precision_ladder.h"
 #include "simlab/study.h"
 
@@ -122,5 +123,20 @@ int main(int argc, char** argv) {
     boot.makeOverModelled = [] { return std::make_unique<Boot>(true); };
     boot.minimal = "two Pins (2 dof)";
     boot.overModelled = "Free + 5 constraints";
+    if (simlab::study::asksForLongRun(argc, argv)) {
+        // The chaotic boot for a long time: no reference keeps digits past a few seconds, so each run is judged
+        // against the same method run tighter, in the study's norm (qA, qB against 1 rad; uA, uB against 1 rad/s).
+        simlab::study::LongRunView view;
+        view.scene = "the baby boot from the project's default start";
+        view.subject = [boot](double finalTime) {
+            simlab::study::Subject s = boot;
+            s.finalTime = finalTime;
+            return s;
+        };
+        view.trajectory = simlab::study::TrajectoryCheck::tighterRun;
+        view.fixedStep = 1e-3;  // s
+        view.quickFinalTime = 20;
+        return simlab::study::longRunMain(argc, argv, "biosim", view);
+    }
     return simlab::study::studyMain(argc, argv, "biosim", {boot});
 }

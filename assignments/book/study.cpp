@@ -7,6 +7,7 @@
 #include "book/observations.h"
 #include "book/reference.h"
 #include "simlab/digits.h"
+#include "simlab/long_run.h"
 #include "simlab/study.h"
 
 namespace {
@@ -85,6 +86,19 @@ std::string axisOf(const book::Scene& scene) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    if (simlab::study::asksForLongRun(argc, argv)) {
+        // The lab's default scene for a long time: w_B against Euler's equations in long double, which keep their
+        // digits over the whole run; the kinetic energy, conserved with no torque.
+        book::Scene scene;
+        scene.w_B0 = book::exact::spin(scene, "intermediate");
+        simlab::study::LongRunView view;
+        view.scene = "the spin about the intermediate axis";
+        view.subject = [scene](double finalTime) { return spinOf(scene, finalTime, "book", axisOf(scene)); };
+        view.trajectory = simlab::study::TrajectoryCheck::reference;
+        view.fixedStep = 1e-3;  // s: a seventh of a degree of the 7 rad/s spin a step
+        view.quickFinalTime = 20;
+        return simlab::study::longRunMain(argc, argv, "book", view);
+    }
     return simlab::study::studyMain(argc, argv, "book",
                                     {spinAbout("min"), spinAbout("intermediate"), spinAbout("max")},
                                     [](const nlohmann::json& given, double finalTime) {

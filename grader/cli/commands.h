@@ -2,8 +2,10 @@
 // wires them together.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "simlab/engine/grade.h"
 #include "simlab/rubric.h"
@@ -12,6 +14,11 @@ namespace CLI {
 class App;
 class Validator;
 }  // namespace CLI
+
+namespace simlab::engine {
+struct Assignment;
+struct Manifest;
+}  // namespace simlab::engine
 
 namespace simlab::cli {
 
@@ -35,6 +42,10 @@ std::string selfPath();
 /// `word` as a POSIX shell reads it back as one word: as it is where that is safe, else in single quotes.
 std::string shellWord(const std::string& word);
 
+/// Replaces this process with the program at `path`, run with `args` (its name first), after flushing standard
+/// output; throws std::runtime_error, in one line, if it cannot be run.
+[[noreturn]] void handOver(const std::string& path, std::vector<std::string> args);
+
 /// --shard's "I/N" as (I, N), 1 <= I <= N <= 10000; a UsageError in one line otherwise.
 std::pair<int, int> parseShard(const std::string& text);
 
@@ -47,6 +58,10 @@ void addAutograde(CLI::App& app);
 void addExport(CLI::App& app);
 void addProject(CLI::App& app);
 void addStudy(CLI::App& app);
+/// Builds the lab's study program where it is not built yet (`study trade` builds them the same way).
+using StudiesBuilder = std::function<void(const engine::Manifest&, const engine::Assignment&)>;
+/// `simlab study long-run` (study_long_run.cpp), under `study`.
+void addStudyLongRun(CLI::App& study, const StudiesBuilder& ensureBuilt);
 void addPlot(CLI::App& app);
 void addSimilarity(CLI::App& app);
 void addSlurm(CLI::App& app);

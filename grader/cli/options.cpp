@@ -1,9 +1,14 @@
 // What several simlab commands share: limit options checked against the rubric's ranges, and a student's file
-// read from the command line the way grading reads it; the cores to use by default.
+// read from the command line the way grading reads it; the cores to use by default; the hand-over to a program.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <iostream>
 #include <thread>
 
 #include "commands.h"
@@ -77,6 +82,15 @@ std::string shellWord(const std::string& word) {
     std::string quoted = "'";
     for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return quoted + "'";
+}
+
+void handOver(const std::string& path, std::vector<std::string> args) {
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    std::cout.flush();
+    execv(path.c_str(), argv.data());
+    throw std::runtime_error("cannot run " + path + ": " + std::strerror(errno));
 }
 
 std::pair<int, int> parseShard(const std::string& text) {

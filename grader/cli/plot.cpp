@@ -1,11 +1,6 @@
 // simlab plot: an existing results file drawn as its lab program draws a run (--plot), by that program.
-#include <unistd.h>
-
 #include <CLI/CLI.hpp>
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
-#include <iostream>
 #include <memory>
 
 #include "commands.h"
@@ -38,12 +33,7 @@ struct PlotOptions {
     if (output.empty()) output = std::filesystem::path(o.results).replace_extension(".png").string();
     std::vector<std::string> args = {assignment.program, "--from", o.results, "--plot", output};
     args.insert(args.end(), o.scene.begin(), o.scene.end());
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    std::cout.flush();
-    execv(assignment.programPath.c_str(), argv.data());
-    throw std::runtime_error("cannot run " + assignment.programPath + ": " + std::strerror(errno));
+    handOver(assignment.programPath, args);
 }
 
 }  // namespace

@@ -1323,6 +1323,8 @@ void addStudy(CLI::App& app) {
         ->check(simlab::between(1.0, 3600.0))
         ->capture_default_str();
     extreme->callback([extremes] { runExtremes(*extremes); });
+
+    addStudyLongRun(*study, [](const engine::Manifest& m, const engine::Assignment& a) { ensureStudiesBuilt(m, {&a}, false); });
 }
 
 }  // namespace simlab::cli

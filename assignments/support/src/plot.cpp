@@ -50,6 +50,7 @@ struct Offset {
 };
 
 Offset panelOffset(const PlotPanel& panel) {
+    if (panel.logY) return {};  // a logarithmic axis reads small differences of large values as they are
     double low = INFINITY, high = -INFINITY;
     auto see = [&](double y) {
         if (std::isfinite(y)) low = std::min(low, y), high = std::max(high, y);
@@ -62,6 +63,11 @@ Offset panelOffset(const PlotPanel& panel) {
     if (!(high >= low) || !(size > 0) || high - low >= 1e-4 * size) return {};
     const std::string written = number(low + (high - low) / 2);
     return {std::strtod(written.c_str(), nullptr), written};
+}
+
+// Whether (x, y) can be drawn on `panel`'s axes: finite, and above zero on a logarithmic one.
+bool drawable(const PlotPanel& panel, double x, double y) {
+    return std::isfinite(x) && std::isfinite(y) && (!panel.logX || x > 0) && (!panel.logY || y > 0);
 }
 
 // The gnuplot script that draws `plot` into `output` with `terminal`. Each curve's points go in a datablock of
@@ -83,7 +89,7 @@ std::string script(const Plot& plot, const std::string& terminal, const std::str
         for (const PlotCurve& curve : panel.curves) {
             gp << "$d" << block++ << " << EOD\n";
             for (std::size_t i = 0; i < curve.x.size() && i < curve.y.size(); ++i) {
-                if (std::isfinite(curve.x[i]) && std::isfinite(curve.y[i])) {
+                if (drawable(panel, curve.x[i], curve.y[i])) {
                     gp << number(curve.x[i]) << ' ' << number(curve.y[i] - offset.value) << '\n';
                 }
             }
@@ -100,7 +106,10 @@ std::string script(const Plot& plot, const std::string& terminal, const std::str
         const Offset& offset = offsets[p];
         const std::string yLabel = offset.label.empty() ? panel.yLabel : panel.yLabel + ", less " + offset.label;
         gp << "set xlabel " << quoted(panel.xLabel) << "\nset ylabel " << quoted(yLabel) << "\n"
-           << (panel.scientificY || !offset.label.empty() ? "set format y '%.1e'\n" : "set format y '% g'\n")
+           << (panel.logX ? "set logscale x\n" : "unset logscale x\n")
+           << (panel.logY ? "set logscale y\nset format y '%.0e'\n"
+               : panel.scientificY || !offset.label.empty() ? "unset logscale y\nset format y '%.1e'\n"
+                                                            : "unset logscale y\nset format y '% g'\n")
            << "plot ";
         int color = 1;
         for (std::size_t c = 0; c < panel.curves.size(); ++c) {

@@ -32,6 +32,9 @@ struct PlotPanel {
     std::vector<PlotCurve> curves;
     std::vector<PlotMark> marks;
     bool scientificY = false;  ///< tick labels like 1.0e-12, for relative changes
+    /// Logarithmic axes (a drift against time over decades, say): a curve's point at or below zero on such an axis
+    /// is left out, as a non-finite one is.
+    bool logX = false, logY = false;
 };
 
 /// A figure: its title (the run's settings) and its panels.

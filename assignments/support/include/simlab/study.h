@@ -12,6 +12,7 @@
 // report only at the end, after the measured run has warmed the caches.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -22,6 +23,7 @@
 
 #include "Simbody.h"
 #include <nlohmann/json.hpp>
+#include "simlab/digits.h"
 #include "simlab/ode_reference.h"
 
 namespace simlab::study {
@@ -41,6 +43,19 @@ public:
     /// Digits of the figure the lab reports when the run is over (the ground hit's, say); the final state's by
     /// default.
     virtual double finalDigits(const SimTK::State& state) { return digits(state); }
+    /// Digits to which `state` agrees with `tighter`, the same scene at the same time run more accurately (what
+    /// `study long-run` measures where no reference lasts): the worst generalized coordinate and speed, each
+    /// against the larger of its size and 1 in its own unit (1 rad and 1 rad/s for a Pin's).
+    virtual double agreementDigits(const SimTK::State& state, const SimTK::State& tighter) {
+        double worst = simlab::kMaxDigits;
+        for (int i = 0; i < state.getNQ(); ++i) {
+            worst = std::min(worst, simlab::accuracyDigits(state.getQ()[i], tighter.getQ()[i], 1.0));
+        }
+        for (int i = 0; i < state.getNU(); ++i) {
+            worst = std::min(worst, simlab::accuracyDigits(state.getU()[i], tighter.getU()[i], 1.0));
+        }
+        return worst;
+    }
 };
 
 /// A lab's scene in the study.

@@ -1,0 +1,71 @@
+# simlab study long-run, the quick view (20 s) of the book and the baby boot: the energy's drift and the
+# trajectory's digits hold the physics each figure is there to show. Verlet's fixed step keeps the energy's error
+# bounded where RungeKuttaMerson's grows with time; the energy keeps many more digits than the trajectory; the
+# chaotic boot loses its trajectory in seconds with its energy still good to many digits. The CSV, the figure and
+# the table are made, and every number printed is finite; bad input is a one-line error.
+# shellcheck source=../smoke/lib.sh
+source "$(dirname "$0")/../smoke/lib.sh"
+
+run_capture book "$SIMLAB" study long-run book --quick -o view
+run_capture boot "$SIMLAB" study long-run biosim --quick -o view
+for run in book boot; do
+  check "simlab study long-run ($run) --quick ends well" test "$(status_of $run)" -eq 0
+done
+for lab in book biosim; do
+  check "$lab-long-run.csv has each of the 3 settings sampled to the final time, 20 s" \
+    awk -F, -v lab="$lab" 'NR > 1 && $1 == lab && $5 + 0 == 20 { n++ } END { exit n != 3 }' "view/$lab-long-run.csv"
+  if command -v gnuplot >/dev/null; then
+    check "$lab-long-run.svg is drawn" grep -q '<svg' "view/$lab-long-run.svg"
+  fi
+done
+check "no NaN or Inf reaches the tables or the CSVs" \
+  bash -c "! grep -qiE '(^|[^a-z])(nan|-?inf)([^a-z]|$)' book.out boot.out view/book-long-run.csv view/biosim-long-run.csv"
+
+# at LAB STEPPING T COLUMN: a figure of LAB's CSV for the setting whose stepping is STEPPING, at the sample at T s.
+at() {
+  awk -F, -v lab="$1" -v s="$2" -v t="$3" -v c="$4" \
+    'NR > 1 && $1 == lab && $3 == s && $5 + 0 == t + 0 { print $c; found = 1 } END { exit !found }' \
+    "view/$1-long-run.csv"
+}
+# Columns: 5 t_s, 7 energy_drift_largest (up to t), 8 trajectory_digits.
+# Merson keeps each step's error under the accuracy but not its sign: the energy's error adds up, about tenfold from
+# 1 s to 20 s on the book. Verlet, time-reversible, oscillates about a nearby conserved energy: over these 20 s its
+# drift is no larger at the end than at 1 s. (Over 1000 s the book's Verlet drift grows too, past about 50 s; the
+# boot's stays bounded: see the handouts.)
+energy_drifts() {  # energy_drifts LAB FACTOR: Merson's drift at 1e-6 grows FACTOR-fold or more, Verlet's does not
+  local m1 m20 v1 v20
+  m1=$(at "$1" 'accuracy 1e-06' 1 7) m20=$(at "$1" 'accuracy 1e-06' 20 7)
+  v1=$(at "$1" 'fixed step 0.001 s' 1 7) v20=$(at "$1" 'fixed step 0.001 s' 20 7)
+  check "$1's energy drifts under Merson at 1e-6: its largest drift grows $2-fold or more, 1 s to 20 s" \
+    awk "BEGIN { exit !($m20 >= $2 * $m1) }"
+  check "and not under Verlet at 1 ms steps over those 20 s: within 1.5 times its 1 s drift, under 1e-4" \
+    awk "BEGIN { exit !($v20 <= 1.5 * $v1 && $v20 < 1e-4) }"
+}
+energy_drifts book 5
+energy_drifts biosim 2
+check "the book's energy keeps 5 digits or more at 20 s under Merson at 1e-6 where its w_B keeps fewer than 3" \
+  awk "BEGIN { exit !($(at book 'accuracy 1e-06' 20 7) < 1e-5 && $(at book 'accuracy 1e-06' 20 8) < 3) }"
+check "and Merson at 1e-9 keeps 3 digits more of w_B than at 1e-6, at 20 s" \
+  awk "BEGIN { exit !($(at book 'accuracy 1e-09' 20 8) >= $(at book 'accuracy 1e-06' 20 8) + 3) }"
+
+# The boot is chaotic: a difference of one step's error doubles every second or so, whatever the accuracy, while
+# each step still keeps the energy to the accuracy asked.
+check "each setting of the boot loses its trajectory (under 1 digit against its tighter run) within 20 s" \
+  awk -F, 'NR > 1 && $8 < 1 && !($3 in lost) { lost[$3] = $5 } END { exit length(lost) != 3 }' view/biosim-long-run.csv
+check "while its energy still keeps 4 digits or more there (Merson at 1e-9: 8 or more)" \
+  awk -F, 'NR > 1 && $8 < 1 && !($3 in lost) { lost[$3] = $7 }
+           END { exit !(length(lost) == 3 && lost["accuracy 1e-06"] < 1e-4 && lost["fixed step 0.001 s"] < 1e-4 &&
+                        lost["accuracy 1e-09"] < 1e-8) }' view/biosim-long-run.csv
+check "the tables give each setting's drift at 1, 10 and 20 s and when its trajectory fell below 1 digit" \
+  bash -c "grep -q 'drift 1 s  drift 10 s  drift 20 s' book.out && test \$(grep -cE '^  (RungeKuttaMerson|Verlet),.* by [0-9.]+ s ' boot.out) -eq 3"
+check "and say what each trajectory is judged against" \
+  bash -c "grep -q 'against Euler.s equations in long double' book.out && grep -q 'accuracy 1e-10' boot.out &&
+           grep -q 'fixed step 0.0005 s' boot.out"
+
+run_capture banana "$SIMLAB" study long-run apple --quick
+check "a lab without the view is refused in one line, exit 2" \
+  bash -c "test $(status_of banana) -eq 2 && test \$(wc -l <banana.err) -eq 1 && grep -q 'book or biosim' banana.err"
+run_capture zero "$SIMLAB" study long-run book --final-time 0
+check "a final time out of range is refused in one line, exit 2" \
+  bash -c "test $(status_of zero) -eq 2 && test \$(wc -l <zero.err) -eq 1 && grep -q 'final-time' zero.err"
+finish
