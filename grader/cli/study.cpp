@@ -328,37 +328,38 @@ std::vector<std::string> plot(const fs::path& dir, const std::string& name) {
 
 /// The table: the cheapest setting (fewest evaluations) whose worst digits reach each target, and the Pareto
 /// front of evaluations against digits.
-/// Whether a method's digits, as its setting tightens up to `chosen`, come within a digit of `target` and then fall
-/// below it again: then the digits at `chosen` are luck more than a trend, and a neighbouring setting or another
-/// scene may keep far fewer. Returns the dip ("accuracy 1e-10 keeps 8.0, accuracy 5e-11 keeps 6.2"), or "".
-std::string dipBefore(const std::vector<const json*>& ok, const json& chosen, const char* key, double target) {
+/// Whether a method's digits are not monotone about `target` as its setting tightens: once a setting of the method
+/// keeps `target` (or half a digit less), a tighter one falls back below it. Then the digits of `chosen` (a setting
+/// of that method) are luck more than a trend, and a neighbouring setting or another scene may keep fewer. Returns
+/// the two settings ("accuracy 1e-11 keeps 8.1, accuracy 1e-12 keeps 7.8"), or "".
+std::string notMonotone(const std::vector<const json*>& ok, const json& chosen, const char* key, double target) {
     std::vector<const json*> sweep;
     for (const json* p : ok) {
         if (text((*p)["integrator"]) == text(chosen["integrator"]) && text((*p)["mode"]) == text(chosen["mode"])) {
             sweep.push_back(p);
         }
     }
-    const bool accuracy = text(chosen["mode"]) == "accuracy";
-    const char* by = accuracy ? "accuracy" : "step";
+    const char* by = text(chosen["mode"]) == "accuracy" ? "accuracy" : "step";
     std::stable_sort(sweep.begin(), sweep.end(), [by](const json* a, const json* b) {
         return (*a)[by].get<double>() > (*b)[by].get<double>();  // loosest first
     });
-    const json* best = nullptr;  // the most digits of the looser settings so far
-    for (const json* p : sweep) {
-        if ((*p)[by].get<double>() < chosen[by].get<double>()) break;  // tighter than the one chosen
-        const double digits = (*p)[key].get<double>();
-        if (best && (*best)[key].get<double>() >= target - 1 && digits < target && digits < (*best)[key].get<double>() - 1) {
-            return setting(*best) + " keeps " + number((*best)[key], "%.1f") + ", " + setting(*p) + " keeps " +
-                   number((*p)[key], "%.1f");
+    for (const double level : {target - 0.5, target}) {
+        const json* reached = nullptr;
+        for (const json* p : sweep) {
+            const double digits = (*p)[key].get<double>();
+            if (!reached && digits >= level) reached = p;
+            else if (reached && digits < level) {
+                return setting(*reached) + " keeps " + number((*reached)[key], "%.1f") + ", " + setting(*p) +
+                       " keeps " + number((*p)[key], "%.1f");
+            }
         }
-        if (!best || digits > (*best)[key].get<double>()) best = p;
     }
     return "";
 }
 
 /// A lab's study table for one figure (`key`: worst_digits, the fewest kept at the measured steps; or
 /// final_digits, the figure the lab reports at the end): the cheapest setting for 4 to 12 digits, a mark where the
-/// method's digits are not monotone up to it (with the cheapest setting whose method's are), then the Pareto front
+/// method's digits are not monotone about the target (with the cheapest setting whose method's are), then the Pareto front
 /// of evaluations against digits with the stretches of digits no measured setting keeps.
 void printFigureTable(std::ostream& out, std::vector<const json*> ok, double referenceDigits, const char* key) {
     ok.erase(std::remove_if(ok.begin(), ok.end(), [key](const json* p) { return !(*p)[key].is_number(); }), ok.end());
@@ -387,13 +388,13 @@ void printFigureTable(std::ostream& out, std::vector<const json*> ok, double ref
             continue;
         }
         const std::string label = std::to_string(target);
-        const std::string dip = dipBefore(ok, **found, key, target);
+        const std::string dip = notMonotone(ok, **found, key, target);
         row(label.c_str(), **found, dip.empty() ? "" : "  *");
         if (dip.empty()) continue;
-        out << "          * " << text((**found)["integrator"]) << "'s digits are not monotone up to it (" << dip
-            << "): a neighbouring setting or another scene may keep far fewer\n";
+        out << "          * " << text((**found)["integrator"]) << "'s digits are not monotone in its setting (" << dip
+            << "): a neighbouring setting or another scene may keep fewer\n";
         const auto steady = std::find_if(ok.begin(), ok.end(), [&](const json* p) {
-            return reaches(p) && dipBefore(ok, *p, key, target).empty();
+            return reaches(p) && notMonotone(ok, *p, key, target).empty();
         });
         if (steady != ok.end()) row("", **steady, "  (cheapest whose method gains digits steadily)");
     }

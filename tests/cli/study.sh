@@ -27,6 +27,22 @@ check "ten times the steps buys explicit Euler one digit (0.4 s to 0.04 s)" \
 check "the table gives the cheapest setting for 4 to 12 digits" \
   bash -c "grep -q 'cheapest setting' $FIXTURES/handouts/apple/starter-tree/simlab-study-trade-apple-quick-no-plots-o-study.out &&
            test \$(grep -cE '^  (4|6|8|10|12) ' $FIXTURES/handouts/apple/starter-tree/simlab-study-trade-apple-quick-no-plots-o-study.out) -eq 5"
+# The table marks what a front cannot promise (read from the handouts' runs): a method whose digits fall back below
+# a target as it tightens (on the book's question spin CPodes keeps 8.1 digits at 1e-11 and 7.8 at 1e-12), with the
+# cheapest setting of a steadier one; the stretches of digits no setting keeps; and the projectile's ground hit,
+# the lab's other figure, in a table and front of its own.
+bq=$FIXTURES/handouts/book/solution-tree/simlab-study-trade-book-question-quick-no-plots-o-question.out
+check "a method not monotone about a target is marked, with a steadier method's cheapest setting" \
+  bash -c "grep -q \"^  8       CPodes, accuracy 1e-11 .* \\*\$\" '$bq' &&
+           grep -q \"CPodes's digits are not monotone in its setting (accuracy 1e-11 keeps 8.1, accuracy 1e-12 keeps 7.8)\" '$bq' &&
+           grep -q '(cheapest whose method gains digits steadily)' '$bq'"
+check "the stretches of a front no setting measured reaches are named" \
+  grep -q 'no setting measured keeps 6.3 to 8.0 digits' "$bq"
+pq=$FIXTURES/handouts/projectile/starter-tree/simlab-study-trade-projectile-quick-no-plots-o-study.out
+check "the projectile's ground hit has its own table: Verlet at 1e-1 keeps 15.5 digits of the flight, 10.2 of the hit" \
+  bash -c "grep -q '^  At the end of the run, the ground hit' '$pq' &&
+           test \$(grep -cE '^  4       Verlet, accuracy 1e-01 +29 +(15.5|10.2) ' '$pq') -eq 2"
+
 if command -v gnuplot >/dev/null; then
   # Drawn from any study: a small one (points past 2000 evaluations too costly) is enough to draw.
   run_capture plots "$SIMLAB" study trade apple --quick --max-evaluations 2000 -o plotted
