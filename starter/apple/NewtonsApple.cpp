@@ -6,8 +6,8 @@
 //     SIMLAB_TODO("what to write here");
 //
 // As shipped the file compiles and runs, and the program stops at the first marker it reaches with that
-// message (the grader shows it too). Replace each marker with your code. There are four; the stepping loop
-// in simulate() is written for you to read. Rebuild and run with
+// message (the grader shows it too). Replace each marker with your code. There are five: four the program
+// needs, then the trade question's answer. The stepping loop in simulate() is yours to read. Rebuild, run with
 //
 //     cmake --build build && build/bin/apple            check your work with   build/bin/simlab check apple
 //
