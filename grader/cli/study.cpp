@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <cerrno>
+#include <condition_variable>
 #include <cmath>
 #include <cstring>
 #include <sys/wait.h>
@@ -123,7 +124,10 @@ std::optional<json> wellFormedLine(const json& line, std::string& why) {
     out["subject"] = subject;
     if (type == "subject") {
         for (const char* key : {"lab", "figure", "final_figure", "conserved", "reference"}) textField(key);
-        for (const char* key : {"final_time", "reference_digits", "cap", "max_evaluations", "repeats", "starts"}) numberField(key);
+        for (const char* key : {"final_time", "reference_digits", "cap", "max_evaluations", "repeats", "starts", "points",
+                                "sweeps"}) {
+            numberField(key);
+        }
         return out;
     }
     const std::string integrator = line.contains("integrator") && line["integrator"].is_string() ? line["integrator"].get<std::string>() : "";
@@ -155,6 +159,65 @@ std::optional<json> wellFormedLine(const json& line, std::string& why) {
     return out;
 }
 
+/// Held while a line goes to standard error: the study programs' lines and the progress come from several threads.
+std::mutex stderrLock;
+
+/// How far a study has come, on standard error at least every two seconds while it runs - "point n of N measured,
+/// about S s left", the time left read from the pace so far - and once more when it ends.
+class Progress {
+public:
+    using Clock = std::chrono::steady_clock;
+
+    Progress() : began_(Clock::now()), ticker_([this] { tick(); }) {}
+    ~Progress() { finish(false); }
+    Progress(const Progress&) = delete;
+    Progress& operator=(const Progress&) = delete;
+
+    /// The study's points in all; the lines begin once it is known.
+    void setTotal(std::size_t total) { total_ = total; }
+    void pointDone() { ++done_; }
+    /// Stops the lines; a study that ended well says so in a last one.
+    void finish(bool ended) {
+        {
+            std::lock_guard<std::mutex> guard(lock_);
+            if (stopped_) return;
+            stopped_ = true;
+        }
+        wake_.notify_all();
+        ticker_.join();
+        if (ended) say(true);
+    }
+
+private:
+    void tick() {
+        std::unique_lock<std::mutex> guard(lock_);
+        while (!wake_.wait_for(guard, std::chrono::milliseconds(1500), [this] { return stopped_; })) say(false);
+    }
+    void say(bool ended) const {
+        const std::size_t total = total_, done = std::min<std::size_t>(done_, total);
+        if (total == 0) return;
+        const double seconds = std::chrono::duration<double>(Clock::now() - began_).count();
+        char line[160];
+        if (ended) {
+            std::snprintf(line, sizeof line, "  point %zu of %zu measured, in %.0f s\n", done, total, seconds);
+        } else if (done == 0) {
+            std::snprintf(line, sizeof line, "  point 0 of %zu measured\n", total);
+        } else {
+            const double left = std::max(1.0, seconds * static_cast<double>(total - done) / static_cast<double>(done));
+            std::snprintf(line, sizeof line, "  point %zu of %zu measured, about %.0f s left\n", done, total, left);
+        }
+        std::lock_guard<std::mutex> guard(stderrLock);
+        std::cerr << line << std::flush;
+    }
+
+    const Clock::time_point began_;
+    std::atomic<std::size_t> total_{0}, done_{0};
+    std::mutex lock_;
+    std::condition_variable wake_;
+    bool stopped_ = false;
+    std::thread ticker_;
+};
+
 /// Runs a study program, handing each line it prints to `onLine` as it comes, made well formed (wellFormedLine; a
 /// line that is not stops the study, saying what it was); what is not a JSON line (a progress line, an error) goes
 /// to our standard error, printable. A student's study program runs in the sandbox, as a probe does
@@ -182,6 +245,7 @@ int runStudyProgram(const std::vector<std::string>& argv, bool sandboxed,
             if (const std::optional<json> taken = wellFormedLine(j, why)) onLine(*taken);
             else if (malformed.empty()) malformed = why;
         } else if (!line.empty()) {
+            std::lock_guard<std::mutex> guard(stderrLock);
             std::cerr << engine::printable(line) << '\n';
         }
     };
@@ -203,9 +267,9 @@ int runStudyProgram(const std::vector<std::string>& argv, bool sandboxed,
     return result.exitCode;
 }
 
-/// The studies' programs and objects, built now where this tree leaves them out of its build: the student bundle
-/// builds them the first time a study needs them (`cmake --build BUILD --target simlab_studies`), with the build's
-/// lines on standard error.
+/// The studies' programs and objects, built now where this tree's build leaves them out (SIMLAB_BUILD_STUDIES=OFF, or
+/// a build configured before they were built by default): `cmake --build BUILD --target simlab_studies`, with the
+/// build's lines on standard error.
 void ensureStudiesBuilt(const engine::Manifest& m, const std::vector<const engine::Assignment*>& labs, bool ofAFile) {
     std::vector<std::string> needed;
     for (const engine::Assignment* a : labs) {
@@ -656,6 +720,96 @@ std::vector<std::string> sceneArguments(const simlab::trade::Question& q, const 
     return argv;
 }
 
+/// The most evaluations an answer to `q` may take on its scene, where the grader stops its run and gives it nothing
+/// (trade::cap, with the rubric's beyond and none_past of the visible trade test); 0 where the tree does not say.
+double questionCap(const engine::Assignment& a, const simlab::trade::Question& q, double* beyond, double* nonePast) {
+    const Rubric rubric = loadRubric(a.rubric);
+    for (const RubricTest& t : rubric.tests) {
+        if (!t.visible() || !t.params.count("beyond") || !t.params.count("none_past")) continue;
+        *beyond = t.params.at("beyond");
+        *nonePast = t.params.at("none_past");
+        const std::vector<work_precision::Point>& front = q.scenes.at(0).front;
+        return front.empty() ? 0 : simlab::trade::cap(front, q.digits, *beyond, *nonePast);
+    }
+    return 0;
+}
+
+/// The study of a question's scene, one sweep (the study program's --sweep: an integrator's accuracies or its fixed
+/// steps) per run of `argv`, as many runs at once as the machine has cores, with a progress line every few seconds.
+/// The first sweep's subject line says how many sweeps and points the study has; each sweep's points are kept in
+/// its place, so that they come in the order one run prints them.
+SubjectRun runSweeps(const std::vector<std::string>& argv, bool sandboxed, const std::string& lab) {
+    std::mutex lock;
+    std::condition_variable counted;
+    std::optional<json> subject;
+    std::size_t sweeps = 0;
+    bool firstEnded = false;
+    std::vector<std::vector<json>> points;
+    std::vector<int> statuses;
+    Progress progress;
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+        for (std::size_t k = next++;; k = next++) {
+            if (k > 0) {
+                std::unique_lock<std::mutex> guard(lock);
+                counted.wait(guard, [&] { return sweeps > 0 || firstEnded; });
+                if (k >= sweeps) return;
+            }
+            std::vector<std::string> args = argv;
+            args.insert(args.end(), {"--sweep", std::to_string(k)});
+            std::vector<json> mine;
+            // The other runs wait for the first's subject line, or for its end, whatever ends it.
+            struct Ended {
+                std::function<void()> tell;
+                ~Ended() { tell(); }
+            } ended{[&, k] {
+                if (k != 0) return;
+                std::lock_guard<std::mutex> guard(lock);
+                firstEnded = true;
+                counted.notify_all();
+            }};
+            const int status = runStudyProgram(args, sandboxed, [&](const json& j) {
+                if (text(j["type"]) == "point") {
+                    mine.push_back(j);
+                    progress.pointDone();
+                    return;
+                }
+                if (text(j["type"]) != "subject" || k != 0) return;
+                // What a student's program says is data: counts out of reason stop the study below.
+                const double n = j["sweeps"].is_number() ? j["sweeps"].get<double>() : 0;
+                const double total = j["points"].is_number() ? j["points"].get<double>() : 0;
+                std::lock_guard<std::mutex> guard(lock);
+                if (subject || !(n >= 1 && n <= 1000 && total >= n && total <= 100000)) return;
+                subject = j;
+                sweeps = static_cast<std::size_t>(n);
+                points.resize(sweeps);
+                statuses.assign(sweeps, 0);
+                progress.setTotal(static_cast<std::size_t>(total));
+                counted.notify_all();
+            });
+            std::lock_guard<std::mutex> guard(lock);
+            if (!subject) {
+                statuses.assign(1, status);
+                return;
+            }
+            points[k] = std::move(mine);
+            statuses[k] = status;
+        }
+    };
+    inWorkers(cores(), work);
+    for (const int status : statuses) {
+        if (status != 0) throw std::runtime_error("the study of " + lab + " stopped with status " + std::to_string(status));
+    }
+    if (!subject) {
+        throw std::runtime_error(fs::path(argv.front()).filename().string() + " did not say how many points and sweeps "
+                                 "its study has");
+    }
+    progress.finish(true);
+    SubjectRun run{*subject, {}, {}};
+    for (std::vector<json>& sweep : points) run.points.insert(run.points.end(), sweep.begin(), sweep.end());
+    return run;
+}
+
 /// `simlab study trade LAB --fronts`: every scene of the lab's trade question (and of its hidden variants, where the
 /// tree has them) studied on the reference solution as the grader measures an answer, and each scene's front -
 /// the points no cheaper point matches in digits - written into its data file.
@@ -912,7 +1066,20 @@ void runTrade(const StudyOptions& o) {
                 moved += index ? "[" + part + "]" : moved.empty() ? part : "." + part;
             }
             std::cout << "Each point is measured from " << q.starts << " starts (" << moved
-                      << " moved in its last digit) and kept at its worst, as the grader measures an answer.\n";
+                      << " moved in its last digit) and kept at its worst, as the grader measures an answer; one short "
+                      << "of " << q.digits << " digits from the first is no answer, measured from that start alone.\n";
+        }
+        double beyond = 0, nonePast = 0;
+        const double cap = questionCap(*labs.front(), q, &beyond, &nonePast);
+        const std::string why = number(json(nonePast), "%g") + " times the front's cost at " +
+                                number(json(q.digits + beyond), "%g") + " digits";
+        if (cap > 0 && o.maxEvaluations > 0 && o.maxEvaluations < cap) {
+            std::cout << "Each point is stopped past " << number(json(o.maxEvaluations), "%.0f")
+                      << " evaluations (--max-evaluations), short of where the grader stops an answer: "
+                      << number(json(cap), "%.0f") << ", " << why << ".\n";
+        } else if (cap > 0) {
+            std::cout << "Each point is stopped past " << number(json(cap), "%.0f") << " evaluations, where the grader "
+                      << "stops an answer: " << why << ", past which it earns nothing.\n";
         }
     }
     if (!o.shard.empty() || o.assemble) {
@@ -965,6 +1132,33 @@ void runTrade(const StudyOptions& o) {
     }
     const fs::path dir = fs::absolute(o.output);
     fs::create_directories(dir);
+    if (o.question) {
+        // Its sweeps on every core, each point under the grader's cap on an answer and measured from the grader's
+        // starts where it could be one.
+        const engine::Assignment& a = *labs.front();
+        const simlab::trade::Question q = tradeQuestionOf(a, "question");
+        std::vector<std::string> argv = {studyProgram.empty() ? a.studyProgramPath : studyProgram};
+        const std::vector<std::string> scene = sceneArguments(q, q.scenes.at(0));
+        argv.insert(argv.end(), scene.begin(), scene.end());
+        char value[32];
+        std::snprintf(value, sizeof value, "%.17g", q.digits);
+        argv.insert(argv.end(), {"--answer-digits", value});
+        if (o.quick) argv.push_back("--quick");
+        if (o.cap > 0) argv.insert(argv.end(), {"--cap", std::to_string(o.cap)});
+        double beyond = 0, nonePast = 0;
+        const double cap = questionCap(a, q, &beyond, &nonePast);
+        const double evaluations = cap > 0 && o.maxEvaluations > 0 ? std::min(cap, o.maxEvaluations)
+                                   : cap > 0                       ? cap
+                                                                   : o.maxEvaluations;
+        if (evaluations > 0) {
+            std::snprintf(value, sizeof value, "%.17g", evaluations);
+            argv.insert(argv.end(), {"--max-evaluations", value});
+        }
+        if (o.repeats > 0) argv.insert(argv.end(), {"--repeats", std::to_string(o.repeats)});
+        std::cout << std::flush;  // the question's lines before the progress lines on a shared terminal or log
+        writeTrade(o, dir, {runSweeps(argv, !studyProgram.empty(), a.id)});
+        return;
+    }
     std::vector<SubjectRun> runs;
     std::vector<json> minimalRows;
     // Each lab's study program runs on its own core (--jobs at once); each measures its points one at a time.
@@ -1264,7 +1458,8 @@ void addStudy(CLI::App& app) {
     trade->add_option("--output,-o", options->output, "folder for trade.csv and the plots")->capture_default_str();
     trade->add_flag("--quick", options->quick, "fewer step sizes, one timed repeat, a cap of 2e5 evaluations");
     trade->add_option("--max-evaluations", options->maxEvaluations,
-                      "the cost cap: evaluations one point may take (default 5e5; 2e5 with --quick)")
+                      "the cost cap: evaluations one point may take (default 5e5; 2e5 with --quick; with --question, "
+                      "the grader's cap on an answer, or this if lower)")
         ->check(simlab::between(100.0, 1e9));
     trade->add_option("--cap", options->cap,
                       "seconds of CPU time one point may take (default 600): a net for a run that would not end, "
@@ -1280,8 +1475,10 @@ void addStudy(CLI::App& app) {
                       "study this student file instead of the reference solution: it is built with grading's object "
                       "check and run in grading's sandbox");
     trade->add_flag("--question", options->question,
-                    "study the scene of the lab's graded trade question (not the lab's default one), each point from "
-                    "the starts the grader measures an answer from, with the integrators it allows");
+                    "study the scene of the lab's graded trade question (not the lab's default one) as the grader "
+                    "measures an answer: the integrators it allows, each point stopped at the grader's cap on an "
+                    "answer and measured from the grader's starts where it keeps the digits asked for; its sweeps "
+                    "run on every core, with a progress line every few seconds");
     trade->add_flag("--fronts", options->fronts,
                     "for those who keep the course: measure the front of every scene of the trade question and its "
                     "hidden variants on the reference solution and write it into tests/trade-*.json");

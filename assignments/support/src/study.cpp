@@ -41,6 +41,10 @@ struct Settings {
     std::string subject;
     std::vector<std::string> integrators;  ///< only these (empty: every one)
     bool fixedStepsOnly = false;           ///< only the fixed-step sweeps
+    int sweep = -1;                        ///< only this sweep of the study (-1: all of them)
+    /// The digits a question asks for (0: none): a point short of them from its first start answers nothing, since
+    /// the other starts can only lower its worst; it is measured from that start alone.
+    double answerDigits = 0;
 };
 
 /// One point of the study: an integrator at an accuracy, or at a fixed step.
@@ -187,7 +191,14 @@ void measureAndTime(const Subject& subject, const Point& point, const Settings& 
     try {
         QuietStderr quiet;
         measure(subject, point, settings, out);
-        for (std::size_t k = 0; k < subject.moreStarts.size() && out.status == "ok"; ++k) {
+        const bool noAnswer = settings.answerDigits > 0 && out.status == "ok" && !(out.worstDigits >= settings.answerDigits);
+        if (noAnswer && !subject.moreStarts.empty()) {
+            char digits[32];
+            std::snprintf(digits, sizeof digits, "%g", settings.answerDigits);
+            out.message = std::string("short of ") + digits + " digits from the first start, so no answer: measured "
+                          "from that start alone";
+        }
+        for (std::size_t k = 0; k < subject.moreStarts.size() && out.status == "ok" && !noAnswer; ++k) {
             Subject from = subject;
             from.make = subject.moreStarts[k];
             Outcome other;
@@ -215,6 +226,8 @@ nlohmann::json toJson(const Subject& s, const Point& p, const Outcome& o) {
             {"repeats", o.repeats}};
 }
 
+/// The study's points in the order it measures and prints them: each integrator's accuracies, then each one's fixed
+/// steps.
 std::vector<Point> pointsOf(const Subject& subject, const Settings& settings) {
     std::vector<std::string> names;
     for (const std::string& name : integratorNames()) {
@@ -383,6 +396,15 @@ void runMinimal(const std::string& lab, const Subject& subject, const Settings& 
 void runSubject(const std::string& lab, const Subject& subject, const Settings& settings) {
     subject.make();  // a model that cannot be built (a SIMLAB_TODO, say) stops the study here, saying why
     const double referenceDigits = subject.referenceDigits();
+    std::vector<Point> points = pointsOf(subject, settings);
+    // The sweeps: each integrator's run of accuracies, or of fixed steps, where the points' integrator or mode changes.
+    std::vector<std::size_t> sweeps;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (i == 0 || points[i].integrator != points[i - 1].integrator || points[i].mode != points[i - 1].mode) {
+            sweeps.push_back(i);
+        }
+    }
+    // The subject line counts the whole study's points and sweeps, whichever sweep this run measures.
     std::cout << nlohmann::json{{"type", "subject"},       {"lab", lab},
                                 {"subject", subject.name}, {"figure", subject.figure},
                                 {"final_figure", subject.finalFigure},
@@ -390,16 +412,28 @@ void runSubject(const std::string& lab, const Subject& subject, const Settings& 
                                 {"reference", subject.reference},     {"reference_digits", number(referenceDigits)},
                                 {"cap", settings.cap},     {"max_evaluations", settings.maxEvaluations},
                                 {"repeats", settings.repeats},
-                                {"starts", 1 + subject.moreStarts.size()}}
+                                {"starts", 1 + subject.moreStarts.size()},
+                                {"points", points.size()}, {"sweeps", sweeps.size()}}
                      .dump()
               << std::endl;
-    const std::vector<Point> points = pointsOf(subject, settings);
+    const std::size_t total = points.size();
+    if (settings.sweep >= 0) {
+        const auto k = static_cast<std::size_t>(settings.sweep);
+        if (k >= sweeps.size()) {
+            throw std::runtime_error("--sweep " + std::to_string(k) + ": the study has only " +
+                                     std::to_string(sweeps.size()) + " sweeps (0 to " +
+                                     std::to_string(sweeps.size() - 1) + ")");
+        }
+        const std::size_t end = k + 1 < sweeps.size() ? sweeps[k + 1] : points.size();
+        points = std::vector<Point>(points.begin() + static_cast<std::ptrdiff_t>(sweeps[k]),
+                                    points.begin() + static_cast<std::ptrdiff_t>(end));
+    }
     // Progress, for a person watching: on a terminal, or where simlab asks for it (SIMLAB_PROGRESS=1: it shows
     // what is not a JSON line), so that a log or a pipe holds only the results. A line as the study starts, and
     // one as each integrator's sweep of accuracies or of fixed steps ends.
     static const bool progress = isatty(2) || std::getenv("SIMLAB_PROGRESS") != nullptr;
-    if (progress) {
-        std::cerr << "  " << subject.name << ": " << points.size() << " points, each under "
+    if (progress && settings.sweep <= 0) {
+        std::cerr << "  " << subject.name << ": " << total << " points, each under "
                   << settings.maxEvaluations << " evaluations (and " << settings.cap << " s of CPU time)\n";
     }
     struct Sweep {
@@ -498,6 +532,10 @@ int studyMain(int argc, char** argv, const std::string& lab, const std::vector<S
     app.add_flag("--minimal", minimal, "each scene with its minimal mobilizers and over-modelled, side by side");
     app.add_option("--integrators", settings.integrators, "only these integrators")->delimiter(',');
     app.add_flag("--fixed-steps-only", settings.fixedStepsOnly, "only the sweeps of fixed steps");
+    app.add_option("--sweep", settings.sweep,
+                   "measure only this sweep (0, 1, ...): one integrator's accuracies or its fixed steps, in the order "
+                   "the study prints them; the subject line counts the whole study's points and sweeps")
+        ->check(CLI::Range(0, 1000));
     if (forScene) {
         CLI::Option* scene = app.add_option("--scene", sceneText,
                                             "study this scene instead (the lab's Scene as JSON, as the trade "
@@ -512,6 +550,11 @@ int studyMain(int argc, char** argv, const std::string& lab, const std::vector<S
             ->check(CLI::Range(1, 10))
             ->needs(scene);
         app.add_option("--nudge", nudge, "with --starts: the JSON pointer of the scene's number a start moves")
+            ->needs(scene);
+        app.add_option("--answer-digits", settings.answerDigits,
+                       "with --starts: the digits a question asks for; a point short of them from the first start "
+                       "answers nothing and is measured from that start alone")
+            ->check(between(0.0, 20.0))
             ->needs(scene);
     }
     try {

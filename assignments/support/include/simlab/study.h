@@ -85,11 +85,11 @@ struct Subject {
 /// holds it) and a final time: what `--scene` studies.
 using SubjectForScene = std::function<Subject(const nlohmann::json& scene, double finalTime)>;
 
-/// Parses the study program's command line (--quick, --cap, --repeats, --subject, --list, --minimal; with
-/// `forScene`, --scene and what goes with it: --final-time, --name, --starts, --nudge, --integrators,
-/// --fixed-steps-only), runs the study of `subjects` (or of the scene given, or, with --minimal, each scene minimal
-/// and over-modelled side by side) and prints it as JSON lines on stdout (progress goes to stderr). Returns the exit
-/// status.
+/// Parses the study program's command line (--quick, --cap, --repeats, --subject, --list, --minimal, --integrators,
+/// --fixed-steps-only, --sweep; with `forScene`, --scene and what goes with it: --final-time, --name, --starts,
+/// --nudge, --answer-digits), runs the study of `subjects` (or of the scene given, or of one sweep of it, or, with
+/// --minimal, each scene minimal and over-modelled side by side) and prints it as JSON lines on stdout (progress
+/// goes to stderr). Returns the exit status.
 int studyMain(int argc, char** argv, const std::string& lab, const std::vector<Subject>& subjects,
               const SubjectForScene& forScene = nullptr);
 
