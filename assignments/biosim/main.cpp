@@ -208,6 +208,26 @@ int runTrade(const Declaration& d, const Parameters& p, const Options& o) {
     best.accuracy = 1e-13;
     best.fixedStep = false;
     const biosim::Observed reference = biosim::observe(d, p, best);
+    // Conditioning: the parameters as a double holds them are the problem solved. Moving every one by a unit in its
+    // last place (two patterns of signs) and running the reference again shows how many digits of q and u at the
+    // final time the parameters themselves fix: a chaotic motion, or a start balanced near an unstable rest (the
+    // boot upright), fixes fewer than the table's settings can keep, and the line says so.
+    double fixedDigits = simlab::kMaxDigits;
+    for (const double sign : {1.0, -1.0}) {
+        std::map<std::string, double> nudged = p.values();
+        double s = sign;
+        for (auto& [name, value] : nudged) {
+            if (value != 0) value = std::nextafter(value, s * INFINITY);
+            s = -s;
+        }
+        fixedDigits = std::min(fixedDigits, biosim::agreementDigits(biosim::observe(d, Parameters(nudged), best), reference));
+    }
+    if (fixedDigits < 12) {
+        std::printf("Conditioning: a unit in the last place of each parameter changes q and u at t = %g s to %.1f "
+                    "digits: the parameters as given fix the motion no further, and digits past that measure the "
+                    "integrator on these doubles alone\n",
+                    o.program.run.finalTime, fixedDigits);
+    }
     char figure[96];
     std::snprintf(figure, sizeof figure, "q and u at t = %g s (against accuracy 1e-13)", o.program.run.finalTime);
     simlab::printTrade(std::cout, o.program.run, figure, [&](const simlab::RunSettings& run) {

@@ -14,6 +14,12 @@ check "a row for t = 0, 0.01, ..., 10" test "$(($(wc -l <boot.txt) - 1))" -eq 10
 # The energy starts at zero (the rod horizontal, at rest); the swing exchanges g (mA LA + mB LB) = 0.2 J.
 check "the energy stays within 1e-7 J of zero" awk -F'\t' 'NR > 1 && ($6 > 1e-7 || $6 < -1e-7) { bad = 1 } END { exit bad }' boot.txt
 
+# Balanced 1.7e-9 rad from upright, the boot's fall is fixed by the last digits of its start: --trade says how many
+# digits of q and u the parameters themselves fix.
+run_capture upright "$boot" --trade --repeats 1 --final-time 5 --set qA=179.9999999 --set uA=0 --set uB=0
+check "near upright, --trade says how few digits the parameters fix" \
+  bash -c "test $(status_of upright) -eq 0 && grep -qE '^Conditioning: a unit in the last place of each parameter changes q and u at t = 5 s to ([0-9]|1[01])\.[0-9] digits' upright.out"
+
 # A replay watches the run at its own frame times; the figures the program prints must not depend on it.
 run_capture replayed "$boot" --quiet --output replayed.txt --replay replayed.html
 check "with --replay the results and the energy line are those of the run without it" \
