@@ -160,7 +160,7 @@ void reportConditioning(const Scene& scene) {
     const SimTK::Vec3 I = book::exact::principalMoments(scene);
     const SimTK::Vec3& L = scene.dimensions;
     const char* names = "xyz";
-    double worst = simlab::kMaxDigits;
+    double worst = simlab::kMaxDigits, share = 0;
     int a = 0, b = 1;
     for (int i = 0; i < 3; ++i) {
         for (int j = i + 1; j < 3; ++j) {
@@ -171,6 +171,7 @@ void reportConditioning(const Scene& scene) {
             const double held = simlab::accuracyDigits(rounded, described);
             if (held < worst) {
                 worst = held;
+                share = std::abs(described) / std::max(std::abs(I[i]), std::abs(I[j]));
                 a = i;
                 b = j;
             }
@@ -180,7 +181,7 @@ void reportConditioning(const Scene& scene) {
     std::printf("Conditioning: I_%c and I_%c differ by %.2g of their size, and rounding the moments to doubles keeps "
                 "%.1f digits of that difference: every run, the reference's too, spins a book slightly different from "
                 "the one described\n",
-                names[a], names[b], std::abs(I[b] - I[a]) / std::max(std::abs(I[a]), std::abs(I[b])), worst);
+                names[a], names[b], share, worst);
 }
 
 // Digits of a simulated w_B against the certified reference: the worst component against |w_B(0)|, the one
