@@ -56,7 +56,7 @@ struct StudyOptions {
     int jobs = 2;     // labs studied at once
     bool plots = true;
     std::string file;  ///< a student file to study instead of the reference solution
-    bool question = false;  ///< the trade question's scene (tests/trade-question.json), as the grader measures it
+    bool question = false;  ///< the trade question's scene (grading/trade-question.json), as the grader measures it
     bool fronts = false;    ///< measure the fronts of the question's data files and write them there
     std::string shard;      ///< "I/N": measure share I of N of the (lab, integrator) parts into OUTPUT/parts
     bool assemble = false;  ///< trade.csv and the plots from OUTPUT/parts, measuring only the parts missing
@@ -690,10 +690,10 @@ void writeMinimalPointsCsv(const fs::path& path, const std::vector<json>& rows) 
     engine::writeFileAtomically(path.string(), out.str());
 }
 
-/// A lab's trade question as its data file states it: `kind` is "question" (tests/trade-question.json) or
-/// "hidden" (tests/trade-hidden.json, absent from the student bundle).
+/// A lab's trade question as its data file states it: `kind` is "question" (grading/trade-question.json) or
+/// "hidden" (grading/trade-hidden.json, absent from the student bundle).
 simlab::trade::Question tradeQuestionOf(const engine::Assignment& a, const std::string& kind) {
-    const fs::path file = fs::path(a.dir) / "tests" / ("trade-" + kind + ".json");
+    const fs::path file = fs::path(a.dir) / "grading" / ("trade-" + kind + ".json");
     if (!fs::exists(file)) throw engine::UsageError(a.id + " has no trade question (" + file.string() + ")");
     try {
         return simlab::trade::parseQuestion(engine::readFile(file.string()), file.string());
@@ -825,7 +825,7 @@ void writeFronts(const StudyOptions& o, const std::vector<const engine::Assignme
     std::vector<Task> tasks;
     for (const engine::Assignment* a : labs) {
         for (const std::string kind : {"question", "hidden"}) {
-            const fs::path file = fs::path(a->dir) / "tests" / ("trade-" + kind + ".json");
+            const fs::path file = fs::path(a->dir) / "grading" / ("trade-" + kind + ".json");
             if (!fs::exists(file)) continue;
             const json data = json::parse(engine::readFile(file.string()));
             for (std::size_t i = 0; i < data.at("scenes").size(); ++i) tasks.push_back({a, file, data, i, {}, 0});
@@ -1241,7 +1241,7 @@ struct Extreme {
 };
 
 std::vector<Extreme> readExtremes(const engine::Assignment& a) {
-    const fs::path file = fs::path(a.dir) / "extremes.toml";
+    const fs::path file = fs::path(a.dir) / "study" / "extremes.toml";
     if (!fs::exists(file)) throw engine::UsageError("no extreme cases for " + a.id + " (" + file.string() + ")");
     toml::table t;
     try {
@@ -1382,7 +1382,7 @@ void runExtremes(const ExtremesOptions& o) {
     const engine::Manifest manifest = engine::loadManifest();
     std::vector<const engine::Assignment*> labs;
     for (const engine::Assignment& a : manifest.assignments) {
-        const bool chosen = o.lab == "all" ? fs::exists(fs::path(a.dir) / "extremes.toml") : a.id == o.lab;
+        const bool chosen = o.lab == "all" ? fs::exists(fs::path(a.dir) / "study" / "extremes.toml") : a.id == o.lab;
         if (chosen) labs.push_back(&a);
     }
     if (labs.empty()) manifest.find(o.lab);  // an unknown lab: its one-line error
@@ -1481,7 +1481,7 @@ void addStudy(CLI::App& app) {
                     "run on every core, with a progress line every few seconds");
     trade->add_flag("--fronts", options->fronts,
                     "for those who keep the course: measure the front of every scene of the trade question and its "
-                    "hidden variants on the reference solution and write it into tests/trade-*.json");
+                    "hidden variants on the reference solution and write it into grading/trade-*.json");
     trade->add_option("--shard", options->shard,
                       "I/N: measure share I of N of the study's parts (one per lab and integrator) into "
                       "OUTPUT/parts, beside the other shards on a shared OUTPUT (a cluster's job array)")
@@ -1509,7 +1509,7 @@ void addStudy(CLI::App& app) {
 
     auto extremes = std::make_shared<ExtremesOptions>();
     CLI::App* extreme = study->add_subcommand(
-        "extremes", "Runs the lab program on its extreme cases (assignments/LAB/extremes.toml: tiny, huge, zero and "
+        "extremes", "Runs the lab program on its extreme cases (assignments/LAB/study/extremes.toml: tiny, huge, zero and "
                     "degenerate scenes, settings at their limits), each under a time cap, and names each outcome: "
                     "accurate (with digits; inaccurate below 3), rejected or trouble (with the program's one line). "
                     "Exits 1 if any "

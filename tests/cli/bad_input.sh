@@ -29,7 +29,7 @@ expect_error "grade: --timeout nan" "timeout: must be a number, got nan" "$SIMLA
 expect_error "grade: no jobs" "jobs" "$SIMLAB" grade apple --jobs 0
 expect_error "grade: 65 jobs" "jobs" "$SIMLAB" grade apple --jobs 65
 expect_error "a rubric with a limit out of range" "cpu_seconds must be between 0.1 and 3600 s, got 1e\+10" \
-  bash -c "sed 's/^cpu_seconds = 5 /cpu_seconds = 1e10/' '$SOURCE_DIR/assignments/apple/rubric.toml' >far.toml && '$SIMLAB' check apple --rubric far.toml"
+  bash -c "sed 's/^cpu_seconds = 5 /cpu_seconds = 1e10/' '$SOURCE_DIR/assignments/apple/grading/rubric.toml' >far.toml && '$SIMLAB' check apple --rubric far.toml"
 # A file to check is read as grading reads it: a link, a pipe or a huge file is refused in one line.
 ln -s /etc/shadow Linked.cpp
 expect_error "a source that is a symbolic link" "Linked.cpp is a symbolic link; hand in the file itself" \

@@ -11,7 +11,7 @@ last_why() { tail -1 "grades/students/$1/history.jsonl" | python3 -c 'import jso
 item="the write-up explains the step size"
 
 # The apple's rubric with an item graded by hand.
-cp "$SOURCE_DIR/assignments/apple/rubric.toml" rubric.toml
+cp "$SOURCE_DIR/assignments/apple/grading/rubric.toml" rubric.toml
 printf '\n[[manual]]\nname = "%s"\npoints = 20\n' "$item" >>rubric.toml
 mkdir -p class/ada class/bob
 cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" class/ada/

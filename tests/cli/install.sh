@@ -80,7 +80,7 @@ if [[ -w /usr/local ]]; then
   trap 'rm -rf "$work" "$system"' EXIT
   run_capture system cmake --install "$build" --prefix "$system"
   cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" solution.cpp
-  for secret in share/simlab/source/assignments/apple/tests/hidden.cpp lib/simlab/build/judges/apple-judge \
+  for secret in share/simlab/source/assignments/apple/grading/hidden.cpp lib/simlab/build/judges/apple-judge \
                 share/simlab/source/solutions/apple/NewtonsApple.cpp; do
     name=$(basename "$secret")
     mkdir -p "reads-$name"

@@ -13,10 +13,10 @@ workflow=template/.github/workflows/classroom.yml
 check "the workflow is what Classroom and its reporter read: two runners, the points earned and the points missed" \
   validate workflow "$workflow" simlab
 check "the student's starter, the contract and the build are there" \
-  test -f template/starter/apple/NewtonsApple.cpp -a -f template/assignments/apple/NewtonsApple.h \
+  test -f template/starter/apple/NewtonsApple.cpp -a -f template/assignments/apple/contract/NewtonsApple.h \
        -a -f template/CMakeLists.txt -a -x template/scripts/setup
 check "no hidden tests, no solutions (but the worked example project's)" bash -c "
-  ! test -e template/assignments/apple/tests/hidden.cpp &&
+  ! test -e template/assignments/apple/grading/hidden.cpp &&
   ! find template/solutions -mindepth 1 -maxdepth 1 | grep -qv '/solutions/biosim$'"
 check "committed as a repository, it keeps Catch2 2.13's header (Ubuntu 24.04 ships Catch2 3)" bash -c "
   cd template && git init -q && git add -A && git ls-files | grep -qx third_party/catch2/catch.hpp &&

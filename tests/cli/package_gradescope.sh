@@ -7,7 +7,7 @@ run_capture package "$SIMLAB" package gradescope apple -o autograder.zip
 check "package gradescope succeeds" test "$(status_of package)" -eq 0
 check "setup.sh and run_autograder are at the root of the archive" \
   bash -c "unzip -Z1 autograder.zip | grep -qx setup.sh && unzip -Z1 autograder.zip | grep -qx run_autograder"
-check "the archive holds the hidden tests" bash -c "unzip -Z1 autograder.zip | grep -qx assignments/apple/tests/hidden.cpp"
+check "the archive holds the hidden tests" bash -c "unzip -Z1 autograder.zip | grep -qx assignments/apple/grading/hidden.cpp"
 check "and no solutions (but the worked example project's)" \
   bash -c "! unzip -Z1 autograder.zip | grep '^solutions/.' | grep -qv '^solutions/biosim/'"
 

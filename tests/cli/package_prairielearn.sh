@@ -33,8 +33,8 @@ check "the image's sources hold Catch2 2.13's header and no hidden test" bash -c
 check "and no solutions (but the worked example project's)" \
   bash -c "! find question/image/simlab/solutions -mindepth 1 -maxdepth 1 | grep -qv '/solutions/biosim$'"
 check "the hidden tests are in tests/hidden, which PrairieLearn keeps from students" bash -c "
-  cmp question/tests/hidden/assignments/apple/tests/hidden.cpp '$SOURCE_DIR/assignments/apple/tests/hidden.cpp' &&
-  cmp question/tests/hidden/assignments/apple/tests/trade-hidden.json '$SOURCE_DIR/assignments/apple/tests/trade-hidden.json'"
+  cmp question/tests/hidden/assignments/apple/grading/hidden.cpp '$SOURCE_DIR/assignments/apple/grading/hidden.cpp' &&
+  cmp question/tests/hidden/assignments/apple/grading/trade-hidden.json '$SOURCE_DIR/assignments/apple/grading/trade-hidden.json'"
 check "the Dockerfile says how to make the judge once" \
   grep -q 'docker run --rm -v "$PWD/../tests:/grade/tests" course/simlab:1 /simlab/scripts/prairielearn-judge apple /grade/tests' \
   question/image/Dockerfile

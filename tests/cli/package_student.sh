@@ -11,7 +11,7 @@ run_capture package "$SIMLAB" package student -o "$FIXTURES/bundle"
 check "package student succeeds" test "$(status_of package)" -eq 0
 check "the bundle has no solutions/ but the worked example project's" \
   bash -c "test \"\$(ls bundle/solutions)\" = biosim -a -f bundle/solutions/biosim/Project.cpp"
-check "the bundle has no hidden tests" test ! -e bundle/assignments/apple/tests/hidden.cpp
+check "the bundle has no hidden tests" test ! -e bundle/assignments/apple/grading/hidden.cpp
 check "the bundle has no corpus or CI" test ! -e bundle/tests -a ! -e bundle/.ci
 check "the bundle keeps the starter and the handout" test -f bundle/starter/apple/NewtonsApple.cpp -a -f bundle/handouts/apple.md
 # Nothing of the solution's code or of the hidden variants' values is anywhere in it.

@@ -66,7 +66,7 @@ check "--file refuses what grading refuses (a prioritized constructor), exit 2" 
            grep -q 'constructor with a priority' prioritized.err"
 { cat "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp"
   printf '%s\n' '#include <fstream>' \
-    'static const bool readIt = [] { std::ifstream in("'"$SOURCE_DIR"'/assignments/apple/tests/hidden.cpp");' \
+    'static const bool readIt = [] { std::ifstream in("'"$SOURCE_DIR"'/assignments/apple/grading/hidden.cpp");' \
     '  if (in) throw std::runtime_error("read the hidden tests"); return true; }();'
 } >Reader.cpp
 run_capture reader "$SIMLAB" study trade apple --quick --max-evaluations 2000 --no-plots --file Reader.cpp -o fs4
@@ -126,7 +126,7 @@ for lab in apple projectile book biosim; do
   least=40
   [[ $lab == biosim ]] && least=45
   check "and $lab has $least extreme cases or more" \
-    test "$(grep -c '^\[\[case\]\]' "$SOURCE_DIR/assignments/$lab/extremes.toml")" -ge $least
+    test "$(grep -c '^\[\[case\]\]' "$SOURCE_DIR/assignments/$lab/study/extremes.toml")" -ge $least
 done
 # Each extreme case named below ends as its check says, in the study's extremes.csv.
 outcome() {  # outcome DESCRIPTION LAB PATTERN (an extended regular expression over extremes.csv)

@@ -3,8 +3,8 @@
 
     package_secrets.py SOURCE_DIR PACKAGE...
 
-A secret line is a line (trimmed, 25 characters or more) of an assignment's hidden tests (tests/hidden.cpp,
-tests/trade-hidden.json) or of its solution (solutions/<id>/, but the worked example project, solutions/biosim/,
+A secret line is a line (trimmed, 25 characters or more) of an assignment's hidden tests (grading/hidden.cpp,
+grading/trade-hidden.json) or of its solution (solutions/<id>/, but the worked example project, solutions/biosim/,
 which students are given) that no public file of the project holds as well (the starters, the contracts, the
 handouts: a comment a starter shares with its solution is no secret). Every file of each PACKAGE (a folder) is read
 as bytes, whatever its name, line by line, and each secret line found is printed with where it was found. Exit 1
@@ -35,7 +35,7 @@ def is_secret(relative):
     parts = relative.split("/")
     if parts[0] == "solutions" and len(parts) > 1 and parts[1] != "biosim":
         return True
-    return parts[0] == "assignments" and len(parts) > 2 and parts[-2] == "tests" and "hidden" in parts[-1]
+    return parts[0] == "assignments" and len(parts) > 2 and "hidden" in parts[-1]
 
 
 def is_instructors(relative):
@@ -60,8 +60,8 @@ def main():
         elif not is_instructors(relative):
             public |= lines_of(path)
     secret -= public
-    if not secret:
-        print("package_secrets: no secret line to look for", file=sys.stderr)
+    if not secret or not any(o.startswith("assignments/") for o in origin.values()):
+        print("package_secrets: no secret line to look for (or none of a hidden test)", file=sys.stderr)
         return 2
     found = 0
     for package in sys.argv[2:]:

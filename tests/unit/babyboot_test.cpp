@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "babyboot_reference.h"
-#include "biosim/course.h"
+#include "biosim/program/babyboot_reference.h"
+#include "biosim/program/course.h"
 #include "simlab/digits.h"
 
 namespace {

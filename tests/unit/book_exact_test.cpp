@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "book/exact.h"
+#include "book/program/exact.h"
 
 namespace {
 

@@ -25,7 +25,7 @@ const std::string kHeader = "assignment = \"apple\"\nsubmission = \"NewtonsApple
 }  // namespace
 
 TEST_CASE("the apple's rubric totals 100 points, 24 of them hidden", "[rubric]") {
-    const simlab::Rubric rubric = simlab::loadRubric(SIMLAB_SOURCE_DIR "/assignments/apple/rubric.toml");
+    const simlab::Rubric rubric = simlab::loadRubric(SIMLAB_SOURCE_DIR "/assignments/apple/grading/rubric.toml");
     CHECK(rubric.assignment == "apple");
     CHECK(rubric.submission == "NewtonsApple.cpp");
     CHECK(rubric.totalPoints() == 100);
@@ -81,7 +81,7 @@ TEST_CASE("malformed rubrics are refused with the file, line and what is wrong",
 }
 
 TEST_CASE("the project's rubric grades 75 points and leaves 25 to be graded by hand", "[rubric]") {
-    const simlab::Rubric rubric = simlab::loadRubric(SIMLAB_SOURCE_DIR "/assignments/biosim/rubric.toml");
+    const simlab::Rubric rubric = simlab::loadRubric(SIMLAB_SOURCE_DIR "/assignments/biosim/grading/rubric.toml");
     CHECK(rubric.totalPoints() == 75);
     CHECK(rubric.manualPoints() == 25);
     REQUIRE(rubric.manual.size() == 3);

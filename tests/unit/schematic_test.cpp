@@ -7,8 +7,8 @@
 #include <string>
 
 #include "Simbody.h"
-#include "biosim/Project.h"
-#include "biosim/schematic.h"
+#include "biosim/contract/Project.h"
+#include "biosim/program/schematic.h"
 
 using namespace SimTK;
 

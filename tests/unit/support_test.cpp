@@ -16,7 +16,7 @@
 #include <sstream>
 #include <string>
 
-#include "apple/exact.h"
+#include "apple/program/exact.h"
 #include "simlab/messages.h"
 #include "simlab/plot.h"
 #include "simlab/program.h"

@@ -1,4 +1,4 @@
-// A lab's trade question, as its data file states it (assignments/<lab>/tests/trade-question.json, and the hidden
+// A lab's trade question, as its data file states it (assignments/<lab>/grading/trade-question.json, and the hidden
 // variants in trade-hidden.json): the scenes it is asked on - never the handout's worked example -, the digits it
 // asks for, the integrators it allows, and for each scene the work-precision front it is graded against.
 //
