@@ -1,6 +1,7 @@
 # The commands the README and docs/ name are commands simlab has: for each `simlab ...` (or `build/bin/simlab ...`)
-# in inline code, the subcommand's --help exists and lists every --option the text gives it, so that no page
-# tells a reader of a command or an option that is not there.
+# in inline code or on a "$ " line of an example, the subcommand's --help exists and lists every --option the text
+# gives it, so that no page tells a reader of a command or an option that is not there. The examples that run in
+# CI are also compared with their output (handout-check); this checks the ones that cannot run there too.
 # shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
@@ -26,7 +27,7 @@ while IFS= read -r snippet; do
     [[ $word =~ ^--[a-z][a-z-]*$ ]] || continue
     grep -q -- "$word" <<<"$help" || fail "\`$snippet\`: simlab ${path[*]} has no option $word"
   done
-done < <(grep -oh '`[^`]*`' "${pages[@]}" | tr -d '`' | grep -E '^([A-Z_]+=[^ ]+ )*([a-z./]*/)?simlab [a-z]' |
+done < <({ grep -oh '`[^`]*`' "${pages[@]}" | tr -d '`'; sed -n 's/^\$ //p' "${pages[@]}"; } | grep -E '^([A-Z_]+=[^ ]+ )*([a-z./]*/)?simlab [a-z]' |
          grep -vx 'simlab id' | sort -u)  # "simlab id": the roster's column of folder names, not a command
 check "the README and docs/ name commands of simlab's ($named commands read)" test "$named" -ge 15
 finish
