@@ -20,8 +20,8 @@
 #include <thread>
 
 #include "bench.h"
-#include "simlab/engine/files.h"
-#include "simlab/engine/manifest.h"
+#include "simlab/common/files.h"
+#include "simlab/build/manifest.h"
 #include "simlab/isolation/process.h"
 
 namespace fs = std::filesystem;

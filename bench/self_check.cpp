@@ -25,8 +25,8 @@
 #include <toml++/toml.h>
 
 #include "bench.h"
-#include "simlab/engine/files.h"
-#include "simlab/engine/manifest.h"
+#include "simlab/common/files.h"
+#include "simlab/build/manifest.h"
 #include "simlab/isolation/process.h"
 
 namespace fs = std::filesystem;

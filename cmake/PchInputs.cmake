@@ -5,7 +5,7 @@
 # header's bytes changed. A package upgrade often gives a system header a new time and the same bytes (which the
 # compiler accepts: -fpch-validate-input-files-content) and sometimes new bytes (which it must not, and which make,
 # comparing times, would miss when the packaged time is older than the header's build). simlab reads STAMP too,
-# and stops before grading with a header whose inputs changed since (engine/build.cpp).
+# and stops before grading with a header whose inputs changed since (build/build.cpp).
 if(NOT EXISTS "${DEPFILE}")
   if(NOT EXISTS "${STAMP}")
     file(WRITE "${STAMP}" "")

@@ -5,12 +5,12 @@
 #include <memory>
 
 #include "commands.h"
-#include "simlab/engine/build.h"
-#include "simlab/engine/errors.h"
-#include "simlab/engine/files.h"
-#include "simlab/engine/manifest.h"
-#include "simlab/engine/text.h"
-#include "simlab/rubric.h"
+#include "simlab/build/build.h"
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+#include "simlab/build/manifest.h"
+#include "simlab/common/text.h"
+#include "simlab/rubric/rubric.h"
 
 namespace simlab::cli {
 

@@ -12,14 +12,14 @@
 
 #include "commands.h"
 #include "simlab/cli_checks.h"
-#include "simlab/engine/errors.h"
-#include "simlab/engine/files.h"
-#include "simlab/engine/grade.h"
-#include "simlab/engine/manifest.h"
-#include "simlab/engine/report.h"
-#include "simlab/engine/text.h"
-#include "simlab/engine/writers.h"
-#include "simlab/rubric.h"
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+#include "simlab/grading/grade.h"
+#include "simlab/build/manifest.h"
+#include "simlab/grading/report.h"
+#include "simlab/common/text.h"
+#include "simlab/writers/writers.h"
+#include "simlab/rubric/rubric.h"
 
 namespace simlab::cli {
 

@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "simlab/engine/grade.h"
-#include "simlab/rubric.h"
+#include "simlab/grading/grade.h"
+#include "simlab/rubric/rubric.h"
 
 namespace CLI {
 class App;

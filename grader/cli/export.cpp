@@ -7,15 +7,15 @@
 #include <memory>
 
 #include "commands.h"
-#include "simlab/engine/errors.h"
-#include "simlab/engine/files.h"
-#include "simlab/engine/manifest.h"
-#include "simlab/engine/manual.h"
-#include "simlab/engine/report.h"
-#include "simlab/engine/roster.h"
-#include "simlab/engine/text.h"
-#include "simlab/engine/writers.h"
-#include "simlab/rubric.h"
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+#include "simlab/build/manifest.h"
+#include "simlab/course/manual.h"
+#include "simlab/grading/report.h"
+#include "simlab/writers/roster.h"
+#include "simlab/common/text.h"
+#include "simlab/writers/writers.h"
+#include "simlab/rubric/rubric.h"
 
 namespace fs = std::filesystem;
 

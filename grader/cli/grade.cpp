@@ -12,16 +12,16 @@
 
 #include "commands.h"
 #include "simlab/cli_checks.h"
-#include "simlab/engine/batch.h"
-#include "simlab/engine/errors.h"
-#include "simlab/engine/files.h"
-#include "simlab/engine/grade.h"
-#include "simlab/engine/intake.h"
-#include "simlab/engine/manifest.h"
-#include "simlab/engine/manual.h"
+#include "simlab/course/batch.h"
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+#include "simlab/grading/grade.h"
+#include "simlab/course/intake.h"
+#include "simlab/build/manifest.h"
+#include "simlab/course/manual.h"
 #include "simlab/isolation/process.h"
-#include "simlab/engine/report.h"
-#include "simlab/engine/text.h"
+#include "simlab/grading/report.h"
+#include "simlab/common/text.h"
 
 namespace fs = std::filesystem;
 

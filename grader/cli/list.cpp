@@ -5,8 +5,8 @@
 #include <memory>
 
 #include "commands.h"
-#include "simlab/engine/manifest.h"
-#include "simlab/rubric.h"
+#include "simlab/build/manifest.h"
+#include "simlab/rubric/rubric.h"
 
 namespace simlab::cli {
 

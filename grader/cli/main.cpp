@@ -3,10 +3,10 @@
 #include <iostream>
 
 #include "commands.h"
-#include "simlab/engine/errors.h"
-#include "simlab/engine/text.h"
+#include "simlab/common/errors.h"
+#include "simlab/common/text.h"
 #include "simlab/reproducible_math.h"
-#include "simlab/rubric.h"
+#include "simlab/rubric/rubric.h"
 
 int main(int argc, char** argv) {
     // Everything simlab starts inherits the mask (the judges and probes get it from childEnvironment).

@@ -12,9 +12,9 @@
 #include <thread>
 
 #include "commands.h"
-#include "simlab/engine/errors.h"
-#include "simlab/engine/files.h"
-#include "simlab/engine/text.h"
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+#include "simlab/common/text.h"
 
 namespace fs = std::filesystem;
 

@@ -9,14 +9,14 @@
 #include <thread>
 
 #include "commands.h"
-#include "simlab/engine/batch.h"
-#include "simlab/engine/errors.h"
-#include "simlab/engine/files.h"
-#include "simlab/engine/manifest.h"
-#include "simlab/engine/package.h"
-#include "simlab/engine/report.h"
-#include "simlab/engine/text.h"
-#include "simlab/engine/writers.h"
+#include "simlab/course/batch.h"
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+#include "simlab/build/manifest.h"
+#include "simlab/course/package.h"
+#include "simlab/grading/report.h"
+#include "simlab/common/text.h"
+#include "simlab/writers/writers.h"
 #include "simlab/isolation/process.h"
 
 namespace fs = std::filesystem;

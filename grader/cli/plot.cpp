@@ -4,9 +4,9 @@
 #include <memory>
 
 #include "commands.h"
-#include "simlab/engine/errors.h"
-#include "simlab/engine/manifest.h"
-#include "simlab/engine/text.h"
+#include "simlab/common/errors.h"
+#include "simlab/build/manifest.h"
+#include "simlab/common/text.h"
 
 namespace simlab::cli {
 

@@ -8,13 +8,13 @@
 #include <memory>
 
 #include "commands.h"
-#include "simlab/engine/batch.h"
-#include "simlab/engine/errors.h"
-#include "simlab/engine/files.h"
-#include "simlab/engine/manifest.h"
-#include "simlab/engine/similarity.h"
-#include "simlab/engine/text.h"
-#include "simlab/rubric.h"
+#include "simlab/course/batch.h"
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+#include "simlab/build/manifest.h"
+#include "simlab/course/similarity.h"
+#include "simlab/common/text.h"
+#include "simlab/rubric/rubric.h"
 
 namespace fs = std::filesystem;
 

@@ -15,11 +15,11 @@
 
 #include "commands.h"
 #include "simlab/cli_checks.h"
-#include "simlab/engine/errors.h"
-#include "simlab/engine/files.h"
-#include "simlab/engine/manifest.h"
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+#include "simlab/build/manifest.h"
 #include "simlab/isolation/process.h"
-#include "simlab/engine/text.h"
+#include "simlab/common/text.h"
 
 namespace fs = std::filesystem;
 

@@ -24,13 +24,13 @@
 #include <sstream>
 
 #include "commands.h"
-#include "simlab/engine/build.h"
-#include "simlab/engine/errors.h"
-#include "simlab/engine/files.h"
-#include "simlab/engine/manifest.h"
+#include "simlab/build/build.h"
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+#include "simlab/build/manifest.h"
 #include "simlab/isolation/process.h"
 #include "simlab/cli_checks.h"
-#include "simlab/engine/text.h"
+#include "simlab/common/text.h"
 #include "simlab/trade_question.h"
 #include "simlab/work_precision.h"
 #include <optional>

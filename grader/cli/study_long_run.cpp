@@ -6,9 +6,9 @@
 
 #include "commands.h"
 #include "simlab/cli_checks.h"
-#include "simlab/engine/errors.h"
-#include "simlab/engine/manifest.h"
-#include "simlab/engine/text.h"
+#include "simlab/common/errors.h"
+#include "simlab/build/manifest.h"
+#include "simlab/common/text.h"
 
 namespace simlab::cli {
 

@@ -28,11 +28,11 @@
 #include <string>
 #include <vector>
 
-#include "simlab/attachments.h"
-#include "simlab/grading.h"
-#include "simlab/observe.h"
+#include "simlab/protocol/attachments.h"
+#include "simlab/harness/grading.h"
+#include "simlab/harness/observe.h"
 #include "simlab/plot.h"
-#include "simlab/rubric.h"
+#include "simlab/rubric/rubric.h"
 
 namespace simlab::grading {
 

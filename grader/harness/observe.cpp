@@ -1,6 +1,6 @@
 // The judge's side of observations: each question to the student's process, and the checks its answer has to
 // pass before a test may look at it (see observe.h).
-#include "simlab/observe.h"
+#include "simlab/harness/observe.h"
 
 #include <chrono>
 #include <cstdint>

@@ -1,8 +1,8 @@
 // Observations by direct call: the probe's handlers are linked into the judge's program with the student's object.
 // Grading never does this (the student's code would share the judge's process); the benchmark's floor does, to
 // measure what the tests cost with nothing in between.
-#include "simlab/observe.h"
-#include "simlab/probe.h"
+#include "simlab/harness/observe.h"
+#include "simlab/probe/probe.h"
 #include "transport.h"
 
 namespace simlab::observe::detail {

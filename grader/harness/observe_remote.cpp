@@ -12,7 +12,7 @@
 #include <csignal>
 #include <cstring>
 
-#include "simlab/observe.h"
+#include "simlab/harness/observe.h"
 #include "transport.h"
 
 namespace simlab::observe::detail {

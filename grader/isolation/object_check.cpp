@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <set>
 
-#include "simlab/engine/text.h"
+#include "simlab/common/text.h"
 #include "simlab/isolation/elf.h"
 
 namespace simlab::isolation {

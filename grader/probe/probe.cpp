@@ -1,5 +1,5 @@
 // The probe's registry of observations and how one request is answered.
-#include "simlab/probe.h"
+#include "simlab/probe/probe.h"
 
 #include <cxxabi.h>
 

@@ -23,7 +23,7 @@
 #include <typeinfo>
 
 #include "simlab/isolation/host_protocol.h"
-#include "simlab/probe.h"
+#include "simlab/probe/probe.h"
 
 namespace {
 

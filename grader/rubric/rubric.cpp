@@ -1,4 +1,4 @@
-#include "simlab/rubric.h"
+#include "simlab/rubric/rubric.h"
 
 #include <cstdio>
 #include <set>

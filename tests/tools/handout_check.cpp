@@ -26,8 +26,8 @@
 #include <string>
 #include <vector>
 
-#include "simlab/engine/files.h"
-#include "simlab/engine/manifest.h"
+#include "simlab/common/files.h"
+#include "simlab/build/manifest.h"
 #include "simlab/isolation/process.h"
 
 namespace fs = std::filesystem;

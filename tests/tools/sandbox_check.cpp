@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "simlab/engine/files.h"
+#include "simlab/common/files.h"
 #include "simlab/isolation/process.h"
 
 namespace fs = std::filesystem;

@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <string>
 
-#include "simlab/engine/build.h"
-#include "simlab/engine/files.h"
-#include "simlab/engine/manifest.h"
+#include "simlab/build/build.h"
+#include "simlab/common/files.h"
+#include "simlab/build/manifest.h"
 #include "simlab/isolation/process.h"
 
 using namespace simlab::engine;

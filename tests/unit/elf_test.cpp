@@ -8,7 +8,7 @@
 #include <string>
 
 #include "simlab/isolation/elf.h"
-#include "simlab/engine/files.h"
+#include "simlab/common/files.h"
 
 using namespace simlab::engine;
 using namespace simlab::isolation;

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "simlab/engine/files.h"
+#include "simlab/common/files.h"
 
 namespace fs = std::filesystem;
 using simlab::engine::HandedIn;

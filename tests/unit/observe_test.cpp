@@ -5,8 +5,8 @@
 #include <map>
 #include <string>
 
-#include "simlab/observe.h"
-#include "simlab/probe.h"
+#include "simlab/harness/observe.h"
+#include "simlab/probe/probe.h"
 #include "simlab/todo.h"
 #include "transport.h"
 

@@ -7,15 +7,15 @@
 #include <set>
 #include <string>
 
-#include "simlab/engine/errors.h"
-#include "simlab/engine/files.h"
-#include "simlab/engine/intake.h"
-#include "simlab/engine/manual.h"
-#include "simlab/engine/report.h"
-#include "simlab/engine/roster.h"
-#include "simlab/engine/similarity.h"
-#include "simlab/engine/text.h"
-#include "simlab/engine/writers.h"
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+#include "simlab/course/intake.h"
+#include "simlab/course/manual.h"
+#include "simlab/grading/report.h"
+#include "simlab/writers/roster.h"
+#include "simlab/course/similarity.h"
+#include "simlab/common/text.h"
+#include "simlab/writers/writers.h"
 
 using namespace simlab::engine;
 using nlohmann::json;

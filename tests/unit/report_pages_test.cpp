@@ -4,9 +4,9 @@
 #include <initializer_list>
 #include <string>
 
-#include "simlab/engine/text.h"
-#include "simlab/engine/writers.h"
-#include "../../grader/engine/writers/common.h"
+#include "simlab/common/text.h"
+#include "simlab/writers/writers.h"
+#include "../../grader/writers/common.h"
 
 namespace {
 

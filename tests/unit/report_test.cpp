@@ -2,8 +2,8 @@
 #include <catch2/catch.hpp>
 #include <string>
 
-#include "simlab/engine/batch.h"
-#include "simlab/engine/report.h"
+#include "simlab/course/batch.h"
+#include "simlab/grading/report.h"
 
 namespace {
 

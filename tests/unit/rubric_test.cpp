@@ -4,8 +4,8 @@
 #include <fstream>
 #include <string>
 
-#include "simlab/engine/files.h"
-#include "simlab/rubric.h"
+#include "simlab/common/files.h"
+#include "simlab/rubric/rubric.h"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "simlab/engine/grade.h"
+#include "simlab/grading/grade.h"
 
 using simlab::engine::readTestCost;
 using simlab::engine::shareTests;

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "simlab/engine/text.h"
+#include "simlab/common/text.h"
 
 using namespace simlab::engine;
 using namespace std::string_literals;

@@ -10,7 +10,7 @@
 #include "apple/grading/observations.h"
 #include "apple/program/run_plot.h"
 #include "simlab/digits.h"
-#include "simlab/testing.h"
+#include "simlab/harness/testing.h"
 
 namespace apple::testing {
 

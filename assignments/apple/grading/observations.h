@@ -3,7 +3,7 @@
 #pragma once
 
 #include "apple/contract/NewtonsApple.h"
-#include "simlab/wire.h"
+#include "simlab/wire_types.h"
 
 namespace apple {
 

@@ -13,7 +13,7 @@
 
 #include "biosim/grading/observations.h"
 #include "simlab/digits.h"
-#include "simlab/testing.h"
+#include "simlab/harness/testing.h"
 
 namespace biosim::testing {
 

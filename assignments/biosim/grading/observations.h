@@ -5,7 +5,7 @@
 #include "biosim/contract/Project.h"
 #include "biosim/program/course.h"
 #include "biosim/program/schematic.h"
-#include "simlab/wire.h"
+#include "simlab/wire_types.h"
 
 namespace biosim {
 

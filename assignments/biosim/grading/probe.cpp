@@ -2,7 +2,7 @@
 // parameters changed, its schematic, the values of its formulas and its answer. Each request names parameter
 // changes; they are checked against the student's own declaration, as --set checks them.
 #include "biosim/grading/observations.h"
-#include "simlab/probe.h"
+#include "simlab/probe/probe.h"
 
 namespace {
 

@@ -15,7 +15,7 @@
 #include "book/program/exact.h"
 #include "book/grading/observations.h"
 #include "book/program/run_plot.h"
-#include "simlab/testing.h"
+#include "simlab/harness/testing.h"
 
 namespace book::testing {
 

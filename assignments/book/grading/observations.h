@@ -4,7 +4,7 @@
 #pragma once
 
 #include "book/contract/BookSpin.h"
-#include "simlab/wire.h"
+#include "simlab/wire_types.h"
 
 namespace book {
 

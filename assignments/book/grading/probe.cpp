@@ -2,7 +2,7 @@
 // trade question (measured), and the book's
 // mass properties in that model.
 #include "book/grading/observations.h"
-#include "simlab/probe.h"
+#include "simlab/probe/probe.h"
 
 SIMLAB_PROBE(bookObservations) {
     using namespace book;

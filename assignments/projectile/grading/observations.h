@@ -5,7 +5,7 @@
 
 #include "projectile/contract/ProjectileMotion.h"
 #include "projectile/program/landing.h"
-#include "simlab/wire.h"
+#include "simlab/wire_types.h"
 
 namespace projectile {
 

@@ -2,7 +2,7 @@
 // the trade question (measured), and the ground hit its event handler records when the simulation runs until the
 // handler ends it (from the launch point, or from a trench "depth" metres below the ground's level).
 #include "projectile/grading/observations.h"
-#include "simlab/probe.h"
+#include "simlab/probe/probe.h"
 
 SIMLAB_PROBE(projectileObservations) {
     using namespace projectile;

@@ -11,7 +11,7 @@
 #include "projectile/grading/observations.h"
 #include "projectile/program/run_plot.h"
 #include "simlab/digits.h"
-#include "simlab/testing.h"
+#include "simlab/harness/testing.h"
 
 namespace projectile::testing {
 

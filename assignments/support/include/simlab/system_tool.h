@@ -1,6 +1,6 @@
 // A tool of the system that a lab program draws with (Graphviz's dot, gnuplot): started by name from the PATH, with
 // no shell, text on its standard input, its output and complaints read back. simlab's own children (the sandboxed
-// tests, the compilers, pandoc) go through the grading engine's launcher instead (simlab/engine/process.h); the
+// tests, the compilers, pandoc) go through the grading engine's launcher instead (simlab/isolation/process.h); the
 // lab programs do not link the engine.
 #pragma once
 

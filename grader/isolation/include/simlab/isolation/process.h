@@ -26,7 +26,7 @@
 #include <thread>
 #include <vector>
 
-#include "simlab/rubric.h"
+#include "simlab/rubric/rubric.h"
 
 namespace simlab::isolation {
 

@@ -1,0 +1,215 @@
+#include "simlab/build/manifest.h"
+#include "simlab/isolation/process.h"
+
+#include <pwd.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+
+namespace simlab::engine {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kPrefixMark = "@prefix@";  // what an installed manifest writes for its prefix
+
+// Every string in `j` with the installed manifest's mark replaced by `prefix`.
+void placeAt(nlohmann::json& j, const std::string& prefix) {
+    if (j.is_string()) {
+        std::string text = j.get<std::string>();
+        for (std::size_t at = text.find(kPrefixMark); at != std::string::npos; at = text.find(kPrefixMark, at)) {
+            text.replace(at, std::char_traits<char>::length(kPrefixMark), prefix);
+            at += prefix.size();
+        }
+        j = text;
+    } else if (j.is_structured()) {
+        for (nlohmann::json& element : j) placeAt(element, prefix);
+    }
+}
+
+// Where simlab keeps what it reuses between runs for an installed prefix: the user's cache, one folder per prefix
+// and version (a moved prefix starts afresh).
+std::string userCacheDir(const std::string& prefix, const std::string& version) {
+    std::string base;
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg == '/') {
+        base = xdg;
+    } else if (const char* home = std::getenv("HOME"); home && *home == '/') {
+        base = std::string(home) + "/.cache";
+    } else if (const struct passwd* user = ::getpwuid(::getuid()); user && user->pw_dir && *user->pw_dir == '/') {
+        base = std::string(user->pw_dir) + "/.cache";
+    } else {
+        // Never a shared folder such as /tmp, where another user could lay out the cache before simlab does.
+        throw UsageError("an installed simlab keeps its cache in $XDG_CACHE_HOME or ~/.cache: set HOME or "
+                         "XDG_CACHE_HOME (this user has no home folder)");
+    }
+    return base + "/simlab/" + sha256Hex(prefix + "\n" + version).substr(0, 16);
+}
+
+// An installed prefix's precompiled headers are made on first use: beside their headers if this user may write
+// there (a prefix of one's own), else in the user's cache, where the compile commands then look for them.
+void placePrecompiledHeaders(Manifest& m) {
+    for (Assignment& a : m.assignments) {
+        if (a.precompiledHeader.empty()) continue;
+        const std::string dir = fs::path(a.precompiledHeader).parent_path().string();
+        if (::access(dir.c_str(), W_OK) == 0) continue;
+        const std::string moved = m.cacheDir + "/pch";
+        for (std::string& part : a.compile) {
+            if (part.rfind(dir + "/", 0) == 0) part = moved + part.substr(dir.size());
+        }
+        a.precompiledHeader = moved + a.precompiledHeader.substr(dir.size());
+    }
+}
+
+}  // namespace
+
+std::vector<std::string> secretPaths(const Manifest& manifest, const Assignment& assignment) {
+    std::vector<std::string> secrets = assignment.hiddenTests;
+    // What the build made of them: the judge, its tests' objects and the hidden trade question's text; the programs
+    // built from the solution (the reference lab program, its study).
+    std::error_code error;
+    const fs::path relative = fs::path(assignment.dir).lexically_relative(manifest.sourceDir);
+    const bool inTree = !relative.empty() && *relative.begin() != "..";
+    const fs::path built = fs::path(manifest.buildDir) / relative;
+    for (const std::string& path :
+         {assignment.solution.empty() ? std::string() : fs::path(assignment.solution).parent_path().string(),
+          assignment.judge, manifest.sampleClass, assignment.referenceProgramPath, assignment.studyProgramPath,
+          inTree ? (built / "CMakeFiles" / (assignment.id + "_grader_tests.dir")).string() : std::string(),
+          inTree ? (built / "trade").string() : std::string()}) {
+        if (!path.empty()) secrets.push_back(path);
+    }
+    return secrets;
+}
+
+std::vector<std::string> courseSecrets(const Manifest& manifest) {
+    std::vector<std::string> secrets;
+    for (const Assignment& a : manifest.assignments) {
+        for (const std::string& secret : secretPaths(manifest, a)) {
+            if (std::find(secrets.begin(), secrets.end(), secret) == secrets.end()) secrets.push_back(secret);
+        }
+    }
+    const char* cache = std::getenv("SIMLAB_CACHE");
+    secrets.push_back(manifest.sourceDir + "/tests/corpus");
+    secrets.push_back(cache && *cache ? std::string(cache) : manifest.cacheDir + "/objects");
+    secrets.push_back(manifest.sourceDir + "/.git");
+    secrets.push_back(manifest.buildDir + "/Testing");
+    return secrets;
+}
+
+std::string installedManifestPath(const std::string& exe) {
+    std::error_code error;
+    const fs::path prefix = fs::canonical(exe, error).parent_path().parent_path();
+    if (error) return "";
+    const fs::path manifest = prefix / "lib/simlab/simlab-build.json";
+    return fs::is_regular_file(manifest, error) ? manifest.string() : "";
+}
+
+const Assignment& Manifest::find(const std::string& id) const {
+    for (const Assignment& a : assignments) {
+        if (a.id == id) return a;
+    }
+    std::string known;
+    for (const std::string& k : ids()) known += (known.empty() ? "" : ", ") + k;
+    throw UsageError("unknown assignment '" + id + "'; available: " + known);
+}
+
+std::vector<std::string> Manifest::ids() const {
+    std::vector<std::string> out;
+    for (const Assignment& a : assignments) out.push_back(a.id);
+    return out;
+}
+
+Manifest loadManifest() {
+    const char* path = std::getenv("SIMLAB_MANIFEST");
+    if (path && *path) return loadManifest(path);
+    const std::string installed = installedManifestPath("/proc/self/exe");
+    return loadManifest(installed.empty() ? SIMLAB_DEFAULT_MANIFEST : installed);
+}
+
+Manifest loadManifest(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) {
+        throw UsageError("no build manifest at " + path + ": build simlab first (scripts/setup), or set SIMLAB_MANIFEST");
+    }
+    Manifest m;
+    try {
+        nlohmann::json j = nlohmann::json::parse(in);
+        m.path = path;
+        m.installed = j.value("installed", false);
+        if (m.installed) {
+            // <prefix>/lib/simlab/simlab-build.json
+            std::error_code error;
+            m.prefix = fs::canonical(path, error).parent_path().parent_path().parent_path().string();
+            if (error) throw UsageError("cannot resolve the installed manifest " + path + ": " + error.message());
+            placeAt(j, m.prefix);
+        }
+        m.version = j.at("version");
+        m.sourceDir = j.at("source_dir");
+        m.buildDir = j.at("build_dir");
+        m.cmake = j.value("cmake", std::string("cmake"));
+        m.studiesTarget = j.value("studies_target", std::string());
+        m.sampleClass = j.at("sample_class");
+        m.catch2Include = j.at("catch2_include");
+        m.compile = j.at("compile").get<std::vector<std::string>>();
+        m.link = j.at("link").get<std::vector<std::string>>();
+        m.probeLibraries = j.at("probe_libraries").get<std::vector<std::string>>();
+        m.probeLink = j.at("probe_link").get<std::vector<std::string>>();
+        m.probeHost = j.at("probe_host");
+        m.floorLibraries = j.at("floor_libraries").get<std::vector<std::string>>();
+        m.programLibraries = j.at("program_libraries").get<std::vector<std::string>>();
+        m.studyLibraries = j.value("study_libraries", std::vector<std::string>());
+        for (const nlohmann::json& a : j.at("assignments")) {
+            Assignment x;
+            x.id = a.at("id");
+            x.title = a.at("title");
+            x.source = a.at("source");
+            x.program = a.at("program");
+            x.programPath = a.at("program_path");
+            x.referenceProgramPath = a.at("reference_program_path");
+            x.studyProgramPath = a.value("study_program_path", std::string());
+            x.dir = a.at("dir");
+            x.rubric = a.at("rubric");
+            x.starter = a.at("starter");
+            x.solution = a.at("solution");
+            x.hiddenTestsBuilt = a.at("hidden_tests_built");
+            x.hiddenTests = a.at("hidden_tests").get<std::vector<std::string>>();
+            x.contractInclude = a.at("contract_include");
+            x.compile = a.at("compile").get<std::vector<std::string>>();
+            x.judge = a.at("judge");
+            x.probeObjects = a.at("probe_objects").get<std::vector<std::string>>();
+            x.floorObjects = a.at("floor_objects").get<std::vector<std::string>>();
+            x.programObjects = a.at("program_objects").get<std::vector<std::string>>();
+            x.studyObjects = a.value("study_objects", std::vector<std::string>());
+            x.precompiledHeader = a.value("precompiled_header", std::string());
+            x.precompileFlags = a.value("precompile_flags", std::vector<std::string>());
+            m.assignments.push_back(std::move(x));
+        }
+        m.cacheDir = m.installed ? userCacheDir(m.prefix, m.version) : m.buildDir + "/cache";
+        if (m.installed) placePrecompiledHeaders(m);
+    } catch (const nlohmann::json::exception& e) {
+        throw UsageError("build manifest " + path + " is damaged (" + e.what() + "): rebuild with scripts/setup");
+    }
+    // Nothing of simlab's own is any sandbox's to see but what each process is lent: a sandbox lets its processes
+    // read the system's folders, and an installation in /usr/local lies among them.
+    std::vector<std::string> hidden = {m.sourceDir, m.buildDir, m.cacheDir, m.sampleClass,
+                                       fs::path(m.path).parent_path().string()};
+    if (const char* cache = std::getenv("SIMLAB_CACHE"); cache && *cache) hidden.push_back(cache);
+    if (m.installed) {
+        for (const char* place : {"/lib/simlab", "/share/simlab"}) hidden.push_back(m.prefix + place);
+    }
+    for (const Assignment& a : m.assignments) {
+        for (const std::string& secret : secretPaths(m, a)) hidden.push_back(secret);
+    }
+    isolation::hideFromSandboxes(hidden);
+    isolation::useProbeHost(m.probeHost);
+    return m;
+}
+
+}  // namespace simlab::engine

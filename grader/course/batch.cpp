@@ -1,0 +1,460 @@
+#include "simlab/course/batch.h"
+
+#include <algorithm>
+#include <atomic>
+#include <ctime>
+#include <cctype>
+#include <chrono>
+#include <exception>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "simlab/protocol/attachments.h"
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+#include "simlab/course/manual.h"
+#include "simlab/isolation/process.h"
+#include "simlab/common/text.h"
+#include "simlab/writers/writers.h"
+
+namespace fs = std::filesystem;
+
+namespace simlab::engine {
+
+namespace {
+
+const char kFeedbackHtml[] = "feedback.html";
+
+bool isCppFile(const std::string& name) {
+    const std::string e = fs::path(name).extension().string();
+    return e == ".cpp" || e == ".cc" || e == ".cxx" || e == ".c++" || e == ".C";
+}
+
+std::string baseName(const std::string& relative) { return relative.substr(relative.rfind('/') + 1); }
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+    return s;
+}
+
+StudentRecord recordOf(const std::string& id, const std::string& key, const GradeReport& report,
+                       const std::string& file) {
+    StudentRecord r;
+    r.id = id;
+    r.key = key;
+    r.status = report.status;
+    r.note = report.note;
+    r.file = file;
+    r.score = report.score();
+    r.maxScore = report.maxScore();
+    r.seconds = report.seconds;
+    r.compiler = isolation::firstLines(report.build.ok ? report.build.warnings : report.build.log, 20);
+    r.sandbox = report.sandbox;
+    r.tests = report.tests;
+    return r;
+}
+
+// The files of a student's folder that a test drew for the feedback (attachments.h names them), for a record kept
+// from an earlier run, whose report is gone.
+std::vector<Attachment> attachedBeside(const std::string& dir) {
+    std::vector<Attachment> attached;
+    for (const FolderEntry& e : listFolder(dir, /*followFolder=*/false)) {
+        if (e.type == EntryType::Regular && wire::isAttachmentName(e.name) && e.name != kFeedbackHtml) {
+            Attachment a{e.name, ""};
+            try {
+                const std::string path = dir + "/" + e.name;
+                if (fs::file_size(path) <= wire::kMaxAttachmentBytes) a.bytes = readFile(path);
+            } catch (const std::exception&) {
+                // linked, not shown
+            }
+            attached.push_back(std::move(a));
+        }
+    }
+    return attached;
+}
+
+// What of the rubric decides the tests' verdicts: everything but the points (and the descriptions), so that a
+// change of points alone re-scores the recorded verdicts instead of running every student's code again.
+std::string verdictsOf(const Rubric& rubric) {
+    std::string shape = rubric.assignment + "\n" + rubric.submission + "\n";
+    for (const std::string& extra : rubric.extraFiles) shape += "extra " + extra + "\n";
+    for (const RubricTest& t : rubric.tests) {
+        shape += "test " + t.name + "\n" + t.visibility + "\n";
+        for (const auto& [key, value] : t.params) shape += key + "=" + std::to_string(value) + "\n";
+    }
+    return shape;
+}
+
+// The record's tests scored with the rubric's points: each test's credit times its points now. True if a score
+// moved.
+bool rescore(StudentRecord& r, const Rubric& rubric) {
+    bool moved = false;
+    double score = 0, max = 0;
+    for (TestResult& t : r.tests) {
+        if (const RubricTest* test = rubric.find(t.name)) {
+            const double now = roundScore(test->points * t.credit);
+            moved = moved || now != t.score || test->points != t.maxScore;
+            t.score = now;
+            t.maxScore = test->points;
+        }
+        score += t.score;
+        max += t.maxScore;
+    }
+    r.score = roundScore(score);
+    r.maxScore = roundScore(max);
+    return moved;
+}
+
+// A line of students/<id>/history.jsonl: when the grade was made, from which file, the score, and why.
+void appendHistory(const std::string& dir, const StudentRecord& r, const std::string& why) {
+    const std::time_t now = std::time(nullptr);
+    char when[32];
+    std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    const nlohmann::json line = {{"when", when},        {"file", r.file},  {"key", r.key}, {"status", r.status},
+                                 {"score", r.score},    {"max_score", r.maxScore},          {"why", why}};
+    std::string lines = fs::exists(dir + "/history.jsonl") ? readFile(dir + "/history.jsonl") : "";
+    lines += line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+    writeFileDurably(dir + "/history.jsonl", lines);
+}
+
+std::vector<std::string> namesOf(const std::vector<Attachment>& attached) {
+    std::vector<std::string> names;
+    for (const Attachment& a : attached) names.push_back(a.name);
+    return names;
+}
+
+}  // namespace
+
+Submission findSubmission(const std::string& folder, const std::string& expected, bool recursive, bool followFolder) {
+    const std::vector<FolderEntry> entries = recursive ? walkFolder(folder) : listFolder(folder, followFolder);
+    // Every C++-named entry counts, whatever it is: a link or a pipe named NewtonsApple.cpp is found here and
+    // refused when read, never passed over for another file.
+    std::vector<const FolderEntry*> cpp;
+    for (const FolderEntry& e : entries) {
+        if (e.type != EntryType::Directory && isCppFile(e.name)) cpp.push_back(&e);
+    }
+    auto chosen = [&](const FolderEntry& e, const std::string& status, const std::string& note) {
+        return Submission{e.folder, baseName(e.name), e.name, status, note};
+    };
+    for (const FolderEntry* e : cpp) {
+        if (baseName(e->name) == expected) return chosen(*e, "graded", "");
+    }
+    for (const FolderEntry* e : cpp) {
+        if (lower(baseName(e->name)) == lower(expected)) {
+            return chosen(*e, "misnamed file", "graded " + e->name + "; expected " + expected);
+        }
+    }
+    if (cpp.size() == 1) return chosen(*cpp[0], "misnamed file", "graded " + cpp[0]->name + "; expected " + expected);
+    if (cpp.empty()) return {folder, "", "", "missing file", "no " + expected + " (no C++ file at all)"};
+    std::string found;
+    for (const FolderEntry* e : cpp) found += (found.empty() ? "" : ", ") + e->name;
+    return {folder, "", "", "missing file", "no " + expected + " (found " + found + ")"};
+}
+
+Gathered gatherSubmission(const std::string& folder, const Rubric& rubric, const Limits& limits, bool recursive,
+                          bool followFolder) {
+    Gathered g;
+    g.found = findSubmission(folder, rubric.submission, recursive, followFolder);
+    g.status = g.found.status;
+    g.note = g.found.note;
+    if (g.found.name.empty()) return g;
+    const std::size_t cap = static_cast<std::size_t>(limits.submissionKiB) * 1024;
+    // The folder that holds the file was found without following links, or was named by the user.
+    const bool follow = recursive || followFolder;
+    const HandedIn source = readHandedIn(g.found.folder, g.found.name, cap, follow);
+    if (!source.ok) {
+        g.status = source.found ? source.status : "missing file";
+        g.note = source.found ? source.refusal : "no " + rubric.submission;
+        return g;
+    }
+    SubmissionFiles files;
+    files.name = g.found.name;
+    files.shown = g.found.shown;
+    files.text = source.text;
+    for (const std::string& name : rubric.extraFiles) {
+        HandedIn extra = readHandedIn(g.found.folder, name, cap, follow);
+        if (extra.found) files.extras.push_back(std::move(extra));
+    }
+    g.files = std::move(files);
+    return g;
+}
+
+GradeReport gradeFolder(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
+                        const std::string& folder, bool recursive, bool followFolder, const GradeOptions& options) {
+    const Limits limits = options.limits.value_or(rubric.limits);
+    const Gathered g = gatherSubmission(folder, rubric, limits, recursive, followFolder);
+    if (!g.files) return notGradedReport(assignment, rubric, g.status, g.note, options.includeHidden);
+    GradeReport report = gradeSubmission(builder, assignment, rubric, *g.files, options);
+    if (report.status == "graded") report.status = g.status;
+    if (!g.note.empty()) report.note = g.note + (report.note.empty() ? "" : "; " + report.note);
+    return report;
+}
+
+ClassResult gradeClass(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
+                       const std::string& submissionsDir, const std::string& outDir, const ClassOptions& options,
+                       const std::function<void(const ClassProgress&)>& onProgress) {
+    const auto start = std::chrono::steady_clock::now();
+    ClassResult result;
+    std::vector<std::string> ids;
+    for (const FolderEntry& e : listFolder(submissionsDir, /*followFolder=*/true)) {
+        if (e.name[0] == '.') result.skipped.push_back({e.name, "a hidden folder or file (its name starts with a dot)"});
+        else if (e.type == EntryType::Directory) ids.push_back(e.name);
+        else if (e.type == EntryType::Symlink) result.skipped.push_back({e.name, "a symbolic link, not a folder"});
+        else result.skipped.push_back({e.name, "a file, not a student's folder"});
+    }
+    for (const std::string& id : options.only) {
+        if (!std::binary_search(ids.begin(), ids.end(), id)) {
+            throw UsageError("no student '" + printable(id) + "' in " + printable(submissionsDir));
+        }
+    }
+    const bool sharded = options.shards > 0;
+    if (sharded) {
+        if (options.shard < 1 || options.shard > options.shards) {
+            throw UsageError("shard " + std::to_string(options.shard) + " of " + std::to_string(options.shards) +
+                             " does not exist: shards count from 1");
+        }
+        // A deterministic share: every shard lists the same class folder in the same (name) order.
+        std::vector<std::string> share;
+        for (std::size_t i = static_cast<std::size_t>(options.shard - 1); i < ids.size();
+             i += static_cast<std::size_t>(options.shards)) {
+            share.push_back(ids[i]);
+        }
+        ids = std::move(share);
+    }
+    fs::create_directories(outDir + "/students");
+    // One simlab at a time writes a class's grades, or shards side by side, each its own students.
+    const OutputLock outputLock(outDir, sharded ? std::to_string(options.shard) + "-of-" +
+                                                      std::to_string(options.shards)
+                                                : "");
+
+    // What every grade depends on besides the student's files.
+    Hash base;
+    base.add(builder.gradingKey(assignment)).add(verdictsOf(rubric));
+    const Limits limits = options.grade.limits.value_or(rubric.limits);
+    for (double v : {limits.wallSeconds, limits.cpuSeconds, double(limits.memoryMiB), double(limits.outputKiB),
+                     double(limits.fileMiB), double(limits.processes), double(limits.observationMiB),
+                     double(limits.submissionKiB)}) {
+        base.add(std::to_string(v));
+    }
+    base.add(options.grade.includeHidden ? "all tests" : "visible tests");
+
+    // What a person graded (manual.csv): read first, so that a sheet with a mistake stops simlab before anything is
+    // graded; written back at once with a row for every student and item (nothing typed in it is lost).
+    const std::string sheetPath = outDir + "/manual.csv";
+    ManualSheet sheet;
+    if (!sharded && fs::exists(sheetPath)) sheet = readManualCsv(readFile(sheetPath), sheetPath, rubric);
+    if (!sharded && (!rubric.manual.empty() || fs::exists(sheetPath))) {
+        const std::vector<std::string> stray = strayManualRows(sheet, ids, rubric);
+        if (!stray.empty()) {
+            result.warnings.push_back(std::to_string(stray.size()) + " row(s) of " + sheetPath +
+                                      " name no student of the class or no item of the rubric, and count for nothing "
+                                      "(kept as typed): " + stray.front() + (stray.size() > 1 ? ", ..." : ""));
+        }
+        writeFileAtomically(sheetPath, manualCsv(sheet, ids, rubric));
+    }
+    // The rubric the class was graded with, beside the grades: the exports read its points.
+    if (!sharded) writeFileAtomically(outDir + "/rubric.toml", readFile(rubric.path));
+
+    std::map<std::string, StudentRecord> records;
+    struct Pending {
+        std::string id, key;
+        Gathered gathered;
+        std::string why;  // why it is graded again (history.jsonl)
+    };
+    std::vector<std::string> rescored;  // kept records whose scores the rubric's points moved
+    std::vector<Pending> pending;
+    int reused = 0;
+    for (const std::string& id : ids) {
+        const bool wanted = options.only.empty() || std::count(options.only.begin(), options.only.end(), id);
+        const std::string recordPath = outDir + "/students/" + id + "/record.json";
+        std::optional<StudentRecord> kept;
+        if (fs::exists(recordPath)) kept = readRecordJson(readFile(recordPath));
+        if (kept) kept->id = id;
+        if (kept && !wanted) {
+            records[id] = *kept;
+            continue;
+        }
+        if (!wanted) continue;
+        // The key is made from the bytes that will be graded, read once, with care.
+        Gathered gathered = gatherSubmission(submissionsDir + "/" + id, rubric, limits, false, false);
+        Hash key = base;
+        key.add(gathered.status).add(gathered.note).add(gathered.found.shown);
+        if (gathered.files) {
+            key.add(gathered.files->text);
+            for (const std::string& name : rubric.extraFiles) {
+                const auto extra = std::find_if(gathered.files->extras.begin(), gathered.files->extras.end(),
+                                                [&](const HandedIn& h) { return h.name == name; });
+                key.add(extra == gathered.files->extras.end() ? "(none)" : extra->ok ? extra->text : extra->refusal);
+            }
+        }
+        if (kept && options.only.empty() && kept->key == key.hex()) {
+            if (rescore(*kept, rubric)) rescored.push_back(id);
+            records[id] = *kept;
+            ++reused;
+        } else {
+            const std::string why = !kept                          ? "first graded"
+                                    : kept->key == "retry"         ? "its last grading failed"
+                                    : kept->basis != base.hex()    ? "the grader, the rubric's tests or the limits changed"
+                                    : !options.only.empty()        ? "asked for (--only)"
+                                                                   : "the submission changed";
+            pending.push_back({id, key.hex(), std::move(gathered), why});
+        }
+    }
+    // Kept records re-scored by the rubric's points, and graded by hand: their files say so.
+    for (auto& [id, r] : records) {
+        applyManual(r, sheet, rubric);
+        const bool moved = std::count(rescored.begin(), rescored.end(), id) > 0;
+        if (!moved && rubric.manual.empty()) continue;
+        const std::string dir = outDir + "/students/" + id;
+        if (moved) {
+            writeFileDurably(dir + "/record.json", recordJson(r));
+            appendHistory(dir, r, "the rubric's points changed (re-scored from the recorded verdicts)");
+        }
+        if (fs::exists(dir + "/results.json")) {
+            writeFileAtomically(dir + "/results.json", updatedResultsJson(readFile(dir + "/results.json"), r));
+        }
+        const std::vector<Attachment> attached = attachedBeside(dir);
+        writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, r, rubric.manual, namesOf(attached)));
+        writeFileAtomically(dir + "/" + kFeedbackHtml, feedbackHtml(assignment, r, rubric.manual, attached));
+    }
+
+    // A kept record graded by a simlab that wrote no feedback.html gets one, so that report.html links to a page.
+    for (const auto& [id, r] : records) {
+        const std::string dir = outDir + "/students/" + id;
+        if (!fs::exists(dir + "/" + kFeedbackHtml)) {
+            writeFileAtomically(dir + "/" + kFeedbackHtml,
+                                feedbackHtml(assignment, r, rubric.manual, attachedBeside(dir)));
+        }
+    }
+
+    std::mutex lock;
+    ClassProgress progress;
+    progress.total = static_cast<int>(options.only.empty() ? ids.size() : options.only.size());
+    progress.reused = reused;
+    // The gradebook as it stands, after each student: replaced whole (never half written), and flushed to the disk
+    // at the end. The records are the commits; a gradebook a power cut took back is written again from them.
+    auto publish = [&](bool durable) {
+        if (sharded) return;  // the whole-class run writes the gradebook
+        std::vector<StudentRecord> sorted;
+        for (const auto& [id, r] : records) sorted.push_back(r);
+        const std::string text = gradebookCsv(rubric, sorted);
+        if (durable) writeFileDurably(outDir + "/gradebook.csv", text);
+        else writeFileAtomically(outDir + "/gradebook.csv", text);
+    };
+    publish(false);
+    for (const auto& [id, r] : records) {
+        if (options.only.empty() || std::count(options.only.begin(), options.only.end(), id)) {
+            ++progress.done;
+            progress.last = &r;
+            progress.lastReused = true;
+            if (onProgress) onProgress(progress);
+        }
+    }
+
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> stop{false};
+    std::exception_ptr setupFailure;
+    const int alreadyDone = progress.done;
+    auto finish = [&](StudentRecord record, bool writeRecord, const GradeReport* report, const std::string& why) {
+        const std::string dir = outDir + "/students/" + record.id;
+        fs::create_directories(dir);
+        record.basis = base.hex();
+        applyManual(record, sheet, rubric);
+        if (report) {
+            const std::string results = resultsJson(*report);
+            writeFileAtomically(dir + "/results.json", record.manual.empty() ? results : updatedResultsJson(results, record));
+            writeFileAtomically(dir + "/output.txt", testOutputText(*report));
+        }
+        std::vector<Attachment> attached;
+        if (report) {
+            for (const TestResult& t : report->tests) {
+                for (const auto& [name, text] : t.attachments) {
+                    if (name == kFeedbackHtml) continue;  // the page below
+                    writeFileAtomically(dir + "/" + name, text);
+                    attached.push_back({name, text});
+                }
+            }
+        }
+        writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, record, rubric.manual, namesOf(attached)));
+        writeFileAtomically(dir + "/" + kFeedbackHtml, feedbackHtml(assignment, record, rubric.manual, attached));
+        if (writeRecord) {
+            appendHistory(dir, record, why);
+            writeFileDurably(dir + "/record.json", recordJson(record));  // last: the commit
+        }
+
+        std::lock_guard<std::mutex> guard(lock);
+        records[record.id] = record;
+        publish(false);
+        ++progress.done;
+        progress.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double graded = progress.done - alreadyDone;
+        progress.eta = progress.elapsed / graded * (progress.total - progress.done);
+        progress.last = &records[record.id];
+        progress.lastReused = false;
+        if (onProgress) onProgress(progress);
+    };
+    auto worker = [&] {
+        for (std::size_t i = next++; i < pending.size() && !stop; i = next++) {
+            const Pending& p = pending[i];
+            const GradeOptions& grade = options.grade;
+            try {
+                GradeReport report;
+                if (p.gathered.files) {
+                    report = gradeSubmission(builder, assignment, rubric, *p.gathered.files, grade);
+                    if (report.status == "graded") report.status = p.gathered.status;
+                    if (!p.gathered.note.empty()) {
+                        report.note = p.gathered.note + (report.note.empty() ? "" : "; " + report.note);
+                    }
+                } else {
+                    report = notGradedReport(assignment, rubric, p.gathered.status, p.gathered.note,
+                                             grade.includeHidden);
+                }
+                finish(recordOf(p.id, p.key, report, p.gathered.found.shown), true, &report, p.why);
+            } catch (const Interrupted&) {
+                stop = true;  // this student has no outcome: the next run grades them
+            } catch (const SetupError&) {
+                // No student's fault, and every one would meet it: stop, keep what was graded, and say why.
+                std::lock_guard<std::mutex> guard(lock);
+                if (!setupFailure) setupFailure = std::current_exception();
+                stop = true;
+            } catch (const std::exception& e) {
+                // simlab could not grade this one (a disk full, say): a row that says so, and a retry next run.
+                StudentRecord failed;
+                failed.id = p.id;
+                failed.key = "retry";
+                failed.status = "grader error";
+                failed.note = e.what();
+                failed.maxScore = rubric.totalPoints();
+                try {
+                    finish(failed, true, nullptr, p.why + "; simlab could not grade it: " + failed.note);
+                } catch (const std::exception&) {
+                    stop = true;  // nothing can be written: stop rather than lose grades silently
+                }
+                std::lock_guard<std::mutex> guard(lock);
+                ++result.graderErrors;
+            }
+        }
+    };
+    std::vector<std::thread> workers;
+    const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(pending.size())));
+    for (int k = 0; k < jobs; ++k) workers.emplace_back(worker);
+    for (std::thread& w : workers) w.join();
+
+    for (const std::string& id : ids) {
+        if (records.count(id)) result.records.push_back(records[id]);
+    }
+    publish(true);
+    result.reused = reused;
+    if (!sharded) {
+        writeFileAtomically(outDir + "/summary.csv", summaryCsv(rubric, result.records));
+        writeFileAtomically(outDir + "/report.html", classReportHtml(assignment, rubric, result));
+    }
+    if (setupFailure) std::rethrow_exception(setupFailure);
+    if (isolation::childrenInterrupted()) throw Interrupted();
+    return result;
+}
+
+}  // namespace simlab::engine

@@ -1,0 +1,55 @@
+// What a person grades: OUT/manual.csv, one row per student and manual item of the rubric ("the schematic is
+// clear"), written by simlab grade with the points empty, filled in by the instructor, and kept by every regrade.
+//
+//     student,item,points,comment
+//     ada,the schematic shows the points and bodies clearly,8,the knee's axis is missing
+//     bob,the schematic shows the points and bodies clearly,,
+//
+// An empty points cell is pending. Rows of students or items that are no longer there are kept as they are (a
+// person typed them), and count for nothing.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "simlab/grading/record.h"
+#include "simlab/rubric/rubric.h"
+
+namespace simlab::engine {
+
+struct ManualEntry {
+    std::optional<double> points;  ///< empty: pending
+    std::string comment;
+};
+
+/// The sheet, by student id and item name, in the order of its rows.
+struct ManualSheet {
+    std::vector<std::pair<std::string, std::string>> order;  ///< (student, item), each row once
+    std::map<std::pair<std::string, std::string>, ManualEntry> entries;
+};
+
+/// A student id or item name as the sheet keys it: printable, without spaces at its ends or the apostrophe that
+/// neutralizes a formula (so that what simlab writes reads back the same).
+std::string manualKey(const std::string& cell);
+
+/// The rows of `sheet` that count for nothing: their student is not in `students`, or their item is not the
+/// rubric's ("ada / writeup"), to warn of a typo.
+std::vector<std::string> strayManualRows(const ManualSheet& sheet, const std::vector<std::string>& students,
+                                         const Rubric& rubric);
+
+/// Reads manual.csv. Throws UsageError, in one line naming `name` and the row, for a header other than
+/// student,item,points[,comment], a row twice, text that is not UTF-8, or points that are not a decimal number
+/// from 0 to the item's points.
+ManualSheet readManualCsv(const std::string& text, const std::string& name, const Rubric& rubric);
+
+/// The sheet with a row for each of `students` and each manual item of `rubric` (new rows pending), the rows
+/// already there kept with their points and comments; as CSV (cells neutralized against formulas).
+std::string manualCsv(ManualSheet sheet, const std::vector<std::string>& students, const Rubric& rubric);
+
+/// Gives `r` the rubric's manual items with the points and comments the sheet holds for it (pending where none).
+void applyManual(StudentRecord& r, const ManualSheet& sheet, const Rubric& rubric);
+
+}  // namespace simlab::engine

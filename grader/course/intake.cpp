@@ -1,0 +1,440 @@
+#include "simlab/course/intake.h"
+
+#include <yaml.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <regex>
+#include <set>
+
+#include "simlab/course/batch.h"
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+#include "simlab/common/text.h"
+
+namespace fs = std::filesystem;
+
+namespace simlab::engine {
+
+namespace {
+
+const std::regex kCanvasFile(R"(^([^_]+)_(?:(late|LATE)_)?(\d+)_(\d+)_(.+)$)");
+const std::regex kMoodleFolder(R"(^(.+)_(\d+)_assignsubmission_([a-z]+)_$)");
+const std::regex kResubmitted(R"(^(.*)-(\d+)(\.[^.]+)$)");  // Canvas's "NewtonsApple-2.cpp"
+
+// A folder name for an id: letters, digits, '.', '_' and '-' kept; anything else becomes '-'.
+std::string safeId(const std::string& text) {
+    std::string id;
+    for (unsigned char c : text) {
+        const bool keep = std::isalnum(c) || c == '.' || c == '_' || c == '-';
+        if (keep) id += static_cast<char>(c);
+        else if (id.empty() || id.back() != '-') id += '-';
+    }
+    while (!id.empty() && (id.front() == '.' || id.front() == '-')) id.erase(0, 1);
+    return id.empty() ? "student" : id;
+}
+
+// --- A YAML document (Gradescope's submission_metadata.yml), read with libyaml into a small tree. ---------------
+
+struct Node {
+    enum class Kind { Scalar, Map, Sequence } kind = Kind::Scalar;
+    std::string value;
+    std::vector<std::pair<std::string, Node>> entries;  // a map's, in order
+    std::vector<Node> items;                            // a sequence's
+};
+
+// Gradescope writes Ruby symbols as keys (":name"); either spelling is found.
+const Node* entryOf(const Node& map, const std::string& key) {
+    if (map.kind != Node::Kind::Map) return nullptr;
+    for (const auto& [k, v] : map.entries) {
+        if (k == key || k == ":" + key) return &v;
+    }
+    return nullptr;
+}
+
+std::string scalarOf(const Node& map, const std::string& key) {
+    const Node* n = entryOf(map, key);
+    return n && n->kind == Node::Kind::Scalar ? n->value : "";
+}
+
+Node readYaml(const std::string& text, const std::string& where) {
+    yaml_parser_t parser;
+    if (!yaml_parser_initialize(&parser)) throw UsageError("cannot read " + where + ": out of memory");
+    std::unique_ptr<yaml_parser_t, void (*)(yaml_parser_t*)> guard(&parser, yaml_parser_delete);
+    yaml_parser_set_input_string(&parser, reinterpret_cast<const unsigned char*>(text.data()), text.size());
+    Node root;
+    std::vector<Node*> open;        // the maps and sequences being filled
+    std::vector<std::string> keys;  // for each open map, its pending key ("" when the next scalar is a key)
+    std::vector<bool> awaitingKey;
+    bool started = false;
+    auto place = [&](Node node) -> Node* {
+        if (open.empty()) {
+            if (started) return nullptr;
+            started = true;
+            root = std::move(node);
+            return &root;
+        }
+        Node* parent = open.back();
+        if (parent->kind == Node::Kind::Sequence) {
+            parent->items.push_back(std::move(node));
+            return &parent->items.back();
+        }
+        if (awaitingKey.back()) {  // a key: scalars only
+            keys.back() = node.value;
+            awaitingKey.back() = false;
+            return nullptr;
+        }
+        parent->entries.emplace_back(keys.back(), std::move(node));
+        awaitingKey.back() = true;
+        return &parent->entries.back().second;
+    };
+    for (;;) {
+        yaml_event_t event;
+        if (!yaml_parser_parse(&parser, &event)) {
+            throw UsageError(where + ", line " + std::to_string(parser.problem_mark.line + 1) + ": " +
+                             (parser.problem ? parser.problem : "not YAML"));
+        }
+        std::unique_ptr<yaml_event_t, void (*)(yaml_event_t*)> done(&event, yaml_event_delete);
+        const yaml_event_type_t type = event.type;
+        if (type == YAML_STREAM_END_EVENT) break;
+        if (type == YAML_ALIAS_EVENT) {
+            throw UsageError(where + ", line " + std::to_string(event.start_mark.line + 1) +
+                             ": an alias (*name), which Gradescope's export never writes");
+        }
+        if (open.size() > 32) throw UsageError(where + " is nested too deep");
+        if (type == YAML_SCALAR_EVENT) {
+            Node n;
+            n.value.assign(reinterpret_cast<const char*>(event.data.scalar.value), event.data.scalar.length);
+            place(std::move(n));
+        } else if (type == YAML_MAPPING_START_EVENT || type == YAML_SEQUENCE_START_EVENT) {
+            Node n;
+            n.kind = type == YAML_MAPPING_START_EVENT ? Node::Kind::Map : Node::Kind::Sequence;
+            if (!open.empty() && open.back()->kind == Node::Kind::Map && awaitingKey.back()) {
+                throw UsageError(where + ": a key that is not text");
+            }
+            Node* placed = place(std::move(n));
+            if (!placed) throw UsageError(where + " holds more than one document");
+            open.push_back(placed);
+            keys.emplace_back();
+            awaitingKey.push_back(true);
+        } else if (type == YAML_MAPPING_END_EVENT || type == YAML_SEQUENCE_END_EVENT) {
+            open.pop_back();
+            keys.pop_back();
+            awaitingKey.pop_back();
+        }
+    }
+    return root;
+}
+
+// --- Copying a student's files, as untrusted data. ----------------------------------------------------------------
+
+// Copies the file `name` of `folder` to `toDir` under `asName`; a file that cannot be taken (a link, too large)
+// is said in the student's note instead.
+void takeFile(const std::string& folder, const std::string& name, const std::string& toDir, const std::string& asName,
+              std::size_t limit, IntakeStudent& student, bool followFolder = false) {
+    const HandedIn h = readHandedIn(folder, name, limit, followFolder);
+    if (!h.ok) {
+        student.note += (student.note.empty() ? "" : "; ") + h.refusal;
+        return;
+    }
+    fs::create_directories(toDir);
+    if (!fs::exists(toDir + "/" + asName)) writeFileAtomically(toDir + "/" + asName, h.text);
+}
+
+// Every regular file below `folder` (a submission as the platform keeps it), each under its own name.
+// Every regular file below `folder` (a submission as the platform keeps it), each under its own name; of two files
+// of one name, the one nearer the top (a folder of old attempts does not win over the file handed in).
+void takeFolder(const std::string& folder, const std::string& toDir, std::size_t limit, IntakeStudent& student) {
+    fs::create_directories(toDir);
+    std::vector<FolderEntry> entries = walkFolder(folder);
+    auto depth = [](const FolderEntry& e) { return std::count(e.name.begin(), e.name.end(), '/'); };
+    std::stable_sort(entries.begin(), entries.end(),
+                     [&](const FolderEntry& a, const FolderEntry& b) { return depth(a) < depth(b); });
+    for (const FolderEntry& e : entries) {
+        const std::string base = e.name.substr(e.name.rfind('/') + 1);
+        if (base.empty() || base[0] == '.' || e.type == EntryType::Directory) continue;
+        if (e.type != EntryType::Regular) {
+            student.note += (student.note.empty() ? "" : "; ") + printable(e.name) + " is not a regular file: not taken";
+            continue;
+        }
+        if (fs::exists(toDir + "/" + base)) {
+            student.note += (student.note.empty() ? "" : "; ") + printable(e.name) + ": another " + printable(base) +
+                            " nearer the top was taken";
+            continue;
+        }
+        takeFile(e.folder, base, toDir, base, limit, student);
+    }
+}
+
+// The student `id` of a download, made when first seen, in the download's order.
+IntakeStudent& studentOf(std::map<std::string, IntakeStudent>& students, std::vector<std::string>& order,
+                         const std::string& id, const std::string& name) {
+    IntakeStudent& s = students[id];
+    if (s.id.empty()) {
+        s.id = id;
+        s.name = name;
+        order.push_back(id);
+    }
+    return s;
+}
+
+std::vector<IntakeStudent> canvas(const std::string& folder, const std::string& classDir, std::size_t limit) {
+    struct Upload {
+        std::string entry, original;
+        long long submission = 0;
+        int resubmission = 0;
+    };
+    std::map<std::string, IntakeStudent> students;
+    std::map<std::string, std::map<std::string, Upload>> uploads;  // by id, by original name: the latest
+    std::vector<std::string> order;
+    for (const FolderEntry& e : listFolder(folder, /*followFolder=*/true)) {
+        std::smatch m;
+        if (e.name[0] == '.' || !std::regex_match(e.name, m, kCanvasFile)) continue;
+        IntakeStudent& s = studentOf(students, order, safeId(m[1].str() + "_" + m[3].str()), m[1]);
+        s.canvasId = m[3];
+        s.late = s.late || m[2].matched;
+        const std::string id = s.id;
+        if (m[3].length() > 15 || m[4].length() > 15) continue;  // no id Canvas makes
+        Upload u{e.name, m[5], std::stoll(m[4].str()), 0};
+        std::smatch r;
+        const std::string named = u.original;  // the match refers into it
+        if (std::regex_match(named, r, kResubmitted) && r[2].length() < 6) {
+            u.resubmission = std::stoi(r[2].str());
+            u.original = r[1].str() + r[3].str();
+        }
+        Upload& kept = uploads[id][u.original];
+        if (kept.entry.empty() || std::tie(u.submission, u.resubmission) > std::tie(kept.submission, kept.resubmission)) {
+            kept = u;
+        }
+    }
+    std::vector<IntakeStudent> out;
+    for (const std::string& id : order) {
+        IntakeStudent& s = students[id];
+        fs::create_directories(classDir + "/" + id);
+        for (const auto& [original, u] : uploads[id]) {
+            takeFile(folder, u.entry, classDir + "/" + id, original, limit, s, /*followFolder=*/true);
+            if (u.resubmission > 0) s.note += (s.note.empty() ? "" : "; ") + original + ": resubmission " + std::to_string(u.resubmission);
+        }
+        out.push_back(s);
+    }
+    return out;
+}
+
+std::vector<IntakeStudent> gradescope(const std::string& folder, const std::string& classDir, std::size_t limit) {
+    const std::string metadata = folder + "/submission_metadata.yml";
+    const HandedIn yml = readHandedIn(folder, "submission_metadata.yml", 16 << 20, /*followFolder=*/true);
+    if (!yml.ok) throw UsageError("cannot read " + printable(metadata) + ": " + yml.refusal);
+    const Node root = readYaml(yml.text, printable(metadata));
+    if (root.kind != Node::Kind::Map) throw UsageError(printable(metadata) + " is not a map of submissions");
+    static const std::regex folderName(R"(^[A-Za-z0-9_.-]+$)");
+    std::vector<IntakeStudent> out;
+    // First each submission's own id: its SID (else the e-mail's name, else the submission); a group's, its
+    // members' ids joined.
+    struct Submission {
+        std::string name, id, names;
+        std::vector<IntakeStudent> members;
+    };
+    std::vector<Submission> submissions;
+    std::set<std::string> seen, ownIds;
+    for (const auto& [submission, info] : root.entries) {
+        if (!seen.insert(submission).second) throw UsageError(printable(metadata) + " names " + printable(submission) + " twice");
+        Submission entry{submission, "", "", {}};
+        const Node* submitters = entryOf(info, "submitters");
+        if (submitters && submitters->kind == Node::Kind::Sequence) {
+            for (const Node& who : submitters->items) {
+                IntakeStudent s;
+                s.name = scalarOf(who, "name");
+                s.sid = scalarOf(who, "sid");
+                s.email = scalarOf(who, "email");
+                entry.members.push_back(s);
+            }
+        }
+        if (entry.members.empty()) entry.members.push_back(IntakeStudent{});
+        for (IntakeStudent& s : entry.members) {
+            const std::string own = !s.sid.empty() ? s.sid : !s.email.empty() ? s.email.substr(0, s.email.find('@')) : submission;
+            entry.id += (entry.id.empty() ? "" : "+") + safeId(own);
+            entry.names += (entry.names.empty() ? "" : ", ") + s.name;
+        }
+        ownIds.insert(entry.id);
+        submissions.push_back(std::move(entry));
+    }
+    std::set<std::string> taken;
+    for (Submission& entry : submissions) {
+        const std::string& submission = entry.name;
+        std::vector<IntakeStudent>& members = entry.members;
+        const std::string& names = entry.names;
+        std::string id = entry.id;
+        // Ids are the students': two submissions whose students' ids are alike stay apart, and say so. The new id is
+        // one no submission has taken or has as its own, whatever the SIDs (a SID may be "s42-submission_103"
+        // itself, and keeps it): a clash is never two submissions in one folder.
+        IntakeStudent first = members.front();
+        if (taken.count(id)) {
+            const std::string apart = id + "-" + safeId(submission);
+            std::string unique = apart;
+            for (int n = 2; taken.count(unique) || ownIds.count(unique); ++n) unique = apart + "-" + std::to_string(n);
+            first.note = "the id " + id + " is another submission's too: this one is " + unique;
+            id = unique;
+        }
+        taken.insert(id);
+        first.id = id;
+        const std::string dir = folder + "/" + submission;
+        std::error_code error;
+        if (!std::regex_match(submission, folderName) || submission == "." || submission == ".." ||
+            !fs::is_directory(fs::symlink_status(dir, error))) {
+            first.note += std::string(first.note.empty() ? "" : "; ") + "no folder " + printable(submission) + " in the download";
+            fs::create_directories(classDir + "/" + id);
+        } else {
+            takeFolder(dir, classDir + "/" + id, limit, first);
+        }
+        for (IntakeStudent& s : members) {
+            s.id = id;
+            s.note = first.note;
+            if (members.size() > 1) s.group = names;
+            out.push_back(s);
+        }
+    }
+    return out;
+}
+
+std::vector<IntakeStudent> moodle(const std::string& folder, const std::string& classDir, std::size_t limit) {
+    std::map<std::string, IntakeStudent> students;
+    std::vector<std::string> order;
+    for (const FolderEntry& e : listFolder(folder, /*followFolder=*/true)) {
+        std::smatch m;
+        if (e.type != EntryType::Directory || !std::regex_match(e.name, m, kMoodleFolder)) continue;
+        IntakeStudent& s = studentOf(students, order, safeId(m[1].str() + "_" + m[2].str()), m[1]);
+        s.platformId = m[2];
+        const std::string id = s.id;
+        fs::create_directories(classDir + "/" + id);
+        // The uploaded files are graded; an online text is the same student's, and is noted.
+        if (m[3] == "file") takeFolder(folder + "/" + e.name, classDir + "/" + id, limit, s);
+        else s.note += (s.note.empty() ? "" : "; ") + std::string("an online text too (not graded)");
+    }
+    std::vector<IntakeStudent> out;
+    for (const std::string& id : order) out.push_back(students[id]);
+    return out;
+}
+
+std::vector<IntakeStudent> classroom(const std::string& folder, const std::string& classDir,
+                                     const std::vector<std::string>& handedIn, std::size_t limit) {
+    std::vector<std::string> repos;
+    for (const FolderEntry& e : listFolder(folder, /*followFolder=*/true)) {
+        // A repository has .git; anything else there (a grades folder, say) is no student's.
+        if (e.type == EntryType::Directory && e.name[0] != '.' && fs::exists(folder + "/" + e.name + "/.git")) {
+            repos.push_back(e.name);
+        }
+    }
+    // The assignment's name is what every repository's name starts with, up to its last '-' (with one repository
+    // there is no telling: its whole name is the id).
+    std::string prefix = repos.size() < 2 ? "" : repos.front();
+    for (const std::string& r : repos) {
+        std::size_t n = 0;
+        while (n < prefix.size() && n < r.size() && prefix[n] == r[n]) ++n;
+        prefix.resize(n);
+    }
+    prefix = prefix.substr(0, prefix.rfind('-') + 1);  // npos + 1 is 0: no common name, no prefix
+    std::vector<IntakeStudent> out;
+    for (const std::string& repo : repos) {
+        IntakeStudent s;
+        s.platformId = repo.substr(prefix.size());
+        if (s.platformId.empty()) s.platformId = repo;
+        s.name = s.platformId;
+        s.id = safeId(s.platformId);
+        fs::create_directories(classDir + "/" + s.id);
+        const Submission found = findSubmission(folder + "/" + repo, handedIn.front(), /*recursive=*/true, false);
+        if (found.name.empty()) {
+            s.note = found.note;
+        } else {
+            // The file, and the files the rubric reads beside it (answers, a project description) from its folder.
+            takeFile(found.folder, found.name, classDir + "/" + s.id, found.name, limit, s);
+            for (std::size_t i = 1; i < handedIn.size(); ++i) {
+                if (fs::exists(fs::symlink_status(found.folder + "/" + handedIn[i]))) {
+                    takeFile(found.folder, handedIn[i], classDir + "/" + s.id, handedIn[i], limit, s);
+                }
+            }
+            if (found.shown != found.name) s.note = "found at " + found.shown;
+        }
+        out.push_back(s);
+    }
+    return out;
+}
+
+}  // namespace
+
+const std::vector<std::string>& downloadLayouts() {
+    static const std::vector<std::string> layouts = {"gradescope", "canvas", "moodle", "classroom"};
+    return layouts;
+}
+
+std::string layoutOf(const std::string& folder) {
+    if (fs::exists(folder + "/submission_metadata.yml")) return "gradescope";
+    bool files = false, canvasFiles = false, folders = false, allRepositories = true, moodleFolders = false;
+    for (const FolderEntry& e : listFolder(folder, /*followFolder=*/true)) {
+        if (e.name[0] == '.') continue;
+        if (e.type == EntryType::Directory) {
+            folders = true;
+            moodleFolders = moodleFolders || std::regex_match(e.name, kMoodleFolder);
+            allRepositories = allRepositories && fs::exists(folder + "/" + e.name + "/.git");
+        } else {
+            files = true;
+            canvasFiles = canvasFiles || std::regex_match(e.name, kCanvasFile);
+        }
+    }
+    if (moodleFolders) return "moodle";
+    if (folders && allRepositories) return "classroom";
+    if (files && !folders) return canvasFiles ? "canvas" : "loose files";
+    return "";
+}
+
+std::vector<IntakeStudent> takeIn(const std::string& layout, const std::string& folder, const std::string& classDir,
+                                  const std::vector<std::string>& handedIn, std::size_t limitBytes) {
+    if (!fs::is_directory(folder)) throw UsageError("no folder " + printable(folder));
+    // The class folder is simlab's to remake (it says so in a file of its own); never the download, nor a folder of
+    // someone's that happens to have its name.
+    std::error_code ignored;
+    const fs::path download = fs::weakly_canonical(folder, ignored), made = fs::weakly_canonical(classDir, ignored);
+    const auto within = [](const fs::path& inner, const fs::path& outer) {
+        return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first == outer.end();
+    };
+    if (within(download, made)) {
+        throw UsageError(printable(folder) + " lies in " + printable(classDir) +
+                         ", which simlab remakes from the download: choose another --out");
+    }
+    if (within(made, download)) {
+        throw UsageError(printable(classDir) + " lies in the download " + printable(folder) +
+                         ": choose an --out outside it");
+    }
+    // The mark that the class folder is simlab's: beside it, so that it is no entry of the class.
+    const std::string mark = (fs::path(classDir).parent_path() / ("." + fs::path(classDir).filename().string() + "-intake")).string();
+    if (fs::exists(fs::symlink_status(classDir, ignored)) && !fs::exists(mark)) {
+        throw UsageError(printable(classDir) + " exists and is not a class simlab took in: move it, or choose another --out");
+    }
+    fs::remove_all(classDir, ignored);
+    fs::create_directories(classDir);
+    writeFileAtomically(mark, "a class simlab took in from " + printable(folder) + "\n");
+    std::vector<IntakeStudent> students;
+    if (layout == "canvas") students = canvas(folder, classDir, limitBytes);
+    else if (layout == "gradescope") students = gradescope(folder, classDir, limitBytes);
+    else if (layout == "moodle") students = moodle(folder, classDir, limitBytes);
+    else if (layout == "classroom") students = classroom(folder, classDir, handedIn, limitBytes);
+    else throw UsageError("unknown platform '" + printable(layout) + "' (gradescope, canvas, moodle or classroom)");
+    if (students.empty()) {
+        throw UsageError(printable(folder) + " is not a " + layout + " download: no submission in it is laid out as " +
+                         layout + " lays them out");
+    }
+    return students;
+}
+
+std::string intakeRosterCsv(const std::vector<IntakeStudent>& students) {
+    std::string out = "Student,ID,SIS User ID,SIS Login ID,Section,simlab id,Platform ID,Email,Late,Group,Note\n";
+    for (const IntakeStudent& s : students) {
+        out += csvCell(s.name) + "," + csvCell(s.canvasId) + "," + csvCell(s.sid) + ",,," + csvCell(s.id) + "," +
+               csvCell(s.platformId) + "," + csvCell(s.email) + "," + (s.late ? "late" : "") + "," + csvCell(s.group) +
+               "," + csvCell(s.note) + "\n";
+    }
+    return out;
+}
+
+}  // namespace simlab::engine

@@ -1,0 +1,129 @@
+#include "simlab/course/manual.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <set>
+
+#include "simlab/common/errors.h"
+#include "simlab/grading/report.h"
+#include "simlab/writers/roster.h"
+#include "simlab/common/text.h"
+
+namespace simlab::engine {
+
+namespace {
+
+// A decimal number as a person types it: digits, a point and digits (no sign, exponent, hex, inf or nan).
+bool isDecimal(const std::string& text) {
+    std::size_t digits = 0, points = 0;
+    for (char c : text) {
+        if (c >= '0' && c <= '9') ++digits;
+        else if (c == '.') ++points;
+        else return false;
+    }
+    return digits > 0 && points <= 1 && text.front() != '.' && text.back() != '.';
+}
+
+}  // namespace
+
+std::string manualKey(const std::string& cell) { return csvCellValue(trimmed(printable(cell))); }
+
+ManualSheet readManualCsv(const std::string& text, const std::string& name, const Rubric& rubric) {
+    const std::string where = printable(name);
+    std::vector<std::vector<std::string>> rows;
+    try {
+        rows = readCsv(text);
+    } catch (const UsageError& e) {
+        throw UsageError(where + ": " + e.what());
+    }
+    ManualSheet sheet;
+    if (rows.empty()) return sheet;
+    std::vector<std::string> header;
+    for (const std::string& cell : rows[0]) header.push_back(trimmed(cell));
+    const bool withComment = header == std::vector<std::string>{"student", "item", "points", "comment"};
+    if (!withComment && header != std::vector<std::string>{"student", "item", "points"}) {
+        throw UsageError(where + ": the first line must be student,item,points,comment");
+    }
+    for (std::size_t r = 1; r < rows.size(); ++r) {
+        const std::vector<std::string>& row = rows[r];
+        const std::string line = where + ", row " + std::to_string(r + 1);
+        bool blank = true;
+        for (const std::string& cell : row) blank = blank && trimmed(cell).empty();
+        if (blank) continue;
+        if (row.size() < 3 || row.size() > header.size()) {
+            throw UsageError(line + " has " + std::to_string(row.size()) + " cells: student,item,points,comment");
+        }
+        for (const std::string& cell : row) {
+            if (!isValidUtf8(cell)) throw UsageError(line + " is not UTF-8 text (save the sheet as CSV UTF-8)");
+        }
+        const std::string student = manualKey(row[0]), item = manualKey(row[1]);
+        if (student.empty() || item.empty()) throw UsageError(line + " has no student or no item");
+        ManualEntry entry;
+        const std::string points = trimmed(row[2]);
+        if (!points.empty()) {
+            const double value = isDecimal(points) ? std::strtod(points.c_str(), nullptr) : NAN;
+            if (!std::isfinite(value)) {
+                throw UsageError(line + ": the points '" + printable(points) + "' are not a decimal number (such as 7 or 7.5)");
+            }
+            for (const ManualItem& m : rubric.manual) {
+                if (manualKey(m.name) == item && (value < 0 || value > m.points + 1e-9)) {
+                    throw UsageError(line + ": " + points + " points for '" + printable(item) + "', which is worth 0 to " +
+                                     simlab::engine::points(m.points));
+                }
+            }
+            entry.points = value;
+        }
+        if (row.size() > 3) entry.comment = csvCellValue(row[3]);
+        const auto key = std::make_pair(student, item);
+        if (sheet.entries.count(key)) {
+            throw UsageError(line + ": " + printable(student) + " and '" + printable(item) + "' are there twice");
+        }
+        sheet.order.push_back(key);
+        sheet.entries[key] = entry;
+    }
+    return sheet;
+}
+
+std::string manualCsv(ManualSheet sheet, const std::vector<std::string>& students, const Rubric& rubric) {
+    for (const std::string& student : students) {
+        for (const ManualItem& m : rubric.manual) {
+            const auto key = std::make_pair(manualKey(student), manualKey(m.name));
+            if (sheet.entries.emplace(key, ManualEntry{}).second) sheet.order.push_back(key);
+        }
+    }
+    std::string out = "student,item,points,comment\n";
+    for (const auto& key : sheet.order) {
+        const ManualEntry& e = sheet.entries.at(key);
+        out += csvCell(key.first) + "," + csvCell(key.second) + "," + (e.points ? points(*e.points) : "") + "," +
+               csvCell(e.comment) + "\n";
+    }
+    return out;
+}
+
+std::vector<std::string> strayManualRows(const ManualSheet& sheet, const std::vector<std::string>& students,
+                                         const Rubric& rubric) {
+    std::set<std::string> ids, items;
+    for (const std::string& s : students) ids.insert(manualKey(s));
+    for (const ManualItem& m : rubric.manual) items.insert(manualKey(m.name));
+    std::vector<std::string> stray;
+    for (const auto& [student, item] : sheet.order) {
+        if (!ids.count(student) || !items.count(item)) stray.push_back(student + " / " + item);
+    }
+    return stray;
+}
+
+// The rubric's manual items with the points the sheet gives this student.
+void applyManual(StudentRecord& r, const ManualSheet& sheet, const Rubric& rubric) {
+    r.manual.clear();
+    for (const ManualItem& m : rubric.manual) {
+        ManualGrade g{m.name, m.points, std::nullopt, ""};
+        const auto found = sheet.entries.find({manualKey(r.id), manualKey(m.name)});
+        if (found != sheet.entries.end()) {
+            g.points = found->second.points;
+            g.comment = found->second.comment;
+        }
+        r.manual.push_back(g);
+    }
+}
+
+}  // namespace simlab::engine

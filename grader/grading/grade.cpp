@@ -1,0 +1,862 @@
+#include "simlab/grading/grade.h"
+
+#include <fcntl.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <thread>
+
+#include "simlab/protocol/attachments.h"
+#include "simlab/protocol/bounded_json.h"
+#include "simlab/common/errors.h"
+#include "simlab/isolation/process.h"
+#include "simlab/grading/record.h"
+
+namespace fs = std::filesystem;
+
+namespace simlab::engine {
+
+namespace {
+
+std::string seconds(double s) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g s", s);
+    return text;
+}
+
+// The judge waits on each test's probe in turn, so its wall-clock net is theirs added up and then some; its own
+// work is small.
+Limits judgeLimits(const Limits& probe, std::size_t tests) {
+    Limits l;
+    l.wallSeconds = (probe.wallSeconds + 5) * static_cast<double>(tests) + 60;
+    l.cpuSeconds = 10.0 * static_cast<double>(tests) + 60;
+    l.memoryMiB = 4096;
+    l.outputKiB = 1024;
+    l.fileMiB = 16;
+    l.processes = 16;
+    l.observationMiB = probe.observationMiB;
+    return l;
+}
+
+// A probe's server holds each test's probe in its process tree while it runs (two at once, as one ends and the next
+// starts): its limits are its tests' together, and each test is still held to its own.
+Limits serverLimits(const Limits& probe, std::size_t tests) {
+    Limits l = probe;
+    l.wallSeconds = (probe.wallSeconds + 5) * static_cast<double>(tests) + 60;
+    l.cpuSeconds = (probe.cpuSeconds + 3) * static_cast<double>(tests) + 60;
+    l.memoryMiB = 2 * probe.memoryMiB + 256;
+    l.fileMiB = 2 * probe.fileMiB;
+    return l;
+}
+
+// What the probe said about itself on its event channel. Student code shares that process and can write there
+// too; the events only ever name a failure, so a forged one costs its writer.
+struct ProbeEvents {
+    bool memory = false;
+    bool terminated = false;  // std::terminate ran
+    std::string type, what;   // the exception in flight then, if there was one
+    std::string refused;      // the system call the students' filter refused (the host names it), if one was
+};
+
+ProbeEvents probeEvents(const std::vector<std::string>& lines) {
+    ProbeEvents e;
+    for (const std::string& line : lines) {
+        const nlohmann::json record = wire::parseBounded(line);
+        if (!record.is_object() || !record.contains("event") || !record["event"].is_string()) continue;
+        const std::string event = record["event"];
+        if (event == "memory") e.memory = true;
+        if (event == "refused" && record.contains("call") && record["call"].is_string()) {
+            e.refused = record["call"].get<std::string>().substr(0, 64);
+        }
+        if (event == "terminate") {
+            e.terminated = true;
+            e.type = record.contains("type") && record["type"].is_string() ? record["type"].get<std::string>() : "";
+            e.what = record.contains("what") && record["what"].is_string() ? record["what"].get<std::string>() : "";
+        }
+    }
+    return e;
+}
+
+// The judge's "end" record for `test`, if it wrote one.
+std::optional<nlohmann::json> judgeVerdict(const std::vector<std::string>& lines, const std::string& test) {
+    std::optional<nlohmann::json> end;
+    for (const std::string& line : lines) {
+        nlohmann::json record = wire::parseBounded(line);
+        if (record.is_object() && record.value("event", "") == "end" && record.value("test", "") == test) end = record;
+    }
+    return end;
+}
+
+// Why a probe that died of a signal died, as far as simlab can tell.
+std::string crashReason(const isolation::ProcessResult& probe, const ProbeEvents& events) {
+    std::string reason = "crashed (" + isolation::signalName(probe.signal) + ")";
+    if (probe.signal == SIGABRT && events.terminated) {
+        if (events.type.empty()) return reason + ": std::terminate was called with no exception in flight";
+        return reason + ": " + events.type + (events.what.empty() ? "" : " \"" + events.what + "\"") +
+               " escaped: nothing caught it, or it left a destructor or a noexcept function";
+    }
+    if (probe.signal == SIGABRT) {
+        const std::size_t at = probe.output.find("Assertion `");
+        if (at != std::string::npos) {
+            const std::size_t start = probe.output.rfind('\n', at);
+            const std::size_t end = probe.output.find('\n', at);
+            const std::size_t from = start == std::string::npos ? 0 : start + 1;
+            return reason + ": " + probe.output.substr(from, std::min<std::size_t>(end - from, 300));
+        }
+        return reason + ": abort() was called";
+    }
+    if (probe.signal == SIGSYS) {
+        if (events.refused.empty()) return reason + ": the sandbox refused a system call a simulation does not make";
+        return reason + ": the sandbox refuses the system call " + events.refused +
+               ", which a simulation does not make (simlab's system-call filter)";
+    }
+    if (probe.signal == SIGSEGV) return reason + ": a bad pointer, or a stack overflowed by endless recursion";
+    if (probe.signal == SIGFPE) return reason + ": an arithmetic fault, such as an integer division by zero";
+    return reason;
+}
+
+TestResult interpret(const RubricTest& test, const isolation::ProcessResult& probe, const isolation::ProcessResult& judge,
+                     const Limits& limits) {
+    TestResult t;
+    t.name = test.name;
+    t.visibility = test.visibility;
+    t.maxScore = test.points;
+    t.seconds = probe.wallSeconds;
+    t.cpuSeconds = probe.cpuSeconds;
+    t.output = probe.output;
+    const ProbeEvents events = probeEvents(probe.reports);
+    const std::optional<nlohmann::json> verdict = judgeVerdict(judge.reports, test.name);
+    double credit = 0;
+
+    if (!probe.started) {
+        t.outcome = Outcome::DidNotFinish;
+        t.reason = "could not run the student's code: " + probe.error;
+    } else if (!judge.started) {
+        t.outcome = Outcome::DidNotFinish;
+        t.reason = "could not run the grader's tests: " + judge.error;
+    } else if (!verdict && (judge.cpuTimeout || judge.wallTimeout || judge.signal != 0)) {
+        t.outcome = Outcome::DidNotFinish;
+        t.reason = "the grader's judge stopped (" +
+                   std::string(judge.signal ? isolation::signalName(judge.signal) : judge.cpuTimeout ? "its CPU time ran out" : "its time ran out") +
+                   ") before this test: a fault in simlab, not in the submission";
+    } else if (probe.memoryLimit) {
+        t.outcome = Outcome::OutOfMemory;
+        t.reason = "killed for memory: its processes together held more than " + std::to_string(limits.memoryMiB) +
+                   " MiB";
+    } else if (events.memory && (probe.exitCode == 137 || probe.signal != 0)) {
+        t.outcome = Outcome::OutOfMemory;
+        t.reason = "killed for memory: it needed more than " + std::to_string(limits.memoryMiB) + " MiB";
+    } else if (probe.outputLimit) {
+        t.outcome = Outcome::OutputTruncated;
+        t.reason = "output truncated: it printed more than " + std::to_string(limits.outputKiB) + " KiB, and was stopped";
+    } else if (probe.diskLimit) {
+        t.outcome = Outcome::OutputTruncated;
+        t.reason = "output truncated: its files together took more than " + std::to_string(3 * limits.fileMiB) +
+                   " MiB, the space a test has, and it was stopped";
+    } else if (probe.cpuTimeout) {
+        t.outcome = Outcome::TimedOut;
+        t.reason = "timed out after " + seconds(std::ceil(limits.cpuSeconds)) + " of CPU time";
+    } else if (probe.wallTimeout) {
+        char text[160];
+        std::snprintf(text, sizeof text, "stalled: no end after %g s of wall-clock time, having used %.1f s of CPU "
+                      "time (sleeping, or waiting for something?)", limits.wallSeconds, probe.cpuSeconds);
+        t.outcome = Outcome::Stalled;
+        t.reason = text;
+    } else if (probe.signal != 0) {
+        t.outcome = Outcome::Crashed;
+        t.reason = crashReason(probe, events);
+    } else if (!verdict) {
+        t.outcome = Outcome::DidNotFinish;
+        if (judge.output.find("No test cases matched") != std::string::npos) {
+            t.reason = "the grader has no test of this name: the rubric and the tests disagree";
+        } else {
+            t.reason = "the grader's judge ended without a verdict (" +
+                       (judge.signal ? isolation::signalName(judge.signal) : "status " + std::to_string(judge.exitCode)) +
+                       "): a fault in simlab, not in the submission";
+        }
+    } else if (verdict->value("channel", "") == "process ended") {
+        t.outcome = Outcome::DidNotFinish;
+        t.reason = "did not finish: the student's code ended its process (exit status " +
+                   std::to_string(probe.exitCode) + ") before it answered";
+    } else if (verdict->value("channel", "") == "bad report") {
+        t.outcome = Outcome::BadReport;
+        t.reason = "bad report: " + verdict->value("reason", "");
+    } else {
+        const bool passed = verdict->value("passed", false);
+        t.outcome = passed ? Outcome::Passed : Outcome::Failed;
+        const nlohmann::json creditField = verdict->value("credit", nlohmann::json(0.0));
+        const double c = creditField.is_number() ? creditField.get<double>() : 0.0;
+        credit = passed ? 1.0 : std::isfinite(c) ? std::clamp(c, 0.0, 1.0) : 0.0;
+        t.reason = verdict->value("reason", "");
+        if (verdict->contains("feedback") && (*verdict)["feedback"].is_array()) {
+            for (const auto& line : (*verdict)["feedback"]) {
+                if (line.is_string()) t.feedback.push_back(line.get<std::string>());
+            }
+        }
+        if (verdict->contains("attachments") && (*verdict)["attachments"].is_array()) {
+            for (const auto& file : (*verdict)["attachments"]) {
+                if (!file.is_object() || t.attachments.size() >= wire::kMaxAttachments) continue;
+                const std::string name = file.value("name", ""), text = file.value("text", "");
+                if (wire::isAttachmentName(name) && text.size() <= wire::kMaxAttachmentBytes) {
+                    t.attachments.emplace_back(name, text);
+                }
+            }
+        }
+        if (verdict->contains("figure") && (*verdict)["figure"].is_object()) {
+            const nlohmann::json& figure = (*verdict)["figure"];
+            if (figure.contains("value") && figure["value"].is_number()) t.figure = figure["value"].get<double>();
+            t.unit = figure.value("unit", "");
+        }
+    }
+    // The judge's account of the test's time (the student's process's, and the judge's own: drawing, say) and of
+    // the shared questions it used: hints for sharing the next self-check's tests out, nothing scored.
+    if (const std::optional<TestCost> cost = verdict ? readTestCost(*verdict) : std::nullopt) {
+        t.seconds = std::max(t.seconds, cost->seconds);
+        t.shared = cost->shared;
+    }
+    t.credit = credit;
+    t.score = roundScore(test.points * credit);
+    return t;
+}
+
+// Where one submission's grading happens: the probe (a shared object) and the host it runs in, the judges' files,
+// a folder per process.
+struct Workspace {
+    std::string root, build, probe, host;
+};
+
+// A judge's files: the rubric, and the files handed in beside the source (or why each was refused).
+void writeJudgeFiles(const std::string& dir, const Rubric& rubric, const SubmissionFiles& files) {
+    fs::create_directories(dir + "/submission");
+    writeFileAtomically(dir + "/rubric.toml", readFile(rubric.path));
+    for (const HandedIn& extra : files.extras) {
+        if (extra.ok) writeFileAtomically(dir + "/submission/" + extra.name, extra.text);
+        else writeFileAtomically(dir + "/submission/" + extra.name + ".refused", extra.refusal);
+    }
+}
+
+// A folder every sandbox user may pass through to what it is handed, without seeing what else is there.
+void makePassable(const std::string& path) {
+    std::error_code ignored;
+    fs::permissions(path, fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec, ignored);
+}
+
+// The tests of one submission: one judge runs them all, in turn, and at each test's first question asks for a
+// probe of that test's own on the socket at its descriptor 6. The server below starts the probe with two new pipes
+// - requests to its descriptor 4, answers from its descriptor 5 - and hands the judge their other ends.
+// `judgeFiles` is this judge's own copy of the rubric and the files handed in (its user owns it for the run), and
+// `tag` sets its processes' folders apart from those of judges running beside it.
+std::vector<TestResult> runTests(const Assignment& assignment, const std::vector<const RubricTest*>& tests,
+                                 const Workspace& w, const std::string& judgeFiles, const std::string& tag,
+                                 const Limits& limits, std::string* graderOutput,
+                                 const std::function<void(const std::string&)>& progress) {
+    int socket[2];
+    if (::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, socket) != 0) {
+        throw std::runtime_error(std::string("cannot create a socket: ") + std::strerror(errno));
+    }
+    std::mutex lock;
+    std::map<std::string, isolation::ProcessResult> probes;  // by test name
+    std::vector<std::thread> running;
+    int started = 0;
+
+    // Where the sandbox allows, the tests' probes are forked from one host started for them (TestServer): each is
+    // still a process of its own, as a user of its own, and loads the probe only once it is. The server starts
+    // while the judge does.
+    std::unique_ptr<isolation::TestServer> probeServer;
+    const std::vector<std::string> probeEnvironment = {"PATH=/usr/bin:/bin", "TMPDIR=/tmp", "LC_ALL=C"};
+    if (isolation::testServers()) {
+        const std::string program = w.root + "/" + tag + "server";
+        const std::string home = w.root + "/" + tag + "probes";
+        fs::create_directory(program);
+        fs::create_directory(home);
+        writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
+        fs::permissions(program, fs::perms::owner_all | fs::perms::others_exec);
+        fs::permissions(program + "/probe.so", fs::perms::owner_read | fs::perms::others_read);
+        // Each test's child makes its folder there, through root's group (probe_host.cpp): nothing else of it is
+        // any test's to write or list.
+        fs::permissions(home, fs::perms::owner_all | fs::perms::group_write | fs::perms::group_exec |
+                                  fs::perms::others_exec);
+        isolation::ProcessRequest server;
+        server.argv = {w.host, "--serve", program + "/probe.so"};
+        server.env = probeEnvironment;
+        server.env.push_back("HOME=" + home);
+        server.workDir = home;
+        server.limits = serverLimits(limits, tests.size());
+        server.readOnlyPaths = {program, w.host};
+        server.scratchWorkDir = true;
+        probeServer = std::make_unique<isolation::TestServer>(server);
+    }
+
+    // Each message from the judge is "probe <test>"; each reply carries the judge's ends of the new pipes.
+    std::thread server([&] {
+        char message[1024];
+        for (;;) {
+            const ssize_t n = ::recv(socket[0], message, sizeof message, 0);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 6 || std::string(message, 6) != "probe ") break;  // the judge is done (or confused)
+            const std::string test(message + 6, static_cast<std::size_t>(n) - 6);
+            if (progress) progress(test);
+            int requests[2] = {-1, -1}, answers[2] = {-1, -1};
+            if (::pipe2(requests, O_CLOEXEC) != 0 || ::pipe2(answers, O_CLOEXEC) != 0) {
+                for (int fd : {requests[0], requests[1], answers[0], answers[1]}) {
+                    if (fd >= 0) ::close(fd);
+                }
+                break;  // the judge reads the socket's end: its tests say the process could not start
+            }
+            isolation::ProcessRequest probe;
+            probe.limits = limits;
+            probe.reportChannel = true;
+            probe.passFds = {{4, requests[0]}, {5, answers[1]}};
+            probe.isolate = true;
+            probe.scratchWorkDir = true;
+            running.emplace_back([&, probe, test, number = ++started]() mutable {
+                std::optional<isolation::ProcessResult> result;
+                if (probeServer) result = probeServer->run(probe);
+                if (!result) {
+                    // A host of its own, run as a user of its own, loading a copy of the probe that user owns while
+                    // it runs (a test's user never touches another's files, even as one test ends and the next
+                    // begins).
+                    const std::string dir = w.root + "/" + tag + "test" + std::to_string(number);
+                    const std::string program = w.root + "/" + tag + "program" + std::to_string(number);
+                    fs::create_directory(dir);
+                    fs::create_directory(program);
+                    writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
+                    fs::permissions(program + "/probe.so", fs::perms::owner_read);
+                    probe.argv = {w.host, program + "/probe.so"};
+                    probe.env = probeEnvironment;
+                    probe.env.push_back("HOME=" + dir);
+                    probe.workDir = dir;
+                    probe.readOnlyPaths = {program, w.host};
+                    probe.handOver = {program};
+                    result = isolation::runProcess(probe);
+                }
+                std::lock_guard<std::mutex> guard(lock);
+                probes[test] = std::move(*result);
+            });
+            // The judge's ends: sent, then closed here, so that each pipe ends when its last holder does.
+            const int ends[2] = {requests[1], answers[0]};
+            const char byte = 'p';
+            const bool sent = isolation::sendWithDescriptors(socket[0], &byte, 1, {ends[0], ends[1]});
+            ::close(ends[0]);
+            ::close(ends[1]);
+            if (!sent) break;
+        }
+    });
+
+    // The judge runs from a copy of its own, in the folder its user owns for the run: the course's judge may be
+    // (and, graded without bubblewrap or Landlock, must be) unreadable to every other user.
+    const std::string judgeProgram = judgeFiles + "/judge";
+    writeFileAtomically(judgeProgram, readFile(assignment.judge));
+    fs::permissions(judgeProgram, fs::perms::owner_all);
+    isolation::ProcessRequest judge;
+    // One test spec naming every test: Catch2 reads commas as "or" (a rubric's names hold none).
+    std::string names;
+    for (const RubricTest* test : tests) names += (names.empty() ? "" : ",") + test->name;
+    judge.argv = {judgeProgram, "--use-colour", "no", names};
+    judge.env = {"PATH=/usr/bin:/bin", "HOME=" + w.root + "/" + tag + "judge-home", "TMPDIR=/tmp", "LC_ALL=C",
+                 "SIMLAB_RUBRIC=" + judgeFiles + "/rubric.toml", "SIMLAB_SUBMISSION_DIR=" + judgeFiles + "/submission",
+                 "SIMLAB_ANSWER_LIMIT=" + std::to_string(static_cast<unsigned long long>(limits.observationMiB) << 20)};
+    judge.workDir = w.root + "/" + tag + "judge-home";
+    fs::create_directory(judge.workDir);
+    judge.limits = judgeLimits(limits, tests.size());
+    judge.reportChannel = true;
+    judge.passFds = {{6, socket[1]}};
+    judge.isolate = true;
+    judge.readOnlyPaths = {judgeProgram, judgeFiles};
+    judge.handOver = {judgeFiles};  // its user's alone: no probe can read the judge, the rubric or the files
+    judge.scratchWorkDir = true;
+    const isolation::ProcessResult judged = isolation::runProcess(judge);
+    ::shutdown(socket[0], SHUT_RDWR);  // ends the server's wait, should the judge have left a copy behind
+    server.join();
+    for (std::thread& t : running) t.join();
+    probeServer.reset();
+    ::close(socket[0]);
+    *graderOutput = judged.output;
+
+    bool interrupted = judged.interrupted;
+    for (const auto& [test, probe] : probes) interrupted = interrupted || probe.interrupted;
+    if (interrupted) throw Interrupted();
+    std::vector<TestResult> results;
+    for (const RubricTest* test : tests) {
+        isolation::ProcessResult probe;  // a test that asked nothing had no probe: as if one had started and ended cleanly
+        probe.started = true;
+        probe.exitCode = 0;
+        if (const auto found = probes.find(test->name); found != probes.end()) probe = found->second;
+        results.push_back(interpret(*test, probe, judged, limits));
+    }
+    return results;
+}
+
+// The selected tests, over `options.judges` judges at once (shareTests), each with files of its own; the results
+// come back in the rubric's order.
+std::vector<TestResult> runJudges(const Assignment& assignment, const Rubric& rubric, const SubmissionFiles& files,
+                                  const std::vector<const RubricTest*>& selected, const Workspace& w,
+                                  const Limits& limits, const GradeOptions& options, std::string* graderOutput) {
+    if (selected.empty()) return {};
+    std::vector<std::string> names;
+    for (const RubricTest* test : selected) names.push_back(test->name);
+    std::vector<std::size_t> judgeOf = shareTests(names, options.expected, options.judges);
+    std::map<std::size_t, std::size_t> used;  // the judges given work, numbered from 0 in order
+    for (std::size_t k : judgeOf) used.emplace(k, 0);
+    std::size_t judges = 0;
+    for (auto& [k, number] : used) number = judges++;
+    std::vector<std::vector<const RubricTest*>> shares(judges);
+    std::vector<std::pair<std::size_t, std::size_t>> placed(selected.size());  // test i: judge, place in its share
+    for (std::size_t i = 0; i < selected.size(); ++i) {
+        const std::size_t k = used.at(judgeOf[i]);
+        placed[i] = {k, shares[k].size()};
+        shares[k].push_back(selected[i]);
+    }
+    std::vector<std::vector<TestResult>> results(judges);
+    std::vector<std::string> outputs(judges);
+    std::vector<std::exception_ptr> failures(judges);
+    std::mutex told;
+    auto progress = [&](const std::string& test) {
+        if (!options.progress) return;
+        std::lock_guard<std::mutex> guard(told);
+        options.progress(test);
+    };
+    auto judge = [&](std::size_t k) {
+        try {
+            const std::string dir = w.root + "/judge" + std::to_string(k + 1);
+            writeJudgeFiles(dir, rubric, files);
+            results[k] = runTests(assignment, shares[k], w, dir, "j" + std::to_string(k + 1) + "-", limits,
+                                  &outputs[k], progress);
+        } catch (...) {
+            failures[k] = std::current_exception();
+        }
+    };
+    std::vector<std::thread> running;
+    for (std::size_t k = 1; k < judges; ++k) running.emplace_back(judge, k);
+    judge(0);
+    for (std::thread& t : running) t.join();
+    for (const std::exception_ptr& failure : failures) {
+        if (failure) std::rethrow_exception(failure);
+    }
+    std::vector<TestResult> ordered;
+    for (std::size_t i = 0; i < selected.size(); ++i) ordered.push_back(results[placed[i].first][placed[i].second]);
+    for (const std::string& output : outputs) *graderOutput += output;
+    return ordered;
+}
+
+}  // namespace
+
+std::string outcomeName(Outcome outcome) {
+    switch (outcome) {
+        case Outcome::Passed: return "passed";
+        case Outcome::Failed: return "failed";
+        case Outcome::TimedOut: return "timed out";
+        case Outcome::Stalled: return "stalled";
+        case Outcome::OutOfMemory: return "killed for memory";
+        case Outcome::Crashed: return "crashed";
+        case Outcome::OutputTruncated: return "output truncated";
+        case Outcome::BadReport: return "bad report";
+        case Outcome::DidNotFinish: return "did not finish";
+        case Outcome::DidNotCompile: return "did not compile";
+        case Outcome::Refused: return "refused";
+        case Outcome::MissingFile: return "missing file";
+    }
+    return "unknown";
+}
+
+Outcome outcomeNamed(const std::string& name) {
+    for (Outcome o : {Outcome::Passed, Outcome::Failed, Outcome::TimedOut, Outcome::Stalled, Outcome::OutOfMemory,
+                      Outcome::Crashed, Outcome::OutputTruncated, Outcome::BadReport, Outcome::DidNotFinish,
+                      Outcome::DidNotCompile, Outcome::Refused, Outcome::MissingFile}) {
+        if (outcomeName(o) == name) return o;
+    }
+    throw std::invalid_argument("unknown outcome '" + name + "'");
+}
+
+GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, const std::string& status,
+                            const std::string& note, bool includeHidden) {
+    GradeReport report;
+    report.assignment = assignment.id;
+    report.title = assignment.title;
+    report.manual = rubric.manual;
+    report.status = status;
+    report.note = note;
+    report.build.stage = "missing";
+    for (const RubricTest& test : rubric.tests) {
+        if (!includeHidden && !test.visible()) {
+            ++report.notRunCount;
+            report.notRunPoints += test.points;
+            continue;
+        }
+        TestResult t;
+        t.name = test.name;
+        t.visibility = test.visibility;
+        t.maxScore = test.points;
+        t.outcome = status == "missing file" ? Outcome::MissingFile : Outcome::Refused;
+        t.reason = note;
+        report.tests.push_back(t);
+    }
+    return report;
+}
+
+std::string secretsExposed(const Manifest& manifest, const std::vector<std::string>& more) {
+    std::vector<std::string> secrets = courseSecrets(manifest);
+    secrets.insert(secrets.end(), more.begin(), more.end());
+    for (std::string& path : secrets) {
+        std::error_code ignored;
+        if (!path.empty()) path = fs::absolute(path, ignored).lexically_normal().string();
+    }
+    const std::vector<std::string> readable = isolation::readableInSandbox(secrets);
+    if (readable.empty()) return "";
+    std::string paths;
+    for (const std::string& path : readable) paths += " " + path;
+    return "in this sandbox (" + isolation::sandboxSupport().mode + ") a test's code could read " + readable.front() +
+           (readable.size() > 1 ? " and " + std::to_string(readable.size() - 1) + " more" : "") +
+           ", so hidden tests are not run: make them unreadable to other users (scripts/lock-course, or chmod -R "
+           "go-rwx" + paths + "), or install bubblewrap";
+}
+
+double roundScore(double points) { return std::round(points * 100.0) / 100.0; }
+
+double GradeReport::score() const {
+    double total = 0;
+    for (const TestResult& t : tests) total += t.score;
+    return roundScore(total);
+}
+
+double GradeReport::maxScore() const {
+    double total = 0;
+    for (const TestResult& t : tests) total += t.maxScore;
+    return roundScore(total);
+}
+
+double StudentRecord::total() const {
+    double sum = score;
+    for (const ManualGrade& m : manual) sum += m.points.value_or(0);
+    return roundScore(sum);
+}
+
+double StudentRecord::maxTotal() const {
+    double sum = maxScore;
+    for (const ManualGrade& m : manual) sum += m.maxPoints;
+    return roundScore(sum);
+}
+
+double StudentRecord::pendingPoints() const {
+    double sum = 0;
+    for (const ManualGrade& m : manual) sum += m.points ? 0 : m.maxPoints;
+    return roundScore(sum);
+}
+
+std::optional<TestCost> readTestCost(const nlohmann::json& record) {
+    auto seconds = [](const nlohmann::json& value) {
+        return value.is_number() && std::isfinite(value.get<double>()) && value.get<double>() >= 0;
+    };
+    if (!record.is_object()) return std::nullopt;
+    const nlohmann::json took = record.value("seconds", nlohmann::json());
+    if (!seconds(took)) return std::nullopt;
+    TestCost cost;
+    cost.seconds = took.get<double>();
+    const nlohmann::json shared = record.value("shared", nlohmann::json());
+    if (shared.is_object()) {
+        for (const auto& [digest, answer] : shared.items()) {
+            if (cost.shared.size() >= 256 || digest.size() > 16 || !seconds(answer)) continue;
+            cost.shared[digest] = answer.get<double>();
+        }
+    }
+    return cost;
+}
+
+std::vector<std::size_t> shareTests(const std::vector<std::string>& tests,
+                                    const std::map<std::string, TestCost>& expected, int judgeCount) {
+    const std::size_t judges = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(judgeCount, 1)), 1,
+                                                       std::max<std::size_t>(tests.size(), 1));
+    const std::size_t n = tests.size();
+    std::vector<std::size_t> judgeOf(n);
+    if (expected.empty() || judges == 1) {
+        for (std::size_t i = 0; i < n; ++i) judgeOf[i] = i % judges;
+        return judgeOf;
+    }
+    // A shared answer costs what it took where it was computed, once in each judge whose tests ask for it; a
+    // test's own cost is its time less the answers it computed.
+    std::map<std::string, double> answerCost;
+    double longest = 0;
+    for (const auto& [name, cost] : expected) {
+        longest = std::max(longest, cost.seconds);
+        for (const auto& [digest, seconds] : cost.shared) answerCost[digest] = std::max(answerCost[digest], seconds);
+    }
+    std::vector<double> own(n, longest);  // a test not seen before: as long as the longest
+    std::vector<std::set<std::string>> asks(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto found = expected.find(tests[i]);
+        if (found == expected.end()) continue;
+        double computed = 0;
+        for (const auto& [digest, seconds] : found->second.shared) {
+            computed += seconds;
+            asks[i].insert(digest);
+        }
+        own[i] = std::max(found->second.seconds - computed, 0.0);
+    }
+    auto costOf = [&](double ownSeconds, const std::set<std::string>& answers) {
+        for (const std::string& digest : answers) ownSeconds += answerCost[digest];
+        return ownSeconds;
+    };
+    // How long the judges of a plan would take, the longest first; a plan is better when its longest judge ends
+    // sooner, then when the judges' time together is less.
+    auto loadsOf = [&](const std::vector<std::size_t>& plan) {
+        std::vector<double> owns(judges, 0.0);
+        std::vector<std::set<std::string>> answers(judges);
+        for (std::size_t i = 0; i < n; ++i) {
+            owns[plan[i]] += own[i];
+            answers[plan[i]].insert(asks[i].begin(), asks[i].end());
+        }
+        std::vector<double> load(judges);
+        for (std::size_t k = 0; k < judges; ++k) load[k] = costOf(owns[k], answers[k]);
+        std::sort(load.rbegin(), load.rend());
+        return load;
+    };
+    auto better = [](const std::vector<double>& a, const std::vector<double>& b) {
+        constexpr double kTie = 1e-9;
+        if (a.front() < b.front() - kTie) return true;
+        if (a.front() > b.front() + kTie) return false;
+        double sumA = 0, sumB = 0;
+        for (double x : a) sumA += x;
+        for (double x : b) sumB += x;
+        return sumA < sumB - kTie;
+    };
+    // The costliest group first, each to the judge where it would end soonest (the first such judge on a tie),
+    // counting only the answers that judge does not have yet.
+    auto longestFirst = [&](const std::vector<std::vector<std::size_t>>& groups) {
+        std::vector<std::size_t> order(groups.size());
+        std::vector<double> groupOwn(groups.size(), 0.0);
+        std::vector<std::set<std::string>> groupAsks(groups.size());
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+            order[g] = g;
+            for (std::size_t i : groups[g]) {
+                groupOwn[g] += own[i];
+                groupAsks[g].insert(asks[i].begin(), asks[i].end());
+            }
+        }
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+            return costOf(groupOwn[a], groupAsks[a]) > costOf(groupOwn[b], groupAsks[b]);
+        });
+        std::vector<double> load(judges, 0.0);
+        std::vector<std::set<std::string>> answered(judges);
+        std::vector<std::size_t> plan(n, 0);
+        for (std::size_t g : order) {
+            std::size_t best = 0;
+            double bestEnd = 0;
+            for (std::size_t k = 0; k < judges; ++k) {
+                double end = load[k] + groupOwn[g];
+                for (const std::string& digest : groupAsks[g]) {
+                    if (!answered[k].count(digest)) end += answerCost[digest];
+                }
+                if (k == 0 || end < bestEnd) {
+                    best = k;
+                    bestEnd = end;
+                }
+            }
+            load[best] = bestEnd;
+            answered[best].insert(groupAsks[g].begin(), groupAsks[g].end());
+            for (std::size_t i : groups[g]) plan[i] = best;
+        }
+        return plan;
+    };
+    // Then single tests moved, and pairs swapped, between judges while that makes the plan better. A move updates
+    // the two judges' times from how many of each judge's tests ask for each answer, so a try costs the moved
+    // test's answers, not the whole plan.
+    std::map<std::string, std::size_t> answerIndex;
+    for (std::size_t i = 0; i < n; ++i) {
+        for (const std::string& digest : asks[i]) answerIndex.emplace(digest, answerIndex.size());
+    }
+    std::vector<double> costByIndex(answerIndex.size());
+    for (const auto& [digest, index] : answerIndex) costByIndex[index] = answerCost[digest];
+    std::vector<std::vector<std::size_t>> asked(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (const std::string& digest : asks[i]) asked[i].push_back(answerIndex.at(digest));
+    }
+    auto improved = [&](std::vector<std::size_t> plan) {
+        std::vector<std::vector<int>> askers(judges, std::vector<int>(answerIndex.size(), 0));
+        std::vector<double> load(judges, 0.0);
+        auto place = [&](std::size_t i, std::size_t k, int sign) {  // test i joins (+1) or leaves (-1) judge k
+            load[k] += sign * own[i];
+            for (std::size_t d : asked[i]) {
+                const bool firstOrLast = sign > 0 ? askers[k][d] == 0 : askers[k][d] == 1;
+                if (firstOrLast) load[k] += sign * costByIndex[d];
+                askers[k][d] += sign;
+            }
+        };
+        auto move = [&](std::size_t i, std::size_t k) {
+            place(i, plan[i], -1);
+            plan[i] = k;
+            place(i, k, +1);
+        };
+        auto sorted = [&] {
+            std::vector<double> v = load;
+            std::sort(v.rbegin(), v.rend());
+            return v;
+        };
+        for (std::size_t i = 0; i < n; ++i) place(i, plan[i], +1);
+        std::vector<double> now = sorted();
+        for (int round = 0; round < 50; ++round) {
+            bool changed = false;
+            for (std::size_t i = 0; i < n; ++i) {
+                for (std::size_t k = 0; k < judges; ++k) {
+                    if (k == plan[i]) continue;
+                    const std::size_t was = plan[i];
+                    move(i, k);
+                    const std::vector<double> moved = sorted();
+                    if (better(moved, now)) {
+                        now = moved;
+                        changed = true;
+                    } else {
+                        move(i, was);
+                    }
+                }
+            }
+            for (std::size_t i = 0; i < n; ++i) {
+                for (std::size_t j = i + 1; j < n; ++j) {
+                    const std::size_t a = plan[i], b = plan[j];
+                    if (a == b) continue;
+                    move(i, b);
+                    move(j, a);
+                    const std::vector<double> swapped = sorted();
+                    if (better(swapped, now)) {
+                        now = swapped;
+                        changed = true;
+                    } else {
+                        move(j, b);
+                        move(i, a);
+                    }
+                }
+            }
+            if (!changed) break;
+        }
+        return plan;
+    };
+    // Two starts: each test alone, and tests asking for the same answer joined (the costliest answers first) while
+    // the group stays within a judge's even share of the whole; the better plan either improves to.
+    std::vector<std::vector<std::size_t>> alone(n);
+    for (std::size_t i = 0; i < n; ++i) alone[i] = {i};
+    std::vector<std::size_t> group(n);
+    for (std::size_t i = 0; i < n; ++i) group[i] = i;
+    auto root = [&](std::size_t i) {
+        while (group[i] != i) i = group[i] = group[group[i]];
+        return i;
+    };
+    std::vector<double> groupOwn = own;
+    std::vector<std::set<std::string>> groupAsks = asks;
+    std::set<std::string> everyAnswer;
+    double total = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        total += own[i];
+        everyAnswer.insert(asks[i].begin(), asks[i].end());
+    }
+    const double evenShare = costOf(total, everyAnswer) / static_cast<double>(judges);
+    std::vector<std::string> byCost(everyAnswer.begin(), everyAnswer.end());
+    std::stable_sort(byCost.begin(), byCost.end(),
+                     [&](const std::string& a, const std::string& b) { return answerCost[a] > answerCost[b]; });
+    for (const std::string& digest : byCost) {
+        std::size_t first = n;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (!asks[i].count(digest)) continue;
+            if (first == n) {
+                first = i;
+                continue;
+            }
+            const std::size_t a = root(first), b = root(i);
+            if (a == b) continue;
+            std::set<std::string> joined = groupAsks[a];
+            joined.insert(groupAsks[b].begin(), groupAsks[b].end());
+            if (costOf(groupOwn[a] + groupOwn[b], joined) > evenShare) continue;
+            group[b] = a;
+            groupOwn[a] += groupOwn[b];
+            groupAsks[a] = std::move(joined);
+        }
+    }
+    std::map<std::size_t, std::vector<std::size_t>> byRoot;
+    for (std::size_t i = 0; i < n; ++i) byRoot[root(i)].push_back(i);
+    std::vector<std::vector<std::size_t>> joined;
+    for (auto& [r, members] : byRoot) joined.push_back(std::move(members));
+    const std::vector<std::size_t> fromAlone = improved(longestFirst(alone));
+    const std::vector<std::size_t> fromJoined = improved(longestFirst(joined));
+    return better(loadsOf(fromJoined), loadsOf(fromAlone)) ? fromJoined : fromAlone;
+}
+
+GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
+                            const SubmissionFiles& files, const GradeOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    GradeReport report;
+    report.assignment = assignment.id;
+    report.title = assignment.title;
+    report.manual = rubric.manual;
+    report.source = files.shown;
+    report.sandbox = isolation::sandboxSupport().summary;
+    for (const HandedIn& extra : files.extras) {
+        if (!extra.ok) report.note += (report.note.empty() ? "" : "; ") + extra.refusal;
+    }
+
+    for (const std::string& name : options.onlyTests) {
+        if (!rubric.find(name)) throw UsageError("no test named '" + name + "' in " + rubric.path);
+    }
+    auto wanted = [&](const RubricTest& test) {
+        return options.onlyTests.empty() ||
+               std::find(options.onlyTests.begin(), options.onlyTests.end(), test.name) != options.onlyTests.end();
+    };
+    std::vector<const RubricTest*> selected;
+    for (const RubricTest& test : rubric.tests) {
+        if (!wanted(test)) continue;
+        if (options.includeHidden || test.visible()) {
+            selected.push_back(&test);
+        } else {
+            ++report.notRunCount;
+            report.notRunPoints += test.points;
+        }
+    }
+
+    // work/build: the student's file and its object (the compiler's folder); work/probe: the probe, which its
+    // sandbox is lent; work/judgeN: the rubric and the files handed in beside the source, which judge N's sandbox
+    // is lent - never a probe's. Each process gets an empty folder of its own as well.
+    TempDir work("simlab-" + assignment.id + "-", options.workRoot);
+    Workspace w{work.path(), work.path() + "/build", work.path() + "/probe", builder.probeHost()};
+    for (const std::string& dir : {w.build, w.probe}) fs::create_directory(dir);
+    // Each folder below is handed to the sandbox user of the process that works in it, for that run (0700); the
+    // probe's is simlab's alone (each test gets a copy of its own): where files are kept apart by their modes
+    // alone, no other student's test may read this one's probe.
+    makePassable(w.root);
+    fs::permissions(w.probe, fs::perms::owner_all);
+    if (options.progress) options.progress("building");
+    report.build =
+        builder.buildProbe(assignment, files.name, files.text, w.build, w.probe + "/probe.so", options.checkObject);
+    if (report.build.interrupted) throw Interrupted();
+    const Limits limits = options.limits.value_or(rubric.limits);
+
+    if (report.build.ok) {
+        report.tests = runJudges(assignment, rubric, files, selected, w, limits, options, &report.graderOutput);
+    } else {
+        const std::string& stage = report.build.stage;
+        report.status = stage == "check" ? "forbidden code" : stage == "link" ? "did not link" : "did not compile";
+        const std::string firstReason = report.build.log.substr(0, report.build.log.find('\n'));
+        for (const RubricTest* test : selected) {
+            TestResult t;
+            t.name = test->name;
+            t.visibility = test->visibility;
+            t.maxScore = test->points;
+            t.outcome = stage == "check" ? Outcome::Refused : Outcome::DidNotCompile;
+            t.reason = stage == "check" || report.build.stoppedByLimit ? firstReason : report.status;
+            report.tests.push_back(t);
+        }
+    }
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return report;
+}
+
+}  // namespace simlab::engine

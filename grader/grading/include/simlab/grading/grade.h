@@ -1,0 +1,140 @@
+// Grading one submission: build its probe, then run each rubric test as two limited processes - the judge, which
+// holds the tests and decides, and the probe, which holds the student's code and answers the judge's questions
+// with observations - and name how each test ended.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "simlab/build/build.h"
+#include "simlab/common/files.h"
+#include "simlab/build/manifest.h"
+#include "simlab/rubric/rubric.h"
+
+namespace simlab::engine {
+
+/// How a test ended. Every outcome has a name in the report.
+enum class Outcome {
+    Passed, Failed, TimedOut, Stalled, OutOfMemory, Crashed, OutputTruncated, BadReport, DidNotFinish,
+    DidNotCompile, Refused, MissingFile
+};
+
+/// "passed", "failed", "timed out", "stalled", "killed for memory", "crashed", "output truncated", "bad report",
+/// "did not finish", "did not compile", "refused", "missing file".
+std::string outcomeName(Outcome outcome);
+/// The outcome of that name; throws std::invalid_argument for another.
+Outcome outcomeNamed(const std::string& name);
+
+struct TestResult {
+    std::string name;
+    std::string visibility;
+    double maxScore = 0;
+    double score = 0;
+    double credit = 0;                  ///< the share of its points the judge gave, 0 to 1 (score = points x credit)
+    Outcome outcome = Outcome::DidNotFinish;
+    std::string reason;                 ///< one line: the measured figure, or why it failed
+    std::vector<std::string> feedback;  ///< further lines for the student
+    std::optional<double> figure;       ///< what the test measured, e.g. 14.8
+    std::string unit;                   ///< e.g. "digits"
+    double seconds = 0;                 ///< the test's time in its judge, its student's process included
+    double cpuSeconds = 0;              ///< the student's process's CPU time
+    /// The judge's shared questions the test used (observe::askShared), by digest: the seconds the answer took
+    /// where this test computed it, 0 where an earlier test of its judge had.
+    std::map<std::string, double> shared;
+    std::string output;                 ///< what the student's process printed (cut short), for instructors
+    /// Files the test made for the student's feedback (a drawing of the model): name and contents.
+    std::vector<std::pair<std::string, std::string>> attachments;
+};
+
+struct GradeReport {
+    std::string assignment;
+    std::string title;
+    std::string source;             ///< the file graded, as reports name it
+    BuildResult build;
+    std::vector<TestResult> tests;  ///< those that ran (all, or the visible ones in a self-check)
+    int notRunCount = 0;            ///< tests left for the instructor in a self-check
+    double notRunPoints = 0;
+    std::vector<ManualItem> manual; ///< the rubric's items graded by a person: pending, not in score()
+    double seconds = 0;
+    std::string status = "graded";  ///< or "misnamed file", "missing file", "unsafe file", "file too large",
+                                    ///< "did not compile", "forbidden code", "did not link"
+    std::string note;               ///< about the files: "graded apple.cpp; expected NewtonsApple.cpp"
+    std::string graderOutput;       ///< what the judge printed (Catch2's account of the tests), for instructors
+    std::string sandbox;            ///< the sandbox it ran in, one line (isolation::SandboxSupport::summary)
+
+    double score() const;
+    double maxScore() const;
+};
+
+/// What one test cost last time (TestResult's seconds and shared), a hint for sharing tests out.
+struct TestCost {
+    double seconds = 0;
+    std::map<std::string, double> shared;
+};
+
+/// A test's cost as the judge's end record and check's cost file hold it ({"seconds": S, "shared": {DIGEST: S}}):
+/// none unless its seconds are a finite number >= 0; of shared, only digests of up to 16 characters with such a
+/// number, at most 256.
+std::optional<TestCost> readTestCost(const nlohmann::json& record);
+
+struct GradeOptions {
+    bool includeHidden = false;          ///< run every test (instructors), not only the visible ones
+    std::optional<Limits> limits;        ///< instead of the rubric's
+    std::string workRoot;                ///< parent of the temporary directories; $TMPDIR when empty
+    std::vector<std::string> onlyTests;  ///< run just these tests (by name); all selected ones when empty
+    /// Judges run at once, each over its share of the tests (each test still alone in its own sandbox, as a user
+    /// of its own): a self-check uses the machine's cores; a class, graded a submission per core, uses 1.
+    int judges = 1;
+    /// How long each test took last time (by name) and the shared questions it used, to share the tests out so
+    /// that the judges end together: the longest first, each to the judge where it ends soonest, counting a shared
+    /// answer once per judge. Round-robin in the rubric's order without it.
+    std::map<std::string, TestCost> expected;
+    /// Told what grading is doing as it goes ("compiling", a test starting), for a person to watch; may be empty.
+    std::function<void(const std::string&)> progress;
+    /// The object check before the link (isolation::forbiddenCode). Off only where the corpus proves that the
+    /// isolation holds without it (`simlab-corpus invariants`); no command of simlab's turns it off.
+    bool checkObject = true;
+};
+
+/// The judge (0 to judges - 1) each of `tests` runs in, so that the last judge ends as soon as it can: round-robin
+/// in the given order without `expected`. With it, a judge's time is its tests' own plus each shared answer
+/// (observe::askShared) its tests ask for, once, so tests asking alike gain by meeting in one judge; the plan is
+/// the longest first, each to the judge where it would end soonest (tests alone, or joined by the answers they
+/// share while a group stays within a judge's even share), then improved by moving single tests and swapping
+/// pairs. A test `expected` does not name counts as long as the longest it does. A judge may be left without tests.
+std::vector<std::size_t> shareTests(const std::vector<std::string>& tests,
+                                    const std::map<std::string, TestCost>& expected, int judges);
+
+/// What a student handed in, read as data (readHandedIn): the source and the rubric's extra files.
+struct SubmissionFiles {
+    std::string name;              ///< the source's file name, as the compiler's messages give it
+    std::string shown;             ///< how reports name it (a path)
+    std::string text;              ///< its bytes
+    std::vector<HandedIn> extras;  ///< the rubric's extra files that are there, read or refused
+};
+
+/// Grade `files` for `assignment` with `rubric`. Never throws for anything the student's code or files do; throws
+/// UsageError for a test name the rubric does not have, Interrupted if isolation::interruptChildren() cut it short.
+GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
+                            const SubmissionFiles& files, const GradeOptions& options);
+
+/// What hidden tests must be kept from: everything simlab keeps from tests' code (courseSecrets: every
+/// assignment's hidden tests, solutions, judges and what the build made of them, the corpus, the object cache, the
+/// sources' history, the test logs), and `more` (the class's folder, the grades, a judge made apart). Tried as a
+/// test's probe is run (isolation::readableInSandbox, every file of a folder): where any of them can be read, one
+/// line saying which and how to close it, for the caller to refuse hidden tests with; empty where none can.
+std::string secretsExposed(const Manifest& manifest, const std::vector<std::string>& more = {});
+/// Round a score to hundredths, as reports show it.
+double roundScore(double points);
+
+/// The report of a submission that was not graded (status "missing file", "unsafe file", "file too large"):
+/// every selected test scores 0 with the note as its reason.
+GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, const std::string& status,
+                            const std::string& note, bool includeHidden);
+
+}  // namespace simlab::engine

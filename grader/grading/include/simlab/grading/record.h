@@ -1,0 +1,63 @@
+// What grading a class keeps: each student's record (the grade and what it was made from) and the class as a whole.
+// The batch (batch.h) makes them; the writers (writers.h) turn them into files.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "simlab/grading/grade.h"
+
+namespace simlab::engine {
+
+/// An item a person grades, for one student, as manual.csv holds it (manual.h).
+struct ManualGrade {
+    std::string name;
+    double maxPoints = 0;
+    std::optional<double> points;  ///< empty: pending
+    std::string comment;
+};
+
+/// A student's grade as kept in record.json and shown in the gradebook.
+struct StudentRecord {
+    std::string id;
+    std::string key;     ///< what the grade was made from; a different key means regrade
+    std::string basis;   ///< the part of the key that is not the student's: the grader, the rubric's tests, limits
+    std::string status;  ///< graded, misnamed file, missing file, unsafe file, file too large, did not compile,
+                         ///< forbidden code, did not link, grader error
+    std::string note;
+    std::string file;    ///< the file graded, relative to the student's folder
+    double score = 0;
+    double maxScore = 0;
+    double seconds = 0;
+    std::string compiler;  ///< the compiler's message: why it failed, or its warnings (first lines)
+    std::string sandbox;   ///< the sandbox its code ran in, one line (empty when nothing ran)
+    std::vector<TestResult> tests;
+    /// The rubric's manual items with the points manual.csv gives them (not in record.json: the sheet is the
+    /// instructor's); empty where there is no sheet (a self-check).
+    std::vector<ManualGrade> manual;
+
+    /// The tests' points and the manual points given so far.
+    double total() const;
+    /// Every point there is: the tests' and the manual items'.
+    double maxTotal() const;
+    /// The points of the manual items still pending.
+    double pendingPoints() const;
+};
+
+/// An entry of the submissions folder that is not a student: a hidden folder (its name starts with a dot), a
+/// file, a link. Listed, never dropped silently.
+struct Skipped {
+    std::string name;
+    std::string why;
+};
+
+struct ClassResult {
+    std::vector<StudentRecord> records;  ///< every student in the folder, sorted by id
+    std::vector<Skipped> skipped;
+    int graderErrors = 0;                ///< students simlab itself could not grade (recorded; retried next run)
+    int reused = 0;                      ///< records kept as they were: up to date with the files and the grader
+    std::vector<std::string> warnings;   ///< one line each, for the instructor (a manual.csv row that counts for nothing)
+};
+
+}  // namespace simlab::engine

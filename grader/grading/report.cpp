@@ -1,0 +1,178 @@
+#include "simlab/grading/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "simlab/common/text.h"
+
+namespace simlab::engine {
+
+namespace {
+
+int warningCount(const std::string& log) {
+    int count = 0;
+    for (std::size_t at = log.find(": warning: "); at != std::string::npos; at = log.find(": warning: ", at + 1)) ++count;
+    return count;
+}
+
+std::string buildLine(const BuildResult& b) {
+    char text[160];
+    const int warnings = warningCount(b.warnings);
+    const std::string counted = warnings == 0 ? "" : warnings == 1 ? " (1 warning)" : " (" + std::to_string(warnings) + " warnings)";
+    if (b.stage == "missing") {
+        std::snprintf(text, sizeof text, "nothing to build");
+    } else if (!b.ok) {
+        std::snprintf(text, sizeof text, "%s",
+                      b.stage == "link" ? "did not link" : b.stage == "check" ? "forbidden code" : "did not compile");
+    } else if (b.cached) {
+        std::snprintf(text, sizeof text, "compiled (unchanged since last time)%s, linked in %.1f s", counted.c_str(),
+                      b.linkSeconds);
+    } else {
+        std::snprintf(text, sizeof text, "compiled in %.1f s%s, linked in %.1f s", b.compileSeconds, counted.c_str(),
+                      b.linkSeconds);
+    }
+    return text;
+}
+
+// The compiler's warnings about the student's file, to show under the build line.
+std::string warningLines(const BuildResult& b, int maxLines) {
+    if (!b.ok || warningCount(b.warnings) == 0) return "";
+    return isolation::firstLines(printable(b.warnings, true), maxLines);
+}
+
+std::string indent(const std::string& text, const std::string& prefix) {
+    std::istringstream in(text);
+    std::string line, out;
+    while (std::getline(in, line)) out += prefix + line + "\n";
+    return out;
+}
+
+std::string notRunLine(const GradeReport& r) {
+    if (r.notRunCount == 0) return "";
+    return std::to_string(r.notRunCount) + (r.notRunCount == 1 ? " hidden test" : " hidden tests") + " worth " +
+           points(r.notRunPoints) + " points " + (r.notRunCount == 1 ? "is" : "are") +
+           " left for instructor grading.";
+}
+
+/// "Graded by hand, pending: 25 points (the schematic is clear, 10; ...)"; empty without manual items.
+std::string manualLine(const GradeReport& r) {
+    if (r.manual.empty()) return "";
+    double total = 0;
+    std::string items;
+    for (const ManualItem& m : r.manual) {
+        total += m.points;
+        items += (items.empty() ? "" : "; ") + m.name + ", " + points(m.points);
+    }
+    return "Graded by hand, pending: " + points(total) + " points (" + items + ").";
+}
+
+}  // namespace
+
+std::string points(double value) {
+    char text[32];
+    if (std::abs(value - std::round(value)) < 0.005) std::snprintf(text, sizeof text, "%.0f", value);
+    else std::snprintf(text, sizeof text, "%.2f", value);
+    std::string s = text;
+    if (s.find('.') != std::string::npos) {
+        while (s.back() == '0') s.pop_back();
+    }
+    return s;
+}
+
+std::string renderText(const GradeReport& r) {
+    std::ostringstream out;
+    out << r.title << " (" << r.assignment << "): " << (r.source.empty() ? "no file" : printable(r.source)) << "\n";
+    if (!r.note.empty()) out << "  " << printable(r.note) << "\n";
+    out << "  " << buildLine(r.build) << "\n";
+    if (!r.sandbox.empty() && r.build.ok) out << "  sandbox: " << r.sandbox << "\n";
+    if (!r.build.ok) out << indent(isolation::firstLines(printable(r.build.log, true), 12), "    | ");
+    out << indent(warningLines(r.build, 12), "    | ");
+    const std::string* previous = nullptr;
+    for (const TestResult& t : r.tests) {
+        char head[64];
+        std::snprintf(head, sizeof head, "  %5s/%-4s %-17s ", points(t.score).c_str(), points(t.maxScore).c_str(),
+                      outcomeName(t.outcome).c_str());
+        out << head << t.name;
+        // A failure that stops every test (a SIMLAB_TODO in buildModel, say) is spelled out once.
+        if (!t.reason.empty() && t.outcome != Outcome::DidNotCompile) {
+            const bool repeated = t.outcome != Outcome::Passed && previous && *previous == t.reason;
+            out << ": " << (repeated ? "(the same)" : printable(t.reason));
+            if (t.outcome != Outcome::Passed) previous = &t.reason;
+        }
+        out << "\n";
+        for (const std::string& line : t.feedback) out << "                            - " << printable(line) << "\n";
+    }
+    out << "Score: " << points(r.score()) << "/" << points(r.maxScore()) << "\n";
+    const std::string left = notRunLine(r);
+    if (!left.empty()) out << left << "\n";
+    const std::string manual = manualLine(r);
+    if (!manual.empty()) out << manual << "\n";
+    return out.str();
+}
+
+// What Gradescope shows of a test. Its specification: a "hidden" test is never shown to the student, and while any
+// test is hidden the student cannot see the total score either. So a test that carries points is never "hidden":
+// a hidden test of simlab's (not in the student bundle) is shown "after_due_date" unless the rubric chose
+// "after_published"; only a test worth nothing may stay hidden.
+std::string gradescopeVisibility(const TestResult& t) {
+    if (t.visibility == "hidden" && t.maxScore > 0) return "after_due_date";
+    return t.visibility;
+}
+
+nlohmann::json toGradescope(const GradeReport& r) {
+    nlohmann::json tests = nlohmann::json::array();
+    for (const TestResult& t : r.tests) {
+        std::string output = outcomeName(t.outcome);
+        if (!t.reason.empty() && t.outcome != Outcome::DidNotCompile) output += ": " + printable(t.reason);
+        for (const std::string& line : t.feedback) output += "\n- " + printable(line);
+        if (t.outcome == Outcome::DidNotCompile) output += "\n" + isolation::firstLines(printable(r.build.log, true), 12);
+        nlohmann::json test = {{"name", t.name},
+                               {"score", t.score},
+                               {"max_score", t.maxScore},
+                               {"status", t.outcome == Outcome::Passed ? "passed" : "failed"},
+                               {"output", output},
+                               {"visibility", gradescopeVisibility(t)},
+                               {"extra_data", {{"outcome", outcomeName(t.outcome)}, {"seconds", t.seconds}}}};
+        if (t.figure) {
+            test["extra_data"]["figure"] = *t.figure;
+            test["extra_data"]["unit"] = t.unit;
+        }
+        tests.push_back(test);
+    }
+    std::string output = r.note.empty() ? "" : printable(r.note) + "\n";
+    output += buildLine(r.build) + "\n";
+    if (!r.sandbox.empty()) output += "sandbox: " + r.sandbox + "\n";
+    if (!r.build.ok) output += isolation::firstLines(printable(r.build.log, true), 20);
+    output += warningLines(r.build, 20);
+    const std::string left = notRunLine(r);
+    if (!left.empty()) output += left + "\n";
+    const std::string manual = manualLine(r);
+    if (!manual.empty()) output += manual + "\n";
+    // The items a person grades: Gradescope grades them as questions of their own beside the autograder's score.
+    nlohmann::json pending = nlohmann::json::array();
+    double pendingPoints = 0;
+    for (const ManualItem& m : r.manual) {
+        pending.push_back({{"name", m.name}, {"max_score", m.points}, {"status", "pending"}});
+        pendingPoints += m.points;
+    }
+    // Everything is plain text (never HTML or Markdown a student's bytes could shape), valid UTF-8.
+    return {{"score", r.score()},
+            {"execution_time", static_cast<int>(std::ceil(r.seconds))},
+            {"output", output},
+            {"output_format", "text"},
+            {"test_output_format", "text"},
+            {"stdout_visibility", "hidden"},
+            {"tests", tests},
+            {"extra_data",
+             {{"assignment", r.assignment},
+              {"status", r.status},
+              {"sandbox", r.sandbox},
+              {"max_score", r.maxScore()},
+              {"hidden_tests_not_run", r.notRunCount},
+              {"hidden_points_not_run", r.notRunPoints},
+              {"manual_pending", pending},
+              {"manual_points_pending", pendingPoints}}}};
+}
+
+}  // namespace simlab::engine

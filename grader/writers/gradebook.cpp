@@ -1,0 +1,36 @@
+// gradebook.csv: one row per student, the points of each test and of each item graded by hand (manual.csv); the
+// score is the tests' points and the manual points given so far, the max every point there is.
+#include <algorithm>
+#include <sstream>
+
+#include "simlab/grading/report.h"
+#include "simlab/common/text.h"
+#include "simlab/writers/writers.h"
+
+namespace simlab::engine {
+
+std::string gradebookCsv(const Rubric& rubric, const std::vector<StudentRecord>& records) {
+    std::ostringstream out;
+    out << "student,score,max,status";
+    for (const RubricTest& t : rubric.tests) out << "," << csvCell(t.name);
+    // Items a person grades: a column each, "pending" until the instructor fills in the points.
+    for (const ManualItem& m : rubric.manual) out << "," << csvCell("manual (" + points(m.points) + "): " + m.name);
+    out << "\n";
+    for (const StudentRecord& r : records) {
+        out << csvCell(r.id) << "," << points(r.total()) << "," << points(r.maxTotal()) << "," << csvCell(r.status);
+        for (const RubricTest& t : rubric.tests) {
+            const auto found = std::find_if(r.tests.begin(), r.tests.end(),
+                                            [&](const TestResult& x) { return x.name == t.name; });
+            out << "," << (found == r.tests.end() ? "" : points(found->score));
+        }
+        for (const ManualItem& m : rubric.manual) {
+            const auto given = std::find_if(r.manual.begin(), r.manual.end(),
+                                            [&](const ManualGrade& g) { return g.name == m.name; });
+            out << "," << (given != r.manual.end() && given->points ? points(*given->points) : "pending");
+        }
+        out << "\n";
+    }
+    return out.str();
+}
+
+}  // namespace simlab::engine

@@ -1,0 +1,64 @@
+// record.json: what simlab keeps of a student's grade to resume a class, and reading it back.
+#include "common.h"
+#include "simlab/writers/writers.h"
+
+namespace simlab::engine {
+
+std::string recordJson(const StudentRecord& r) {
+    nlohmann::json tests = nlohmann::json::array();
+    for (const TestResult& t : r.tests) {
+        nlohmann::json j = {{"name", t.name},         {"visibility", t.visibility}, {"score", t.score},
+                            {"max_score", t.maxScore}, {"credit", t.credit}, {"outcome", outcomeName(t.outcome)},
+                            {"reason", t.reason},     {"feedback", t.feedback},     {"seconds", t.seconds}};
+        if (t.figure) j["figure"] = {{"value", *t.figure}, {"unit", t.unit}};
+        tests.push_back(j);
+    }
+    const nlohmann::json record = {{"id", r.id},       {"key", r.key},           {"basis", r.basis},  {"status", r.status},
+                                   {"note", r.note},   {"file", r.file},         {"score", r.score},
+                                   {"max_score", r.maxScore}, {"seconds", r.seconds}, {"compiler", r.compiler},
+                                   {"sandbox", r.sandbox},    {"tests", tests}};
+    return writers::jsonText(record);
+}
+
+std::optional<StudentRecord> readRecordJson(const std::string& text) {
+    try {
+        const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+        StudentRecord r;
+        r.id = j.at("id");
+        r.key = j.at("key");
+        r.basis = j.value("basis", "");
+        r.status = j.at("status");
+        r.note = j.at("note");
+        r.file = j.at("file");
+        r.score = j.at("score");
+        r.maxScore = j.at("max_score");
+        r.seconds = j.at("seconds");
+        r.compiler = j.at("compiler");
+        r.sandbox = j.value("sandbox", "");
+        for (const nlohmann::json& t : j.at("tests")) {
+            TestResult x;
+            x.name = t.at("name");
+            x.visibility = t.at("visibility");
+            x.score = t.at("score");
+            x.maxScore = t.at("max_score");
+            x.outcome = outcomeNamed(t.at("outcome"));
+            // A record of an older simlab has no credit: its share of the points, or all or nothing.
+            x.credit = t.contains("credit") ? t["credit"].get<double>()
+                       : x.maxScore > 0     ? x.score / x.maxScore
+                                            : x.outcome == Outcome::Passed ? 1.0 : 0.0;
+            x.reason = t.at("reason");
+            x.feedback = t.at("feedback").get<std::vector<std::string>>();
+            x.seconds = t.at("seconds");
+            if (t.contains("figure")) {
+                x.figure = t["figure"].at("value").get<double>();
+                x.unit = t["figure"].at("unit");
+            }
+            r.tests.push_back(x);
+        }
+        return r;
+    } catch (const std::exception&) {
+        return std::nullopt;  // damaged or from another version: regrade
+    }
+}
+
+}  // namespace simlab::engine
