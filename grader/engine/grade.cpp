@@ -15,6 +15,7 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <optional>
 #include <set>
 #include <thread>
@@ -577,218 +578,73 @@ std::optional<TestCost> readTestCost(const nlohmann::json& record) {
 
 std::vector<std::size_t> shareTests(const std::vector<std::string>& tests,
                                     const std::map<std::string, TestCost>& expected, int judgeCount) {
-    const std::size_t judges = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(judgeCount, 1)), 1,
-                                                       std::max<std::size_t>(tests.size(), 1));
     const std::size_t n = tests.size();
+    const std::size_t judges =
+        std::clamp<std::size_t>(static_cast<std::size_t>(std::max(judgeCount, 1)), 1, std::max<std::size_t>(n, 1));
     std::vector<std::size_t> judgeOf(n);
     if (expected.empty() || judges == 1) {
         for (std::size_t i = 0; i < n; ++i) judgeOf[i] = i % judges;
         return judgeOf;
     }
-    // A shared answer costs what it took where it was computed, once in each judge whose tests ask for it; a
-    // test's own cost is its time less the answers it computed.
+    // A shared answer costs what it took where it was computed; a test's own cost is its time less the answers it
+    // computed, and a test not seen before is as long as the longest.
     std::map<std::string, double> answerCost;
     double longest = 0;
     for (const auto& [name, cost] : expected) {
         longest = std::max(longest, cost.seconds);
         for (const auto& [digest, seconds] : cost.shared) answerCost[digest] = std::max(answerCost[digest], seconds);
     }
-    std::vector<double> own(n, longest);  // a test not seen before: as long as the longest
-    std::vector<std::set<std::string>> asks(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const auto found = expected.find(tests[i]);
-        if (found == expected.end()) continue;
-        double computed = 0;
-        for (const auto& [digest, seconds] : found->second.shared) {
-            computed += seconds;
-            asks[i].insert(digest);
-        }
-        own[i] = std::max(found->second.seconds - computed, 0.0);
-    }
-    auto costOf = [&](double ownSeconds, const std::set<std::string>& answers) {
-        for (const std::string& digest : answers) ownSeconds += answerCost[digest];
-        return ownSeconds;
-    };
-    // How long the judges of a plan would take, the longest first; a plan is better when its longest judge ends
-    // sooner, then when the judges' time together is less.
-    auto loadsOf = [&](const std::vector<std::size_t>& plan) {
-        std::vector<double> owns(judges, 0.0);
-        std::vector<std::set<std::string>> answers(judges);
-        for (std::size_t i = 0; i < n; ++i) {
-            owns[plan[i]] += own[i];
-            answers[plan[i]].insert(asks[i].begin(), asks[i].end());
-        }
-        std::vector<double> load(judges);
-        for (std::size_t k = 0; k < judges; ++k) load[k] = costOf(owns[k], answers[k]);
-        std::sort(load.rbegin(), load.rend());
-        return load;
-    };
-    auto better = [](const std::vector<double>& a, const std::vector<double>& b) {
-        constexpr double kTie = 1e-9;
-        if (a.front() < b.front() - kTie) return true;
-        if (a.front() > b.front() + kTie) return false;
-        double sumA = 0, sumB = 0;
-        for (double x : a) sumA += x;
-        for (double x : b) sumB += x;
-        return sumA < sumB - kTie;
-    };
-    // The costliest group first, each to the judge where it would end soonest (the first such judge on a tie),
-    // counting only the answers that judge does not have yet.
-    auto longestFirst = [&](const std::vector<std::vector<std::size_t>>& groups) {
-        std::vector<std::size_t> order(groups.size());
-        std::vector<double> groupOwn(groups.size(), 0.0);
-        std::vector<std::set<std::string>> groupAsks(groups.size());
-        for (std::size_t g = 0; g < groups.size(); ++g) {
-            order[g] = g;
-            for (std::size_t i : groups[g]) {
-                groupOwn[g] += own[i];
-                groupAsks[g].insert(asks[i].begin(), asks[i].end());
-            }
-        }
-        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-            return costOf(groupOwn[a], groupAsks[a]) > costOf(groupOwn[b], groupAsks[b]);
-        });
-        std::vector<double> load(judges, 0.0);
-        std::vector<std::set<std::string>> answered(judges);
-        std::vector<std::size_t> plan(n, 0);
-        for (std::size_t g : order) {
-            std::size_t best = 0;
-            double bestEnd = 0;
-            for (std::size_t k = 0; k < judges; ++k) {
-                double end = load[k] + groupOwn[g];
-                for (const std::string& digest : groupAsks[g]) {
-                    if (!answered[k].count(digest)) end += answerCost[digest];
-                }
-                if (k == 0 || end < bestEnd) {
-                    best = k;
-                    bestEnd = end;
-                }
-            }
-            load[best] = bestEnd;
-            answered[best].insert(groupAsks[g].begin(), groupAsks[g].end());
-            for (std::size_t i : groups[g]) plan[i] = best;
-        }
-        return plan;
-    };
-    // Then single tests moved, and pairs swapped, between judges while that makes the plan better. A move updates
-    // the two judges' times from how many of each judge's tests ask for each answer, so a try costs the moved
-    // test's answers, not the whole plan.
-    std::map<std::string, std::size_t> answerIndex;
-    for (std::size_t i = 0; i < n; ++i) {
-        for (const std::string& digest : asks[i]) answerIndex.emplace(digest, answerIndex.size());
-    }
-    std::vector<double> costByIndex(answerIndex.size());
-    for (const auto& [digest, index] : answerIndex) costByIndex[index] = answerCost[digest];
-    std::vector<std::vector<std::size_t>> asked(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        for (const std::string& digest : asks[i]) asked[i].push_back(answerIndex.at(digest));
-    }
-    auto improved = [&](std::vector<std::size_t> plan) {
-        std::vector<std::vector<int>> askers(judges, std::vector<int>(answerIndex.size(), 0));
-        std::vector<double> load(judges, 0.0);
-        auto place = [&](std::size_t i, std::size_t k, int sign) {  // test i joins (+1) or leaves (-1) judge k
-            load[k] += sign * own[i];
-            for (std::size_t d : asked[i]) {
-                const bool firstOrLast = sign > 0 ? askers[k][d] == 0 : askers[k][d] == 1;
-                if (firstOrLast) load[k] += sign * costByIndex[d];
-                askers[k][d] += sign;
-            }
-        };
-        auto move = [&](std::size_t i, std::size_t k) {
-            place(i, plan[i], -1);
-            plan[i] = k;
-            place(i, k, +1);
-        };
-        auto sorted = [&] {
-            std::vector<double> v = load;
-            std::sort(v.rbegin(), v.rend());
-            return v;
-        };
-        for (std::size_t i = 0; i < n; ++i) place(i, plan[i], +1);
-        std::vector<double> now = sorted();
-        for (int round = 0; round < 50; ++round) {
-            bool changed = false;
-            for (std::size_t i = 0; i < n; ++i) {
-                for (std::size_t k = 0; k < judges; ++k) {
-                    if (k == plan[i]) continue;
-                    const std::size_t was = plan[i];
-                    move(i, k);
-                    const std::vector<double> moved = sorted();
-                    if (better(moved, now)) {
-                        now = moved;
-                        changed = true;
-                    } else {
-                        move(i, was);
-                    }
-                }
-            }
-            for (std::size_t i = 0; i < n; ++i) {
-                for (std::size_t j = i + 1; j < n; ++j) {
-                    const std::size_t a = plan[i], b = plan[j];
-                    if (a == b) continue;
-                    move(i, b);
-                    move(j, a);
-                    const std::vector<double> swapped = sorted();
-                    if (better(swapped, now)) {
-                        now = swapped;
-                        changed = true;
-                    } else {
-                        move(j, b);
-                        move(i, a);
-                    }
-                }
-            }
-            if (!changed) break;
-        }
-        return plan;
-    };
-    // Two starts: each test alone, and tests asking for the same answer joined (the costliest answers first) while
-    // the group stays within a judge's even share of the whole; the better plan either improves to.
-    std::vector<std::vector<std::size_t>> alone(n);
-    for (std::size_t i = 0; i < n; ++i) alone[i] = {i};
+    // Tests group by shared work: a test joins the others asking its answers when computing them again elsewhere
+    // would cost more than the test itself. Each group is named by its first test.
     std::vector<std::size_t> group(n);
-    for (std::size_t i = 0; i < n; ++i) group[i] = i;
+    std::iota(group.begin(), group.end(), 0);
     auto root = [&](std::size_t i) {
         while (group[i] != i) i = group[i] = group[group[i]];
         return i;
     };
-    std::vector<double> groupOwn = own;
-    std::vector<std::set<std::string>> groupAsks = asks;
-    std::set<std::string> everyAnswer;
-    double total = 0;
+    std::vector<double> own(n, longest);
+    std::vector<std::set<std::string>> asks(n);
+    std::map<std::string, std::size_t> askedFirstBy;
     for (std::size_t i = 0; i < n; ++i) {
-        total += own[i];
-        everyAnswer.insert(asks[i].begin(), asks[i].end());
-    }
-    const double evenShare = costOf(total, everyAnswer) / static_cast<double>(judges);
-    std::vector<std::string> byCost(everyAnswer.begin(), everyAnswer.end());
-    std::stable_sort(byCost.begin(), byCost.end(),
-                     [&](const std::string& a, const std::string& b) { return answerCost[a] > answerCost[b]; });
-    for (const std::string& digest : byCost) {
-        std::size_t first = n;
-        for (std::size_t i = 0; i < n; ++i) {
-            if (!asks[i].count(digest)) continue;
-            if (first == n) {
-                first = i;
-                continue;
-            }
-            const std::size_t a = root(first), b = root(i);
-            if (a == b) continue;
-            std::set<std::string> joined = groupAsks[a];
-            joined.insert(groupAsks[b].begin(), groupAsks[b].end());
-            if (costOf(groupOwn[a] + groupOwn[b], joined) > evenShare) continue;
-            group[b] = a;
-            groupOwn[a] += groupOwn[b];
-            groupAsks[a] = std::move(joined);
+        const auto found = expected.find(tests[i]);
+        if (found == expected.end()) continue;
+        double computed = 0, again = 0;
+        for (const auto& [digest, seconds] : found->second.shared) {
+            computed += seconds;
+            again += answerCost[digest];
+            asks[i].insert(digest);
+        }
+        own[i] = std::max(found->second.seconds - computed, 0.0);
+        if (again <= own[i]) continue;
+        for (const std::string& digest : asks[i]) {
+            const std::size_t a = root(askedFirstBy.emplace(digest, i).first->second), b = root(i);
+            group[std::max(a, b)] = std::min(a, b);
         }
     }
-    std::map<std::size_t, std::vector<std::size_t>> byRoot;
-    for (std::size_t i = 0; i < n; ++i) byRoot[root(i)].push_back(i);
-    std::vector<std::vector<std::size_t>> joined;
-    for (auto& [r, members] : byRoot) joined.push_back(std::move(members));
-    const std::vector<std::size_t> fromAlone = improved(longestFirst(alone));
-    const std::vector<std::size_t> fromJoined = improved(longestFirst(joined));
-    return better(loadsOf(fromJoined), loadsOf(fromAlone)) ? fromJoined : fromAlone;
+    // A group costs its tests' own time and each answer they ask once; the costliest goes first, to the judge with
+    // the least so far (the first such judge on a tie).
+    std::map<std::size_t, double> groupOwn;
+    std::map<std::size_t, std::set<std::string>> groupAsks;
+    for (std::size_t i = 0; i < n; ++i) {
+        groupOwn[root(i)] += own[i];
+        groupAsks[root(i)].insert(asks[i].begin(), asks[i].end());
+    }
+    std::vector<std::pair<std::size_t, double>> costliest;
+    for (auto& [first, seconds] : groupOwn) {
+        for (const std::string& digest : groupAsks[first]) seconds += answerCost[digest];
+        costliest.emplace_back(first, seconds);
+    }
+    std::stable_sort(costliest.begin(), costliest.end(),
+                     [](const auto& a, const auto& b) { return a.second > b.second; });
+    std::vector<double> load(judges, 0.0);
+    std::map<std::size_t, std::size_t> judgeOfGroup;
+    for (const auto& [first, seconds] : costliest) {
+        const std::size_t k = static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
+        load[k] += seconds;
+        judgeOfGroup[first] = k;
+    }
+    for (std::size_t i = 0; i < n; ++i) judgeOf[i] = judgeOfGroup[root(i)];
+    return judgeOf;
 }
 
 GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
