@@ -255,110 +255,112 @@ void makePassable(const std::string& path) {
     fs::permissions(path, fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec, ignored);
 }
 
-// The tests of one submission: one judge runs them all, in turn, and at each test's first question asks for a
-// probe of that test's own on the socket at its descriptor 6. The server below starts the probe with two new pipes
-// - requests to its descriptor 4, answers from its descriptor 5 - and hands the judge their other ends.
-// `judgeFiles` is this judge's own copy of the rubric and the files handed in (its user owns it for the run), and
-// `tag` sets its processes' folders apart from those of judges running beside it.
-std::vector<TestResult> runTests(const Assignment& assignment, const std::vector<const RubricTest*>& tests,
-                                 const Workspace& w, const std::string& judgeFiles, const std::string& tag,
-                                 const Limits& limits, std::string* graderOutput,
-                                 const std::function<void(const std::string&)>& progress) {
-    int socket[2];
-    if (::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, socket) != 0) {
-        throw std::runtime_error(std::string("cannot create a socket: ") + std::strerror(errno));
-    }
+// What every probe and the probes' server run with.
+const std::vector<std::string> kProbeEnvironment = {"PATH=/usr/bin:/bin", "TMPDIR=/tmp", "LC_ALL=C"};
+
+// Where the sandbox allows, the tests' probes are forked from one host started for them (TestServer): each is still
+// a process of its own, as a user of its own, and loads the probe only once it is. None where it does not.
+std::unique_ptr<isolation::TestServer> startProbeServer(const Workspace& w, const std::string& tag,
+                                                        const Limits& limits, std::size_t tests) {
+    if (!isolation::testServers()) return nullptr;
+    const std::string program = w.root + "/" + tag + "server";
+    const std::string home = w.root + "/" + tag + "probes";
+    fs::create_directory(program);
+    fs::create_directory(home);
+    writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
+    fs::permissions(program, fs::perms::owner_all | fs::perms::others_exec);
+    fs::permissions(program + "/probe.so", fs::perms::owner_read | fs::perms::others_read);
+    // Each test's child makes its folder there, through root's group (probe_host.cpp): nothing else of it is
+    // any test's to write or list.
+    fs::permissions(home,
+                    fs::perms::owner_all | fs::perms::group_write | fs::perms::group_exec | fs::perms::others_exec);
+    isolation::ProcessRequest server;
+    server.argv = {w.host, "--serve", program + "/probe.so"};
+    server.env = kProbeEnvironment;
+    server.env.push_back("HOME=" + home);
+    server.workDir = home;
+    server.limits = serverLimits(limits, tests);
+    server.readOnlyPaths = {program, w.host};
+    server.scratchWorkDir = true;
+    return std::make_unique<isolation::TestServer>(server);
+}
+
+// One test's probe (number `number` of its judge), forked from `server` where there is one.
+isolation::ProcessResult runProbe(isolation::ProcessRequest probe, isolation::TestServer* server, const Workspace& w,
+                                  const std::string& tag, int number) {
+    std::optional<isolation::ProcessResult> result;
+    if (server) result = server->run(probe);
+    if (result) return std::move(*result);
+    // A host of its own, run as a user of its own, loading a copy of the probe that user owns while it runs (a
+    // test's user never touches another's files, even as one test ends and the next begins).
+    const std::string dir = w.root + "/" + tag + "test" + std::to_string(number);
+    const std::string program = w.root + "/" + tag + "program" + std::to_string(number);
+    fs::create_directory(dir);
+    fs::create_directory(program);
+    writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
+    fs::permissions(program + "/probe.so", fs::perms::owner_read);
+    probe.argv = {w.host, program + "/probe.so"};
+    probe.env = kProbeEnvironment;
+    probe.env.push_back("HOME=" + dir);
+    probe.workDir = dir;
+    probe.readOnlyPaths = {program, w.host};
+    probe.handOver = {program};
+    return isolation::runProcess(probe);
+}
+
+// The probes a judge's tests asked for, each run in a thread of its own; their results by test name.
+struct ProbeRuns {
     std::mutex lock;
-    std::map<std::string, isolation::ProcessResult> probes;  // by test name
+    std::map<std::string, isolation::ProcessResult> results;
     std::vector<std::thread> running;
     int started = 0;
+};
 
-    // Where the sandbox allows, the tests' probes are forked from one host started for them (TestServer): each is
-    // still a process of its own, as a user of its own, and loads the probe only once it is. The server starts
-    // while the judge does.
-    std::unique_ptr<isolation::TestServer> probeServer;
-    const std::vector<std::string> probeEnvironment = {"PATH=/usr/bin:/bin", "TMPDIR=/tmp", "LC_ALL=C"};
-    if (isolation::testServers()) {
-        const std::string program = w.root + "/" + tag + "server";
-        const std::string home = w.root + "/" + tag + "probes";
-        fs::create_directory(program);
-        fs::create_directory(home);
-        writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
-        fs::permissions(program, fs::perms::owner_all | fs::perms::others_exec);
-        fs::permissions(program + "/probe.so", fs::perms::owner_read | fs::perms::others_read);
-        // Each test's child makes its folder there, through root's group (probe_host.cpp): nothing else of it is
-        // any test's to write or list.
-        fs::permissions(home, fs::perms::owner_all | fs::perms::group_write | fs::perms::group_exec |
-                                  fs::perms::others_exec);
-        isolation::ProcessRequest server;
-        server.argv = {w.host, "--serve", program + "/probe.so"};
-        server.env = probeEnvironment;
-        server.env.push_back("HOME=" + home);
-        server.workDir = home;
-        server.limits = serverLimits(limits, tests.size());
-        server.readOnlyPaths = {program, w.host};
-        server.scratchWorkDir = true;
-        probeServer = std::make_unique<isolation::TestServer>(server);
-    }
-
-    // Each message from the judge is "probe <test>"; each reply carries the judge's ends of the new pipes.
-    std::thread server([&] {
-        char message[1024];
-        for (;;) {
-            const ssize_t n = ::recv(socket[0], message, sizeof message, 0);
-            if (n < 0 && errno == EINTR) continue;
-            if (n <= 6 || std::string(message, 6) != "probe ") break;  // the judge is done (or confused)
-            const std::string test(message + 6, static_cast<std::size_t>(n) - 6);
-            if (progress) progress(test);
-            int requests[2] = {-1, -1}, answers[2] = {-1, -1};
-            if (::pipe2(requests, O_CLOEXEC) != 0 || ::pipe2(answers, O_CLOEXEC) != 0) {
-                for (int fd : {requests[0], requests[1], answers[0], answers[1]}) {
-                    if (fd >= 0) ::close(fd);
-                }
-                break;  // the judge reads the socket's end: its tests say the process could not start
+// Answers the judge on `socket` until it is done: each message is "probe <test>"; each reply carries the judge's
+// ends of two new pipes, whose other ends are the new probe's descriptors 4 (requests) and 5 (answers).
+void serveProbes(int socket, ProbeRuns& runs, isolation::TestServer* server, const Workspace& w, const std::string& tag,
+                 const Limits& limits, const std::function<void(const std::string&)>& progress) {
+    char message[1024];
+    for (;;) {
+        const ssize_t n = ::recv(socket, message, sizeof message, 0);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 6 || std::string(message, 6) != "probe ") break;  // the judge is done (or confused)
+        const std::string test(message + 6, static_cast<std::size_t>(n) - 6);
+        if (progress) progress(test);
+        int requests[2] = {-1, -1}, answers[2] = {-1, -1};
+        if (::pipe2(requests, O_CLOEXEC) != 0 || ::pipe2(answers, O_CLOEXEC) != 0) {
+            for (int fd : {requests[0], requests[1], answers[0], answers[1]}) {
+                if (fd >= 0) ::close(fd);
             }
-            isolation::ProcessRequest probe;
-            probe.limits = limits;
-            probe.reportChannel = true;
-            probe.passFds = {{4, requests[0]}, {5, answers[1]}};
-            probe.isolate = true;
-            probe.scratchWorkDir = true;
-            running.emplace_back([&, probe, test, number = ++started]() mutable {
-                std::optional<isolation::ProcessResult> result;
-                if (probeServer) result = probeServer->run(probe);
-                if (!result) {
-                    // A host of its own, run as a user of its own, loading a copy of the probe that user owns while
-                    // it runs (a test's user never touches another's files, even as one test ends and the next
-                    // begins).
-                    const std::string dir = w.root + "/" + tag + "test" + std::to_string(number);
-                    const std::string program = w.root + "/" + tag + "program" + std::to_string(number);
-                    fs::create_directory(dir);
-                    fs::create_directory(program);
-                    writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
-                    fs::permissions(program + "/probe.so", fs::perms::owner_read);
-                    probe.argv = {w.host, program + "/probe.so"};
-                    probe.env = probeEnvironment;
-                    probe.env.push_back("HOME=" + dir);
-                    probe.workDir = dir;
-                    probe.readOnlyPaths = {program, w.host};
-                    probe.handOver = {program};
-                    result = isolation::runProcess(probe);
-                }
-                std::lock_guard<std::mutex> guard(lock);
-                probes[test] = std::move(*result);
-            });
-            // The judge's ends: sent, then closed here, so that each pipe ends when its last holder does.
-            const int ends[2] = {requests[1], answers[0]};
-            const char byte = 'p';
-            const bool sent = isolation::sendWithDescriptors(socket[0], &byte, 1, {ends[0], ends[1]});
-            ::close(ends[0]);
-            ::close(ends[1]);
-            if (!sent) break;
+            break;  // the judge reads the socket's end: its tests say the process could not start
         }
-    });
+        isolation::ProcessRequest probe;
+        probe.limits = limits;
+        probe.reportChannel = true;
+        probe.passFds = {{4, requests[0]}, {5, answers[1]}};
+        probe.isolate = true;
+        probe.scratchWorkDir = true;
+        runs.running.emplace_back([&runs, server, &w, &tag, probe, test, number = ++runs.started] {
+            isolation::ProcessResult result = runProbe(probe, server, w, tag, number);
+            std::lock_guard<std::mutex> guard(runs.lock);
+            runs.results[test] = std::move(result);
+        });
+        // The judge's ends: sent, then closed here, so that each pipe ends when its last holder does.
+        const int ends[2] = {requests[1], answers[0]};
+        const char byte = 'p';
+        const bool sent = isolation::sendWithDescriptors(socket, &byte, 1, {ends[0], ends[1]});
+        ::close(ends[0]);
+        ::close(ends[1]);
+        if (!sent) break;
+    }
+}
 
-    // The judge runs from a copy of its own, in the folder its user owns for the run: the course's judge may be
-    // (and, graded without bubblewrap or Landlock, must be) unreadable to every other user.
+// The judge of `tests`, asking for probes on the socket `probes` at its descriptor 6. It runs from a copy of its
+// own, in the folder its user owns for the run: the course's judge may be (and, graded without bubblewrap or
+// Landlock, must be) unreadable to every other user.
+isolation::ProcessResult runJudge(const Assignment& assignment, const std::vector<const RubricTest*>& tests,
+                                  const Workspace& w, const std::string& judgeFiles, const std::string& tag,
+                                  const Limits& limits, int probes) {
     const std::string judgeProgram = judgeFiles + "/judge";
     writeFileAtomically(judgeProgram, readFile(assignment.judge));
     fs::permissions(judgeProgram, fs::perms::owner_all);
@@ -374,28 +376,47 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     fs::create_directory(judge.workDir);
     judge.limits = judgeLimits(limits, tests.size());
     judge.reportChannel = true;
-    judge.passFds = {{6, socket[1]}};
+    judge.passFds = {{6, probes}};
     judge.isolate = true;
     judge.readOnlyPaths = {judgeProgram, judgeFiles};
     judge.handOver = {judgeFiles};  // its user's alone: no probe can read the judge, the rubric or the files
     judge.scratchWorkDir = true;
-    const isolation::ProcessResult judged = isolation::runProcess(judge);
+    return isolation::runProcess(judge);
+}
+
+// The tests of one submission: one judge runs them all, in turn, and at each test's first question asks for a
+// probe of that test's own on the socket at its descriptor 6 (serveProbes). `judgeFiles` is this judge's own copy
+// of the rubric and the files handed in (its user owns it for the run), and `tag` sets its processes' folders apart
+// from those of judges running beside it.
+std::vector<TestResult> runTests(const Assignment& assignment, const std::vector<const RubricTest*>& tests,
+                                 const Workspace& w, const std::string& judgeFiles, const std::string& tag,
+                                 const Limits& limits, std::string* graderOutput,
+                                 const std::function<void(const std::string&)>& progress) {
+    int socket[2];
+    if (::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, socket) != 0) {
+        throw std::runtime_error(std::string("cannot create a socket: ") + std::strerror(errno));
+    }
+    ProbeRuns probes;
+    // The server starts while the judge does.
+    std::unique_ptr<isolation::TestServer> probeServer = startProbeServer(w, tag, limits, tests.size());
+    std::thread server([&] { serveProbes(socket[0], probes, probeServer.get(), w, tag, limits, progress); });
+    const isolation::ProcessResult judged = runJudge(assignment, tests, w, judgeFiles, tag, limits, socket[1]);
     ::shutdown(socket[0], SHUT_RDWR);  // ends the server's wait, should the judge have left a copy behind
     server.join();
-    for (std::thread& t : running) t.join();
+    for (std::thread& t : probes.running) t.join();
     probeServer.reset();
     ::close(socket[0]);
     *graderOutput = judged.output;
 
     bool interrupted = judged.interrupted;
-    for (const auto& [test, probe] : probes) interrupted = interrupted || probe.interrupted;
+    for (const auto& [test, probe] : probes.results) interrupted = interrupted || probe.interrupted;
     if (interrupted) throw Interrupted();
     std::vector<TestResult> results;
     for (const RubricTest* test : tests) {
         isolation::ProcessResult probe;  // a test that asked nothing had no probe: as if one had started and ended cleanly
         probe.started = true;
         probe.exitCode = 0;
-        if (const auto found = probes.find(test->name); found != probes.end()) probe = found->second;
+        if (const auto found = probes.results.find(test->name); found != probes.results.end()) probe = found->second;
         results.push_back(interpret(*test, probe, judged, limits));
     }
     return results;
