@@ -1,6 +1,6 @@
-# simlab's grading engine, its isolation and its command pass clang-tidy with the project's .clang-tidy (every finding
-# an error): each of their translation units in the build's compile_commands.json, read without GCC's precompiled
-# header (clang cannot read it; every source includes what it uses), two at a time.
+# simlab's grading engine, its isolation, its studies and its command pass clang-tidy with the project's .clang-tidy
+# (every finding an error): each of their translation units in the build's compile_commands.json, read without GCC's
+# precompiled header (clang cannot read it; every source includes what it uses), two at a time.
 #   clang_tidy.sh            every unit (the whole suite's lint/clang-tidy, about two minutes)
 #   clang_tidy.sh --changed  the units holding a source changed since the branch left main, or not yet committed
 #                            (lint/clang-tidy-changed, in the `pr` tier)
@@ -22,7 +22,7 @@ for e in json.load(open(sys.argv[1])):
     f = e["file"]
     if not any(part in f for part in ("/simlab_engine.dir/", "/simlab.dir/", "/simlab_isolation.dir/",
                                       "/simlab-probe-host.dir/", "/simlab_filter.dir/", "/grader/engine/",
-                                      "/grader/cli/", "/grader/isolation/")):
+                                      "/grader/cli/", "/grader/isolation/", "/grader/study/")):
         continue
     if f.endswith("cmake_pch.hxx.cxx") or f.endswith("cmake_pch.hxx.cpp"):
         continue
