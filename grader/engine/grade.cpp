@@ -603,10 +603,8 @@ std::vector<std::size_t> shareTests(const std::vector<std::string>& tests,
     const std::size_t judges =
         std::clamp<std::size_t>(static_cast<std::size_t>(std::max(judgeCount, 1)), 1, std::max<std::size_t>(n, 1));
     std::vector<std::size_t> judgeOf(n);
-    if (expected.empty() || judges == 1) {
-        for (std::size_t i = 0; i < n; ++i) judgeOf[i] = i % judges;
-        return judgeOf;
-    }
+    for (std::size_t i = 0; i < n; ++i) judgeOf[i] = i % judges;
+    if (expected.empty() || judges == 1) return judgeOf;
     // A shared answer costs what it took where it was computed; a test's own cost is its time less the answers it
     // computed, and a test not seen before is as long as the longest.
     std::map<std::string, double> answerCost;
@@ -616,13 +614,9 @@ std::vector<std::size_t> shareTests(const std::vector<std::string>& tests,
         for (const auto& [digest, seconds] : cost.shared) answerCost[digest] = std::max(answerCost[digest], seconds);
     }
     // Tests group by shared work: a test joins the others asking its answers when computing them again elsewhere
-    // would cost more than the test itself. Each group is named by its first test.
+    // would cost more than the test itself. A group is named by its first test (group[i], test i's).
     std::vector<std::size_t> group(n);
     std::iota(group.begin(), group.end(), 0);
-    auto root = [&](std::size_t i) {
-        while (group[i] != i) i = group[i] = group[group[i]];
-        return i;
-    };
     std::vector<double> own(n, longest);
     std::vector<std::set<std::string>> asks(n);
     std::map<std::string, std::size_t> askedFirstBy;
@@ -638,33 +632,32 @@ std::vector<std::size_t> shareTests(const std::vector<std::string>& tests,
         own[i] = std::max(found->second.seconds - computed, 0.0);
         if (again <= own[i]) continue;
         for (const std::string& digest : asks[i]) {
-            const std::size_t a = root(askedFirstBy.emplace(digest, i).first->second), b = root(i);
-            group[std::max(a, b)] = std::min(a, b);
+            const std::size_t a = group[askedFirstBy.emplace(digest, i).first->second], b = group[i];
+            for (std::size_t& g : group) g = g == std::max(a, b) ? std::min(a, b) : g;
         }
     }
     // A group costs its tests' own time and each answer they ask once; the costliest goes first, to the judge with
     // the least so far (the first such judge on a tie).
-    std::map<std::size_t, double> groupOwn;
-    std::map<std::size_t, std::set<std::string>> groupAsks;
+    std::map<std::size_t, std::pair<double, std::set<std::string>>> groups;
     for (std::size_t i = 0; i < n; ++i) {
-        groupOwn[root(i)] += own[i];
-        groupAsks[root(i)].insert(asks[i].begin(), asks[i].end());
+        groups[group[i]].first += own[i];
+        groups[group[i]].second.insert(asks[i].begin(), asks[i].end());
     }
     std::vector<std::pair<std::size_t, double>> costliest;
-    for (auto& [first, seconds] : groupOwn) {
-        for (const std::string& digest : groupAsks[first]) seconds += answerCost[digest];
-        costliest.emplace_back(first, seconds);
+    for (auto& [first, cost] : groups) {
+        for (const std::string& digest : cost.second) cost.first += answerCost[digest];
+        costliest.emplace_back(first, cost.first);
     }
     std::stable_sort(costliest.begin(), costliest.end(),
                      [](const auto& a, const auto& b) { return a.second > b.second; });
     std::vector<double> load(judges, 0.0);
-    std::map<std::size_t, std::size_t> judgeOfGroup;
     for (const auto& [first, seconds] : costliest) {
-        const std::size_t k = static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
-        load[k] += seconds;
-        judgeOfGroup[first] = k;
+        const auto least = std::min_element(load.begin(), load.end());
+        *least += seconds;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (group[i] == first) judgeOf[i] = static_cast<std::size_t>(least - load.begin());
+        }
     }
-    for (std::size_t i = 0; i < n; ++i) judgeOf[i] = judgeOfGroup[root(i)];
     return judgeOf;
 }
 
