@@ -17,7 +17,7 @@ inline double since(Clock::time_point start) { return std::chrono::duration<doub
 
 /// `argv` in `dir`, as simlab's own tools run: an hour of CPU and wall time, room for a class's processes.
 inline isolation::ProcessResult run(const std::vector<std::string>& argv, const std::string& dir,
-                                 const std::vector<std::string>& env = {}) {
+                                    const std::vector<std::string>& env = {}) {
     isolation::ProcessRequest r;
     r.argv = argv;
     r.env = isolation::childEnvironment(env);
@@ -38,6 +38,12 @@ inline std::vector<std::string> sandboxChoices() {
         if (const char* value = std::getenv(name)) passed.push_back(std::string(name) + "=" + value);
     }
     return passed;
+}
+
+/// The simlab a benchmark measures: this build's unless --simlab names another.
+inline std::string& simlabPath() {
+    static std::string path = SIMLAB_SIMLAB_PATH;
+    return path;
 }
 
 inline double median(std::vector<double> v) {

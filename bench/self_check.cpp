@@ -8,11 +8,12 @@
 //   floor   the fastest compile + link + run this machine allows: the same file compiled with the same command,
 //           linked with the visible tests and the probe's handlers into one program, run once, every visible test
 //           in one process, no sandbox and nothing in between
+// With --against SIMLAB the second way is that other simlab's check instead of the floor (two builds compared).
 // It prints each run's seconds, then per lab the medians, their ratio and the target, and the machine's load.
 // The files: the reference solutions of apple, projectile and book, and for biosim a project of a student's own
 // (the corpus's honest-shank: the worked boot's answer alone runs for seconds).
 //
-//   build/bin/bench-self-check [--rounds R] [--lab LAB]...
+//   build/bin/bench-self-check [--rounds R] [--lab LAB]... [--simlab SIMLAB] [--against SIMLAB]
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -70,9 +71,9 @@ void edit(const std::string& file, const std::string& tag) {
     std::ofstream(file, std::ios::app) << "// " << tag << "\n";
 }
 
-double check(const std::string& dir, const std::string& lab, const std::string& source) {
+double check(const std::string& simlab, const std::string& dir, const std::string& lab, const std::string& source) {
     const auto start = Clock::now();
-    const ProcessResult r = run({SIMLAB_SIMLAB_PATH, "check", lab, source}, dir, sandboxChoices());
+    const ProcessResult r = run({simlab, "check", lab, source}, dir, sandboxChoices());
     const double seconds = since(start);
     if (!r.exitedCleanly()) throw std::runtime_error("simlab check " + lab + " failed:\n" + r.output);
     return seconds;
@@ -115,7 +116,11 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--lab", labs, "labs to measure (default: all four)")
         ->check(CLI::IsMember({"apple", "projectile", "book", "biosim"}));
+    app.add_option("--simlab", simlabPath(), "the simlab to measure")->capture_default_str();
+    std::string against;
+    app.add_option("--against", against, "another simlab whose check is measured instead of the floor");
     CLI11_PARSE(app, argc, argv);
+    const std::string other = against.empty() ? "floor" : "against";
 
     try {
         const Manifest manifest = loadManifest();
@@ -123,12 +128,13 @@ int main(int argc, char** argv) {
         // This run's own mark in every edit: no file a check compiles was ever compiled before, by an earlier run
         // of the benchmark either (the object cache would answer it without the compiler).
         const std::string run = std::to_string(std::random_device{}()) + std::to_string(std::random_device{}());
-        std::printf("simlab check after a one-line edit against the floor, %d rounds per lab, alternating; "
-                    "%u cores, load %s; sandbox: %s\n",
-                    rounds, std::thread::hardware_concurrency(), loadAverage().c_str(),
-                    sandboxSupport().summary.c_str());
+        std::printf(
+            "simlab check after a one-line edit against %s, %d rounds per lab, alternating; "
+            "%u cores, load %s; sandbox: %s\n",
+            against.empty() ? "the floor" : against.c_str(), rounds, std::thread::hardware_concurrency(),
+            loadAverage().c_str(), sandboxSupport().summary.c_str());
         std::printf("compiler: %s\n\n", manifest.compile.front().c_str());
-        std::printf("%-11s %-6s %8s %8s\n", "lab", "round", "check s", "floor s");
+        std::printf("%-11s %-6s %8s %8s\n", "lab", "round", "check s", (other + " s").c_str());
         struct Row {
             std::string lab;
             double check, floor;
@@ -139,14 +145,20 @@ int main(int argc, char** argv) {
             const std::string dir = work.path() + "/" + lab;
             const std::vector<std::string> files = writeSubmission(manifest, a, dir);
             const std::string source = dir + "/" + files.front();
-            check(dir, lab, source);  // once to warm the caches a student's machine has warm (not the object's)
+            // Once to warm the caches a student's machine has warm (not the object's).
+            check(simlabPath(), dir, lab, source);
+            if (!against.empty()) check(against, dir, lab, source);
             std::vector<double> checks, floors;
             for (int r = 0; r < rounds; ++r) {
                 double c = 0, f = 0;
                 for (int half = 0; half < 2; ++half) {
                     const bool checkTurn = (half == 0) == (r % 2 == 0);
                     edit(source, lab + " round " + std::to_string(r) + (checkTurn ? " check " : " floor ") + run);
-                    (checkTurn ? c : f) = checkTurn ? check(dir, lab, source) : floorRun(manifest, a, dir, source);
+                    if (checkTurn) {
+                        c = check(simlabPath(), dir, lab, source);
+                    } else {
+                        f = against.empty() ? floorRun(manifest, a, dir, source) : check(against, dir, lab, source);
+                    }
                 }
                 checks.push_back(c);
                 floors.push_back(f);
@@ -155,7 +167,7 @@ int main(int argc, char** argv) {
             }
             rows.push_back({lab, median(checks), median(floors)});
         }
-        std::printf("\n%-11s %10s %10s %8s %8s\n", "lab", "check (s)", "floor (s)", "ratio", "target");
+        std::printf("\n%-11s %10s %10s %8s %8s\n", "lab", "check (s)", (other + " (s)").c_str(), "ratio", "target");
         for (const Row& row : rows) {
             std::printf("%-11s %10.2f %10.2f %8.2f %8.1f\n", row.lab.c_str(), row.check, row.floor,
                         row.check / row.floor, kTargets.at(row.lab));

@@ -58,10 +58,8 @@ void addAutograde(CLI::App& app);
 void addExport(CLI::App& app);
 void addProject(CLI::App& app);
 void addStudy(CLI::App& app);
-/// Builds the lab's study program where it is not built yet (`study trade` builds them the same way).
-using StudiesBuilder = std::function<void(const engine::Manifest&, const engine::Assignment&)>;
 /// `simlab study long-run` (study_long_run.cpp), under `study`.
-void addStudyLongRun(CLI::App& study, const StudiesBuilder& ensureBuilt);
+void addStudyLongRun(CLI::App& study);
 void addPlot(CLI::App& app);
 void addSimilarity(CLI::App& app);
 void addSlurm(CLI::App& app);

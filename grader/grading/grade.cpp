@@ -15,6 +15,7 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <optional>
 #include <set>
 #include <thread>
@@ -254,110 +255,112 @@ void makePassable(const std::string& path) {
     fs::permissions(path, fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec, ignored);
 }
 
-// The tests of one submission: one judge runs them all, in turn, and at each test's first question asks for a
-// probe of that test's own on the socket at its descriptor 6. The server below starts the probe with two new pipes
-// - requests to its descriptor 4, answers from its descriptor 5 - and hands the judge their other ends.
-// `judgeFiles` is this judge's own copy of the rubric and the files handed in (its user owns it for the run), and
-// `tag` sets its processes' folders apart from those of judges running beside it.
-std::vector<TestResult> runTests(const Assignment& assignment, const std::vector<const RubricTest*>& tests,
-                                 const Workspace& w, const std::string& judgeFiles, const std::string& tag,
-                                 const Limits& limits, std::string* graderOutput,
-                                 const std::function<void(const std::string&)>& progress) {
-    int socket[2];
-    if (::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, socket) != 0) {
-        throw std::runtime_error(std::string("cannot create a socket: ") + std::strerror(errno));
-    }
+// What every probe and the probes' server run with.
+const std::vector<std::string> kProbeEnvironment = {"PATH=/usr/bin:/bin", "TMPDIR=/tmp", "LC_ALL=C"};
+
+// Where the sandbox allows, the tests' probes are forked from one host started for them (TestServer): each is still
+// a process of its own, as a user of its own, and loads the probe only once it is. None where it does not.
+std::unique_ptr<isolation::TestServer> startProbeServer(const Workspace& w, const std::string& tag,
+                                                        const Limits& limits, std::size_t tests) {
+    if (!isolation::testServers()) return nullptr;
+    const std::string program = w.root + "/" + tag + "server";
+    const std::string home = w.root + "/" + tag + "probes";
+    fs::create_directory(program);
+    fs::create_directory(home);
+    writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
+    fs::permissions(program, fs::perms::owner_all | fs::perms::others_exec);
+    fs::permissions(program + "/probe.so", fs::perms::owner_read | fs::perms::others_read);
+    // Each test's child makes its folder there, through root's group (probe_host.cpp): nothing else of it is
+    // any test's to write or list.
+    fs::permissions(home,
+                    fs::perms::owner_all | fs::perms::group_write | fs::perms::group_exec | fs::perms::others_exec);
+    isolation::ProcessRequest server;
+    server.argv = {w.host, "--serve", program + "/probe.so"};
+    server.env = kProbeEnvironment;
+    server.env.push_back("HOME=" + home);
+    server.workDir = home;
+    server.limits = serverLimits(limits, tests);
+    server.readOnlyPaths = {program, w.host};
+    server.scratchWorkDir = true;
+    return std::make_unique<isolation::TestServer>(server);
+}
+
+// One test's probe (number `number` of its judge), forked from `server` where there is one.
+isolation::ProcessResult runProbe(isolation::ProcessRequest probe, isolation::TestServer* server, const Workspace& w,
+                                  const std::string& tag, int number) {
+    std::optional<isolation::ProcessResult> result;
+    if (server) result = server->run(probe);
+    if (result) return std::move(*result);
+    // A host of its own, run as a user of its own, loading a copy of the probe that user owns while it runs (a
+    // test's user never touches another's files, even as one test ends and the next begins).
+    const std::string dir = w.root + "/" + tag + "test" + std::to_string(number);
+    const std::string program = w.root + "/" + tag + "program" + std::to_string(number);
+    fs::create_directory(dir);
+    fs::create_directory(program);
+    writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
+    fs::permissions(program + "/probe.so", fs::perms::owner_read);
+    probe.argv = {w.host, program + "/probe.so"};
+    probe.env = kProbeEnvironment;
+    probe.env.push_back("HOME=" + dir);
+    probe.workDir = dir;
+    probe.readOnlyPaths = {program, w.host};
+    probe.handOver = {program};
+    return isolation::runProcess(probe);
+}
+
+// The probes a judge's tests asked for, each run in a thread of its own; their results by test name.
+struct ProbeRuns {
     std::mutex lock;
-    std::map<std::string, isolation::ProcessResult> probes;  // by test name
+    std::map<std::string, isolation::ProcessResult> results;
     std::vector<std::thread> running;
     int started = 0;
+};
 
-    // Where the sandbox allows, the tests' probes are forked from one host started for them (TestServer): each is
-    // still a process of its own, as a user of its own, and loads the probe only once it is. The server starts
-    // while the judge does.
-    std::unique_ptr<isolation::TestServer> probeServer;
-    const std::vector<std::string> probeEnvironment = {"PATH=/usr/bin:/bin", "TMPDIR=/tmp", "LC_ALL=C"};
-    if (isolation::testServers()) {
-        const std::string program = w.root + "/" + tag + "server";
-        const std::string home = w.root + "/" + tag + "probes";
-        fs::create_directory(program);
-        fs::create_directory(home);
-        writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
-        fs::permissions(program, fs::perms::owner_all | fs::perms::others_exec);
-        fs::permissions(program + "/probe.so", fs::perms::owner_read | fs::perms::others_read);
-        // Each test's child makes its folder there, through root's group (probe_host.cpp): nothing else of it is
-        // any test's to write or list.
-        fs::permissions(home, fs::perms::owner_all | fs::perms::group_write | fs::perms::group_exec |
-                                  fs::perms::others_exec);
-        isolation::ProcessRequest server;
-        server.argv = {w.host, "--serve", program + "/probe.so"};
-        server.env = probeEnvironment;
-        server.env.push_back("HOME=" + home);
-        server.workDir = home;
-        server.limits = serverLimits(limits, tests.size());
-        server.readOnlyPaths = {program, w.host};
-        server.scratchWorkDir = true;
-        probeServer = std::make_unique<isolation::TestServer>(server);
-    }
-
-    // Each message from the judge is "probe <test>"; each reply carries the judge's ends of the new pipes.
-    std::thread server([&] {
-        char message[1024];
-        for (;;) {
-            const ssize_t n = ::recv(socket[0], message, sizeof message, 0);
-            if (n < 0 && errno == EINTR) continue;
-            if (n <= 6 || std::string(message, 6) != "probe ") break;  // the judge is done (or confused)
-            const std::string test(message + 6, static_cast<std::size_t>(n) - 6);
-            if (progress) progress(test);
-            int requests[2] = {-1, -1}, answers[2] = {-1, -1};
-            if (::pipe2(requests, O_CLOEXEC) != 0 || ::pipe2(answers, O_CLOEXEC) != 0) {
-                for (int fd : {requests[0], requests[1], answers[0], answers[1]}) {
-                    if (fd >= 0) ::close(fd);
-                }
-                break;  // the judge reads the socket's end: its tests say the process could not start
+// Answers the judge on `socket` until it is done: each message is "probe <test>"; each reply carries the judge's
+// ends of two new pipes, whose other ends are the new probe's descriptors 4 (requests) and 5 (answers).
+void serveProbes(int socket, ProbeRuns& runs, isolation::TestServer* server, const Workspace& w, const std::string& tag,
+                 const Limits& limits, const std::function<void(const std::string&)>& progress) {
+    char message[1024];
+    for (;;) {
+        const ssize_t n = ::recv(socket, message, sizeof message, 0);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 6 || std::string(message, 6) != "probe ") break;  // the judge is done (or confused)
+        const std::string test(message + 6, static_cast<std::size_t>(n) - 6);
+        if (progress) progress(test);
+        int requests[2] = {-1, -1}, answers[2] = {-1, -1};
+        if (::pipe2(requests, O_CLOEXEC) != 0 || ::pipe2(answers, O_CLOEXEC) != 0) {
+            for (int fd : {requests[0], requests[1], answers[0], answers[1]}) {
+                if (fd >= 0) ::close(fd);
             }
-            isolation::ProcessRequest probe;
-            probe.limits = limits;
-            probe.reportChannel = true;
-            probe.passFds = {{4, requests[0]}, {5, answers[1]}};
-            probe.isolate = true;
-            probe.scratchWorkDir = true;
-            running.emplace_back([&, probe, test, number = ++started]() mutable {
-                std::optional<isolation::ProcessResult> result;
-                if (probeServer) result = probeServer->run(probe);
-                if (!result) {
-                    // A host of its own, run as a user of its own, loading a copy of the probe that user owns while
-                    // it runs (a test's user never touches another's files, even as one test ends and the next
-                    // begins).
-                    const std::string dir = w.root + "/" + tag + "test" + std::to_string(number);
-                    const std::string program = w.root + "/" + tag + "program" + std::to_string(number);
-                    fs::create_directory(dir);
-                    fs::create_directory(program);
-                    writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
-                    fs::permissions(program + "/probe.so", fs::perms::owner_read);
-                    probe.argv = {w.host, program + "/probe.so"};
-                    probe.env = probeEnvironment;
-                    probe.env.push_back("HOME=" + dir);
-                    probe.workDir = dir;
-                    probe.readOnlyPaths = {program, w.host};
-                    probe.handOver = {program};
-                    result = isolation::runProcess(probe);
-                }
-                std::lock_guard<std::mutex> guard(lock);
-                probes[test] = std::move(*result);
-            });
-            // The judge's ends: sent, then closed here, so that each pipe ends when its last holder does.
-            const int ends[2] = {requests[1], answers[0]};
-            const char byte = 'p';
-            const bool sent = isolation::sendWithDescriptors(socket[0], &byte, 1, {ends[0], ends[1]});
-            ::close(ends[0]);
-            ::close(ends[1]);
-            if (!sent) break;
+            break;  // the judge reads the socket's end: its tests say the process could not start
         }
-    });
+        isolation::ProcessRequest probe;
+        probe.limits = limits;
+        probe.reportChannel = true;
+        probe.passFds = {{4, requests[0]}, {5, answers[1]}};
+        probe.isolate = true;
+        probe.scratchWorkDir = true;
+        runs.running.emplace_back([&runs, server, &w, &tag, probe, test, number = ++runs.started] {
+            isolation::ProcessResult result = runProbe(probe, server, w, tag, number);
+            std::lock_guard<std::mutex> guard(runs.lock);
+            runs.results[test] = std::move(result);
+        });
+        // The judge's ends: sent, then closed here, so that each pipe ends when its last holder does.
+        const int ends[2] = {requests[1], answers[0]};
+        const char byte = 'p';
+        const bool sent = isolation::sendWithDescriptors(socket, &byte, 1, {ends[0], ends[1]});
+        ::close(ends[0]);
+        ::close(ends[1]);
+        if (!sent) break;
+    }
+}
 
-    // The judge runs from a copy of its own, in the folder its user owns for the run: the course's judge may be
-    // (and, graded without bubblewrap or Landlock, must be) unreadable to every other user.
+// The judge of `tests`, asking for probes on the socket `probes` at its descriptor 6. It runs from a copy of its
+// own, in the folder its user owns for the run: the course's judge may be (and, graded without bubblewrap or
+// Landlock, must be) unreadable to every other user.
+isolation::ProcessResult runJudge(const Assignment& assignment, const std::vector<const RubricTest*>& tests,
+                                  const Workspace& w, const std::string& judgeFiles, const std::string& tag,
+                                  const Limits& limits, int probes) {
     const std::string judgeProgram = judgeFiles + "/judge";
     writeFileAtomically(judgeProgram, readFile(assignment.judge));
     fs::permissions(judgeProgram, fs::perms::owner_all);
@@ -373,28 +376,47 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     fs::create_directory(judge.workDir);
     judge.limits = judgeLimits(limits, tests.size());
     judge.reportChannel = true;
-    judge.passFds = {{6, socket[1]}};
+    judge.passFds = {{6, probes}};
     judge.isolate = true;
     judge.readOnlyPaths = {judgeProgram, judgeFiles};
     judge.handOver = {judgeFiles};  // its user's alone: no probe can read the judge, the rubric or the files
     judge.scratchWorkDir = true;
-    const isolation::ProcessResult judged = isolation::runProcess(judge);
+    return isolation::runProcess(judge);
+}
+
+// The tests of one submission: one judge runs them all, in turn, and at each test's first question asks for a
+// probe of that test's own on the socket at its descriptor 6 (serveProbes). `judgeFiles` is this judge's own copy
+// of the rubric and the files handed in (its user owns it for the run), and `tag` sets its processes' folders apart
+// from those of judges running beside it.
+std::vector<TestResult> runTests(const Assignment& assignment, const std::vector<const RubricTest*>& tests,
+                                 const Workspace& w, const std::string& judgeFiles, const std::string& tag,
+                                 const Limits& limits, std::string* graderOutput,
+                                 const std::function<void(const std::string&)>& progress) {
+    int socket[2];
+    if (::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, socket) != 0) {
+        throw std::runtime_error(std::string("cannot create a socket: ") + std::strerror(errno));
+    }
+    ProbeRuns probes;
+    // The server starts while the judge does.
+    std::unique_ptr<isolation::TestServer> probeServer = startProbeServer(w, tag, limits, tests.size());
+    std::thread server([&] { serveProbes(socket[0], probes, probeServer.get(), w, tag, limits, progress); });
+    const isolation::ProcessResult judged = runJudge(assignment, tests, w, judgeFiles, tag, limits, socket[1]);
     ::shutdown(socket[0], SHUT_RDWR);  // ends the server's wait, should the judge have left a copy behind
     server.join();
-    for (std::thread& t : running) t.join();
+    for (std::thread& t : probes.running) t.join();
     probeServer.reset();
     ::close(socket[0]);
     *graderOutput = judged.output;
 
     bool interrupted = judged.interrupted;
-    for (const auto& [test, probe] : probes) interrupted = interrupted || probe.interrupted;
+    for (const auto& [test, probe] : probes.results) interrupted = interrupted || probe.interrupted;
     if (interrupted) throw Interrupted();
     std::vector<TestResult> results;
     for (const RubricTest* test : tests) {
         isolation::ProcessResult probe;  // a test that asked nothing had no probe: as if one had started and ended cleanly
         probe.started = true;
         probe.exitCode = 0;
-        if (const auto found = probes.find(test->name); found != probes.end()) probe = found->second;
+        if (const auto found = probes.results.find(test->name); found != probes.results.end()) probe = found->second;
         results.push_back(interpret(*test, probe, judged, limits));
     }
     return results;
@@ -577,218 +599,66 @@ std::optional<TestCost> readTestCost(const nlohmann::json& record) {
 
 std::vector<std::size_t> shareTests(const std::vector<std::string>& tests,
                                     const std::map<std::string, TestCost>& expected, int judgeCount) {
-    const std::size_t judges = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(judgeCount, 1)), 1,
-                                                       std::max<std::size_t>(tests.size(), 1));
     const std::size_t n = tests.size();
+    const std::size_t judges =
+        std::clamp<std::size_t>(static_cast<std::size_t>(std::max(judgeCount, 1)), 1, std::max<std::size_t>(n, 1));
     std::vector<std::size_t> judgeOf(n);
-    if (expected.empty() || judges == 1) {
-        for (std::size_t i = 0; i < n; ++i) judgeOf[i] = i % judges;
-        return judgeOf;
-    }
-    // A shared answer costs what it took where it was computed, once in each judge whose tests ask for it; a
-    // test's own cost is its time less the answers it computed.
+    for (std::size_t i = 0; i < n; ++i) judgeOf[i] = i % judges;
+    if (expected.empty() || judges == 1) return judgeOf;
+    // A shared answer costs what it took where it was computed; a test's own cost is its time less the answers it
+    // computed, and a test not seen before is as long as the longest.
     std::map<std::string, double> answerCost;
     double longest = 0;
     for (const auto& [name, cost] : expected) {
         longest = std::max(longest, cost.seconds);
         for (const auto& [digest, seconds] : cost.shared) answerCost[digest] = std::max(answerCost[digest], seconds);
     }
-    std::vector<double> own(n, longest);  // a test not seen before: as long as the longest
+    // Tests group by shared work: a test joins the others asking its answers when computing them again elsewhere
+    // would cost more than the test itself. A group is named by its first test (group[i], test i's).
+    std::vector<std::size_t> group(n);
+    std::iota(group.begin(), group.end(), 0);
+    std::vector<double> own(n, longest);
     std::vector<std::set<std::string>> asks(n);
+    std::map<std::string, std::size_t> askedFirstBy;
     for (std::size_t i = 0; i < n; ++i) {
         const auto found = expected.find(tests[i]);
         if (found == expected.end()) continue;
-        double computed = 0;
+        double computed = 0, again = 0;
         for (const auto& [digest, seconds] : found->second.shared) {
             computed += seconds;
+            again += answerCost[digest];
             asks[i].insert(digest);
         }
         own[i] = std::max(found->second.seconds - computed, 0.0);
+        if (again <= own[i]) continue;
+        for (const std::string& digest : asks[i]) {
+            const std::size_t a = group[askedFirstBy.emplace(digest, i).first->second], b = group[i];
+            for (std::size_t& g : group) g = g == std::max(a, b) ? std::min(a, b) : g;
+        }
     }
-    auto costOf = [&](double ownSeconds, const std::set<std::string>& answers) {
-        for (const std::string& digest : answers) ownSeconds += answerCost[digest];
-        return ownSeconds;
-    };
-    // How long the judges of a plan would take, the longest first; a plan is better when its longest judge ends
-    // sooner, then when the judges' time together is less.
-    auto loadsOf = [&](const std::vector<std::size_t>& plan) {
-        std::vector<double> owns(judges, 0.0);
-        std::vector<std::set<std::string>> answers(judges);
+    // A group costs its tests' own time and each answer they ask once; the costliest goes first, to the judge with
+    // the least so far (the first such judge on a tie).
+    std::map<std::size_t, std::pair<double, std::set<std::string>>> groups;
+    for (std::size_t i = 0; i < n; ++i) {
+        groups[group[i]].first += own[i];
+        groups[group[i]].second.insert(asks[i].begin(), asks[i].end());
+    }
+    std::vector<std::pair<std::size_t, double>> costliest;
+    for (auto& [first, cost] : groups) {
+        for (const std::string& digest : cost.second) cost.first += answerCost[digest];
+        costliest.emplace_back(first, cost.first);
+    }
+    std::stable_sort(costliest.begin(), costliest.end(),
+                     [](const auto& a, const auto& b) { return a.second > b.second; });
+    std::vector<double> load(judges, 0.0);
+    for (const auto& [first, seconds] : costliest) {
+        const auto least = std::min_element(load.begin(), load.end());
+        *least += seconds;
         for (std::size_t i = 0; i < n; ++i) {
-            owns[plan[i]] += own[i];
-            answers[plan[i]].insert(asks[i].begin(), asks[i].end());
-        }
-        std::vector<double> load(judges);
-        for (std::size_t k = 0; k < judges; ++k) load[k] = costOf(owns[k], answers[k]);
-        std::sort(load.rbegin(), load.rend());
-        return load;
-    };
-    auto better = [](const std::vector<double>& a, const std::vector<double>& b) {
-        constexpr double kTie = 1e-9;
-        if (a.front() < b.front() - kTie) return true;
-        if (a.front() > b.front() + kTie) return false;
-        double sumA = 0, sumB = 0;
-        for (double x : a) sumA += x;
-        for (double x : b) sumB += x;
-        return sumA < sumB - kTie;
-    };
-    // The costliest group first, each to the judge where it would end soonest (the first such judge on a tie),
-    // counting only the answers that judge does not have yet.
-    auto longestFirst = [&](const std::vector<std::vector<std::size_t>>& groups) {
-        std::vector<std::size_t> order(groups.size());
-        std::vector<double> groupOwn(groups.size(), 0.0);
-        std::vector<std::set<std::string>> groupAsks(groups.size());
-        for (std::size_t g = 0; g < groups.size(); ++g) {
-            order[g] = g;
-            for (std::size_t i : groups[g]) {
-                groupOwn[g] += own[i];
-                groupAsks[g].insert(asks[i].begin(), asks[i].end());
-            }
-        }
-        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-            return costOf(groupOwn[a], groupAsks[a]) > costOf(groupOwn[b], groupAsks[b]);
-        });
-        std::vector<double> load(judges, 0.0);
-        std::vector<std::set<std::string>> answered(judges);
-        std::vector<std::size_t> plan(n, 0);
-        for (std::size_t g : order) {
-            std::size_t best = 0;
-            double bestEnd = 0;
-            for (std::size_t k = 0; k < judges; ++k) {
-                double end = load[k] + groupOwn[g];
-                for (const std::string& digest : groupAsks[g]) {
-                    if (!answered[k].count(digest)) end += answerCost[digest];
-                }
-                if (k == 0 || end < bestEnd) {
-                    best = k;
-                    bestEnd = end;
-                }
-            }
-            load[best] = bestEnd;
-            answered[best].insert(groupAsks[g].begin(), groupAsks[g].end());
-            for (std::size_t i : groups[g]) plan[i] = best;
-        }
-        return plan;
-    };
-    // Then single tests moved, and pairs swapped, between judges while that makes the plan better. A move updates
-    // the two judges' times from how many of each judge's tests ask for each answer, so a try costs the moved
-    // test's answers, not the whole plan.
-    std::map<std::string, std::size_t> answerIndex;
-    for (std::size_t i = 0; i < n; ++i) {
-        for (const std::string& digest : asks[i]) answerIndex.emplace(digest, answerIndex.size());
-    }
-    std::vector<double> costByIndex(answerIndex.size());
-    for (const auto& [digest, index] : answerIndex) costByIndex[index] = answerCost[digest];
-    std::vector<std::vector<std::size_t>> asked(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        for (const std::string& digest : asks[i]) asked[i].push_back(answerIndex.at(digest));
-    }
-    auto improved = [&](std::vector<std::size_t> plan) {
-        std::vector<std::vector<int>> askers(judges, std::vector<int>(answerIndex.size(), 0));
-        std::vector<double> load(judges, 0.0);
-        auto place = [&](std::size_t i, std::size_t k, int sign) {  // test i joins (+1) or leaves (-1) judge k
-            load[k] += sign * own[i];
-            for (std::size_t d : asked[i]) {
-                const bool firstOrLast = sign > 0 ? askers[k][d] == 0 : askers[k][d] == 1;
-                if (firstOrLast) load[k] += sign * costByIndex[d];
-                askers[k][d] += sign;
-            }
-        };
-        auto move = [&](std::size_t i, std::size_t k) {
-            place(i, plan[i], -1);
-            plan[i] = k;
-            place(i, k, +1);
-        };
-        auto sorted = [&] {
-            std::vector<double> v = load;
-            std::sort(v.rbegin(), v.rend());
-            return v;
-        };
-        for (std::size_t i = 0; i < n; ++i) place(i, plan[i], +1);
-        std::vector<double> now = sorted();
-        for (int round = 0; round < 50; ++round) {
-            bool changed = false;
-            for (std::size_t i = 0; i < n; ++i) {
-                for (std::size_t k = 0; k < judges; ++k) {
-                    if (k == plan[i]) continue;
-                    const std::size_t was = plan[i];
-                    move(i, k);
-                    const std::vector<double> moved = sorted();
-                    if (better(moved, now)) {
-                        now = moved;
-                        changed = true;
-                    } else {
-                        move(i, was);
-                    }
-                }
-            }
-            for (std::size_t i = 0; i < n; ++i) {
-                for (std::size_t j = i + 1; j < n; ++j) {
-                    const std::size_t a = plan[i], b = plan[j];
-                    if (a == b) continue;
-                    move(i, b);
-                    move(j, a);
-                    const std::vector<double> swapped = sorted();
-                    if (better(swapped, now)) {
-                        now = swapped;
-                        changed = true;
-                    } else {
-                        move(j, b);
-                        move(i, a);
-                    }
-                }
-            }
-            if (!changed) break;
-        }
-        return plan;
-    };
-    // Two starts: each test alone, and tests asking for the same answer joined (the costliest answers first) while
-    // the group stays within a judge's even share of the whole; the better plan either improves to.
-    std::vector<std::vector<std::size_t>> alone(n);
-    for (std::size_t i = 0; i < n; ++i) alone[i] = {i};
-    std::vector<std::size_t> group(n);
-    for (std::size_t i = 0; i < n; ++i) group[i] = i;
-    auto root = [&](std::size_t i) {
-        while (group[i] != i) i = group[i] = group[group[i]];
-        return i;
-    };
-    std::vector<double> groupOwn = own;
-    std::vector<std::set<std::string>> groupAsks = asks;
-    std::set<std::string> everyAnswer;
-    double total = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        total += own[i];
-        everyAnswer.insert(asks[i].begin(), asks[i].end());
-    }
-    const double evenShare = costOf(total, everyAnswer) / static_cast<double>(judges);
-    std::vector<std::string> byCost(everyAnswer.begin(), everyAnswer.end());
-    std::stable_sort(byCost.begin(), byCost.end(),
-                     [&](const std::string& a, const std::string& b) { return answerCost[a] > answerCost[b]; });
-    for (const std::string& digest : byCost) {
-        std::size_t first = n;
-        for (std::size_t i = 0; i < n; ++i) {
-            if (!asks[i].count(digest)) continue;
-            if (first == n) {
-                first = i;
-                continue;
-            }
-            const std::size_t a = root(first), b = root(i);
-            if (a == b) continue;
-            std::set<std::string> joined = groupAsks[a];
-            joined.insert(groupAsks[b].begin(), groupAsks[b].end());
-            if (costOf(groupOwn[a] + groupOwn[b], joined) > evenShare) continue;
-            group[b] = a;
-            groupOwn[a] += groupOwn[b];
-            groupAsks[a] = std::move(joined);
+            if (group[i] == first) judgeOf[i] = static_cast<std::size_t>(least - load.begin());
         }
     }
-    std::map<std::size_t, std::vector<std::size_t>> byRoot;
-    for (std::size_t i = 0; i < n; ++i) byRoot[root(i)].push_back(i);
-    std::vector<std::vector<std::size_t>> joined;
-    for (auto& [r, members] : byRoot) joined.push_back(std::move(members));
-    const std::vector<std::size_t> fromAlone = improved(longestFirst(alone));
-    const std::vector<std::size_t> fromJoined = improved(longestFirst(joined));
-    return better(loadsOf(fromJoined), loadsOf(fromAlone)) ? fromJoined : fromAlone;
+    return judgeOf;
 }
 
 GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment, const Rubric& rubric,

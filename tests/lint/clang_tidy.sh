@@ -21,7 +21,7 @@ entries = []
 for e in json.load(open(sys.argv[1])):
     f = e["file"]
     if not any(part in f for part in ("/simlab_engine.dir/", "/simlab.dir/", "/simlab_isolation.dir/",
-                                      "/simlab-probe-host.dir/", "/simlab_filter.dir/", "/simlab_common.dir/",
+                                      "/simlab-probe-host.dir/", "/simlab_filter.dir/", "/simlab_common.dir/", "/simlab_study_engine.dir/",
                                       "/grader/build/", "/grader/grading/", "/grader/writers/", "/grader/course/",
                                       "/grader/common/", "/grader/study/", "/grader/cli/", "/grader/isolation/")):
         continue

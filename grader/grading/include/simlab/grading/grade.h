@@ -91,8 +91,7 @@ struct GradeOptions {
     /// of its own): a self-check uses the machine's cores; a class, graded a submission per core, uses 1.
     int judges = 1;
     /// How long each test took last time (by name) and the shared questions it used, to share the tests out so
-    /// that the judges end together: the longest first, each to the judge where it ends soonest, counting a shared
-    /// answer once per judge. Round-robin in the rubric's order without it.
+    /// that the judges end together (shareTests). Round-robin in the rubric's order without it.
     std::map<std::string, TestCost> expected;
     /// Told what grading is doing as it goes ("compiling", a test starting), for a person to watch; may be empty.
     std::function<void(const std::string&)> progress;
@@ -103,10 +102,10 @@ struct GradeOptions {
 
 /// The judge (0 to judges - 1) each of `tests` runs in, so that the last judge ends as soon as it can: round-robin
 /// in the given order without `expected`. With it, a judge's time is its tests' own plus each shared answer
-/// (observe::askShared) its tests ask for, once, so tests asking alike gain by meeting in one judge; the plan is
-/// the longest first, each to the judge where it would end soonest (tests alone, or joined by the answers they
-/// share while a group stays within a judge's even share), then improved by moving single tests and swapping
-/// pairs. A test `expected` does not name counts as long as the longest it does. A judge may be left without tests.
+/// (observe::askShared) its tests ask for, once. Tests are grouped by the answers they share (a test joins when
+/// computing its answers again would cost more than the test itself), and the costliest group goes first, each to
+/// the judge with the least time so far. A test `expected` does not name counts as long as the longest it does. A
+/// judge may be left without tests.
 std::vector<std::size_t> shareTests(const std::vector<std::string>& tests,
                                     const std::map<std::string, TestCost>& expected, int judges);
 

@@ -1,0 +1,97 @@
+// What the study's files share: the study program's lines, running it, the work queue, and the written results.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "simlab/study/study.h"
+
+namespace simlab::study {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+/// A subject's header line and its points, as the study program printed them (for `study minimal`, its rows).
+struct SubjectRun {
+    json subject;
+    std::vector<json> points;
+    std::vector<json> minimal;
+};
+
+/// The integrators a study program may name, in the order a study runs them.
+inline const char* const kIntegrators[] = {"RungeKuttaMerson",   "RungeKutta3",   "RungeKutta2",
+                                           "RungeKuttaFeldberg", "ExplicitEuler", "SemiExplicitEuler",
+                                           "SemiExplicitEuler2", "Verlet",        "CPodes"};
+
+/// Calls work(0), ..., work(count - 1) on `threads` threads at once (at least one), each thread taking the next
+/// index when it is free, and waits for them all. A thread whose call throws takes no more; the first exception is
+/// thrown here, once every thread has ended.
+void forEachAtOnce(std::size_t count, int threads, const std::function<void(std::size_t)>& work);
+
+/// Runs a study program, handing each line it prints to `onLine` as it comes, made well formed (a line that is not
+/// stops the study, saying what it was); what is not a JSON line (a progress line, an error) goes to our standard
+/// error, printable. A student's study program runs in the sandbox, as a probe does (its folder lent read-only, a
+/// scratch working directory, no network); the course's runs as a tool. Returns its exit status (128 + N for
+/// signal N).
+int runStudyProgram(const std::vector<std::string>& argv, bool sandboxed,
+                    const std::function<void(const json&)>& onLine);
+
+/// The studies' programs and objects of `labs` (their objects, for a study of a file), built now where this tree's
+/// build leaves them out (SIMLAB_BUILD_STUDIES=OFF, or a build configured before they were built by default):
+/// `cmake --build BUILD --target simlab_studies -j CORES`, with the build's lines on standard error.
+void ensureStudiesBuilt(const engine::Manifest& m, const std::vector<const engine::Assignment*>& labs, bool ofAFile,
+                        int cores);
+
+/// How far a study has come, on standard error at least every two seconds while it runs - "point n of N measured,
+/// about S s left", the time left read from the pace so far - and once more when it ends.
+class Progress {
+public:
+    using Clock = std::chrono::steady_clock;
+
+    Progress();
+    ~Progress() { finish(false); }
+    Progress(const Progress&) = delete;
+    Progress& operator=(const Progress&) = delete;
+
+    /// The study's points in all; the lines begin once it is known.
+    void setTotal(std::size_t total) { total_ = total; }
+    void pointDone() { ++done_; }
+    /// Stops the lines; a study that ended well says so in a last one.
+    void finish(bool ended);
+
+private:
+    void tick();
+    void say(bool ended) const;
+
+    const Clock::time_point began_;
+    std::atomic<std::size_t> total_{0}, done_{0};
+    std::mutex lock_;
+    std::condition_variable wake_;
+    bool stopped_ = false;
+    std::thread ticker_;
+};
+
+/// The study in parts (--shard, --assemble), runTrade having checked the options.
+void runTradeInParts(const StudyOptions& o, const std::vector<const engine::Assignment*>& labs,
+                     const CommandLine& command);
+
+/// A number as `format` prints it; "" for what is not a number.
+std::string number(const json& value, const char* format = "%.6g");
+/// A text; "" for what is not one.
+std::string text(const json& value);
+
+/// trade.csv, the tables and (unless o.plots is off) the plots of `runs`, into `dir`.
+void writeTrade(const StudyOptions& o, const fs::path& dir, const std::vector<SubjectRun>& runs);
+/// `study minimal`'s files and table from its rows, into `dir`.
+void writeMinimal(const fs::path& dir, const std::vector<json>& rows);
+
+}  // namespace simlab::study

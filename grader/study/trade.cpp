@@ -1,0 +1,431 @@
+// `simlab study trade` and `simlab study minimal`: which labs and programs a study runs, the trade question's
+// scene and its sweeps, the fronts of the question's data files, and each lab's study program at once.
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "internal.h"
+#include "simlab/build/build.h"
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+#include "simlab/build/manifest.h"
+#include "simlab/common/text.h"
+#include "simlab/isolation/process.h"
+#include "simlab/trade_question.h"
+#include "simlab/work_precision.h"
+
+namespace simlab::study {
+
+namespace {
+
+/// A lab's trade question as its data file states it: `kind` is "question" (grading/trade-question.json) or
+/// "hidden" (grading/trade-hidden.json, absent from the student bundle).
+simlab::trade::Question tradeQuestionOf(const engine::Assignment& a, const std::string& kind) {
+    const fs::path file = fs::path(a.dir) / "grading" / ("trade-" + kind + ".json");
+    if (!fs::exists(file)) throw engine::UsageError(a.id + " has no trade question (" + file.string() + ")");
+    try {
+        return simlab::trade::parseQuestion(engine::readFile(file.string()), file.string());
+    } catch (const std::runtime_error& e) {
+        throw engine::UsageError(e.what());
+    }
+}
+
+/// The study program's arguments for scene `s` of `q`: the scene, its final time, the starts and what they move,
+/// and the integrators the question allows.
+std::vector<std::string> sceneArguments(const simlab::trade::Question& q, const simlab::trade::Scene& s) {
+    char finalTime[32];
+    std::snprintf(finalTime, sizeof finalTime, "%.17g", s.finalTime);
+    std::vector<std::string> argv = {"--scene",      s.scene.dump(),
+                                     "--final-time", finalTime,
+                                     "--name",       s.name == "question" ? q.lab + "-question" : q.lab + ": " + s.name,
+                                     "--starts",     std::to_string(q.starts)};
+    if (!q.nudge.empty()) argv.insert(argv.end(), {"--nudge", q.nudge});
+    if (!q.integrators.empty()) {
+        std::string names;
+        for (const std::string& name : q.integrators) names += (names.empty() ? "" : ",") + name;
+        argv.insert(argv.end(), {"--integrators", names});
+    }
+    if (q.fixedStepOnly) argv.push_back("--fixed-steps-only");
+    return argv;
+}
+
+/// The most evaluations an answer to `q` may take on its scene, where the grader stops its run and gives it nothing
+/// (trade::cap, with the rubric's beyond and none_past of the visible trade test); 0 where the tree does not say.
+double questionCap(const engine::Assignment& a, const simlab::trade::Question& q, double* beyond, double* nonePast) {
+    const Rubric rubric = loadRubric(a.rubric);
+    for (const RubricTest& t : rubric.tests) {
+        if (!t.visible() || !t.params.count("beyond") || !t.params.count("none_past")) continue;
+        *beyond = t.params.at("beyond");
+        *nonePast = t.params.at("none_past");
+        const std::vector<work_precision::Point>& front = q.scenes.at(0).front;
+        return front.empty() ? 0 : simlab::trade::cap(front, q.digits, *beyond, *nonePast);
+    }
+    return 0;
+}
+
+/// The most sweeps a study program may say its study has.
+constexpr std::size_t kMostSweeps = 1000;
+
+/// The study of a question's scene, one sweep (the study program's --sweep: an integrator's accuracies or its fixed
+/// steps) per run of `argv`, as many runs at once as the machine has cores, with a progress line every few seconds.
+/// The first sweep's subject line says how many sweeps and points the study has; each sweep's points are kept in
+/// its place, so that they come in the order one run prints them.
+SubjectRun runSweeps(const std::vector<std::string>& argv, bool sandboxed, const std::string& lab, int cores) {
+    std::mutex lock;
+    std::condition_variable counted;
+    std::optional<json> subject;
+    std::size_t sweeps = 0;
+    bool firstEnded = false;
+    std::vector<std::vector<json>> points;
+    std::vector<int> statuses;
+    Progress progress;
+    forEachAtOnce(kMostSweeps, cores, [&](std::size_t k) {
+        // The other runs wait for the first's subject line, or for its end, whatever ends it; none runs past the
+        // sweeps it says there are.
+        if (k > 0) {
+            std::unique_lock<std::mutex> guard(lock);
+            counted.wait(guard, [&] { return sweeps > 0 || firstEnded; });
+            if (k >= sweeps) return;
+        }
+        std::vector<std::string> args = argv;
+        args.insert(args.end(), {"--sweep", std::to_string(k)});
+        std::vector<json> mine;
+        struct Ended {
+            std::function<void()> tell;
+            ~Ended() { tell(); }
+        } ended{[&, k] {
+            if (k != 0) return;
+            std::lock_guard<std::mutex> guard(lock);
+            firstEnded = true;
+            counted.notify_all();
+        }};
+        const int status = runStudyProgram(args, sandboxed, [&](const json& j) {
+            if (text(j["type"]) == "point") {
+                mine.push_back(j);
+                progress.pointDone();
+                return;
+            }
+            if (text(j["type"]) != "subject" || k != 0) return;
+            // What a student's program says is data: counts out of reason stop the study below.
+            const double n = j["sweeps"].is_number() ? j["sweeps"].get<double>() : 0;
+            const double total = j["points"].is_number() ? j["points"].get<double>() : 0;
+            std::lock_guard<std::mutex> guard(lock);
+            if (subject || !(n >= 1 && n <= static_cast<double>(kMostSweeps) && total >= n && total <= 100000)) return;
+            subject = j;
+            sweeps = static_cast<std::size_t>(n);
+            points.resize(sweeps);
+            statuses.assign(sweeps, 0);
+            progress.setTotal(static_cast<std::size_t>(total));
+            counted.notify_all();
+        });
+        std::lock_guard<std::mutex> guard(lock);
+        if (!subject) {
+            statuses.assign(1, status);
+            return;
+        }
+        points[k] = std::move(mine);
+        statuses[k] = status;
+    });
+    for (const int status : statuses) {
+        if (status != 0) {
+            throw std::runtime_error("the study of " + lab + " stopped with status " + std::to_string(status));
+        }
+    }
+    if (!subject) {
+        throw std::runtime_error(fs::path(argv.front()).filename().string() +
+                                 " did not say how many points and sweeps "
+                                 "its study has");
+    }
+    progress.finish(true);
+    SubjectRun run{*subject, {}, {}};
+    for (std::vector<json>& sweep : points) run.points.insert(run.points.end(), sweep.begin(), sweep.end());
+    return run;
+}
+
+/// `simlab study trade LAB --fronts`: every scene of the lab's trade question (and of its hidden variants, where the
+/// tree has them) studied on the reference solution as the grader measures an answer, and each scene's front -
+/// the points no cheaper point matches in digits - written into its data file.
+void writeFronts(const StudyOptions& o, const std::vector<const engine::Assignment*>& labs) {
+    struct Task {
+        const engine::Assignment* lab;
+        fs::path file;
+        json data;
+        std::size_t scene;
+        std::vector<work_precision::Point> points;
+        int status = 0;
+    };
+    std::vector<Task> tasks;
+    for (const engine::Assignment* a : labs) {
+        for (const std::string kind : {"question", "hidden"}) {
+            const fs::path file = fs::path(a->dir) / "grading" / ("trade-" + kind + ".json");
+            if (!fs::exists(file)) continue;
+            const json data = json::parse(engine::readFile(file.string()));
+            for (std::size_t i = 0; i < data.at("scenes").size(); ++i) tasks.push_back({a, file, data, i, {}, 0});
+        }
+    }
+    if (tasks.empty()) throw engine::UsageError("no trade question here to make fronts for");
+    std::mutex told;
+    forEachAtOnce(tasks.size(), std::min<int>(o.jobs, static_cast<int>(tasks.size())), [&](std::size_t i) {
+        Task& t = tasks[i];
+        const simlab::trade::Question q = simlab::trade::parseQuestion(t.data.dump(), t.file.string());
+        std::vector<std::string> argv = {t.lab->studyProgramPath};
+        const std::vector<std::string> scene = sceneArguments(q, q.scenes.at(t.scene));
+        argv.insert(argv.end(), scene.begin(), scene.end());
+        argv.insert(argv.end(), {"--repeats", "1"});
+        if (o.quick) argv.push_back("--quick");
+        if (o.maxEvaluations > 0) argv.insert(argv.end(), {"--max-evaluations", std::to_string(o.maxEvaluations)});
+        if (o.cap > 0) argv.insert(argv.end(), {"--cap", std::to_string(o.cap)});
+        {
+            std::lock_guard<std::mutex> guard(told);
+            std::cerr << "fronts: " << t.lab->id << ", " << q.scenes.at(t.scene).name << " ("
+                      << t.file.filename().string() << ")\n";
+        }
+        t.status = runStudyProgram(argv, false, [&t](const json& j) {
+            if (text(j["type"]) != "point" || text(j["status"]) != "ok") return;
+            if (!j["worst_digits"].is_number() || !j["evaluations"].is_number()) return;
+            t.points.push_back({j["worst_digits"].get<double>(), j["evaluations"].get<double>(), 0});
+        });
+    });
+    // Each file once, with every scene's front in it.
+    std::map<std::string, json> written;
+    for (Task& t : tasks) {
+        if (t.status != 0) {
+            throw std::runtime_error("the study of " + t.lab->id + " stopped with status " + std::to_string(t.status));
+        }
+        json& data = written.count(t.file.string()) ? written[t.file.string()] : (written[t.file.string()] = t.data);
+        json& scene = data["scenes"][t.scene];
+        const std::vector<work_precision::Point> front = work_precision::frontOf(t.points);
+        const double digits = data.at("digits").get<double>();
+        if (front.empty() || front.back().digits < digits) {
+            throw engine::UsageError(t.lab->id + ": no setting keeps " + number(data["digits"], "%g") + " digits on '" +
+                                     text(scene["name"]) + "' under the cap: the question cannot be answered there");
+        }
+        scene["front"] = json::array();
+        for (const work_precision::Point& p : front) {
+            char d[32];
+            std::snprintf(d, sizeof d, "%.4f", p.digits);
+            scene["front"].push_back({std::stod(d), p.cost});
+        }
+        std::cout << t.lab->id << ", " << text(scene["name"]) << ": " << front.size() << " points on the front; "
+                  << number(data["digits"], "%g") << " digits cost "
+                  << number(json(work_precision::costAt(front, digits)->cost), "%.0f") << " evaluations\n";
+    }
+    for (const auto& [file, data] : written) {
+        engine::writeFileAtomically(file, data.dump(2) + "\n");
+        std::cout << "Written: " << engine::printable(file) << '\n';
+    }
+}
+
+/// The labs `o` names that have a study (of the reference solution, or with --file of a student's file).
+std::vector<const engine::Assignment*> studiedLabs(const engine::Manifest& manifest, const StudyOptions& o) {
+    std::vector<const engine::Assignment*> labs;
+    if (o.lab == "all") {
+        for (const engine::Assignment& a : manifest.assignments) {
+            if (!a.studyProgramPath.empty()) labs.push_back(&a);
+        }
+    } else {
+        const engine::Assignment& a = manifest.find(o.lab);
+        if (a.studyProgramPath.empty() && (o.file.empty() || a.studyObjects.empty())) {
+            throw engine::UsageError("no study of " + o.lab +
+                                     "'s reference solution, which is not in this tree: study "
+                                     "your own file with --file");
+        }
+        labs.push_back(&a);
+    }
+    if (labs.empty())
+        throw engine::UsageError("no lab here has a study (their reference solutions are not in this tree)");
+    return labs;
+}
+
+/// What the trade question asks, and where its study stops each point, told before the study begins.
+void describeQuestion(const StudyOptions& o, const engine::Assignment& a) {
+    const simlab::trade::Question q = tradeQuestionOf(a, "question");
+    std::cout << "The trade question of " << q.lab << ": " << q.digits << " digits at every step to "
+              << q.scenes.at(0).finalTime << " s of this scene (the rest as the lab's default one)";
+    if (!q.integrators.empty() || q.fixedStepOnly) {
+        std::string names;
+        for (const std::string& name : q.integrators) names += (names.empty() ? "" : ", ") + name;
+        std::cout << ", with " << (names.empty() ? "any integrator" : names)
+                  << (q.fixedStepOnly ? " at fixed steps" : "");
+    }
+    std::cout << ":\n  " << q.scenes.at(0).scene.dump() << "\n";
+    if (q.starts > 1) {
+        // "/w_B0/0" reads w_B0[0].
+        std::string moved;
+        for (std::size_t at = 1, next; at <= q.nudge.size(); at = next + 1) {
+            next = std::min(q.nudge.find('/', at), q.nudge.size());
+            const std::string part = q.nudge.substr(at, next - at);
+            const bool index = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+            moved += index ? "[" + part + "]" : moved.empty() ? part : "." + part;
+        }
+        std::cout << "Each point is measured from " << q.starts << " starts (" << moved
+                  << " moved in its last digit) and kept at its worst, as the grader measures an answer; one short "
+                  << "of " << q.digits << " digits from the first is no answer, measured from that start alone.\n";
+    }
+    double beyond = 0, nonePast = 0;
+    const double cap = questionCap(a, q, &beyond, &nonePast);
+    const std::string why = number(json(nonePast), "%g") + " times the front's cost at " +
+                            number(json(q.digits + beyond), "%g") + " digits";
+    if (cap > 0 && o.maxEvaluations > 0 && o.maxEvaluations < cap) {
+        std::cout << "Each point is stopped past " << number(json(o.maxEvaluations), "%.0f")
+                  << " evaluations (--max-evaluations), short of where the grader stops an answer: "
+                  << number(json(cap), "%.0f") << ", " << why << ".\n";
+    } else if (cap > 0) {
+        std::cout << "Each point is stopped past " << number(json(cap), "%.0f") << " evaluations, where the grader "
+                  << "stops an answer: " << why << ", past which it earns nothing.\n";
+    }
+}
+
+/// A student's file built into a study program of its own, as `simlab build` builds its lab program, with grading's
+/// object check, to run in grading's sandbox: the program's folder (empty for a study of the reference solution)
+/// and its path.
+struct StudyProgram {
+    std::unique_ptr<engine::TempDir> folder;
+    std::string path;
+};
+
+StudyProgram buildStudyOfFile(const StudyOptions& o, const engine::Manifest& manifest,
+                              const std::vector<const engine::Assignment*>& labs, const CommandLine& command) {
+    StudyProgram built;
+    if (o.file.empty()) return built;
+    if (o.lab == "all" || labs.front()->id == "biosim") {
+        throw engine::UsageError(
+            "--file studies one lab's file: apple, projectile or book (biosim's study is the "
+            "baby boot's)");
+    }
+    const engine::Assignment& a = *labs.front();
+    engine::requireCppSource(o.file);
+    const Rubric rubric = loadRubric(a.rubric);
+    const engine::SubmissionFiles files = command.readSubmission(o.file, rubric, rubric.limits);
+    if (const std::string closed = engine::sandboxCannotReach(manifest, a); !closed.empty()) {
+        throw engine::UsageError(closed);
+    }
+    built.folder = std::make_unique<engine::TempDir>("simlab-study-");
+    built.path = built.folder->path() + "/" + a.program + "-study";
+    const engine::BuildResult result = engine::Builder(manifest).buildStudy(a, files.name, files.text, built.path);
+    if (!result.ok) {
+        std::cerr << engine::printable(isolation::firstLines(result.log, 30), true);
+        throw engine::UsageError(engine::printable(o.file) + (result.stage == "link"    ? " did not link"
+                                                              : result.stage == "check" ? " is refused (forbidden code)"
+                                                                                        : " did not compile"));
+    }
+    // Grading's sandbox, where the program can read nothing but the system and its own folder.
+    fs::permissions(built.folder->path(), fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
+    return built;
+}
+
+/// The question's study, into `dir`: its sweeps on every core, each point under the grader's cap on an answer and
+/// measured from the grader's starts where it could be one.
+void studyQuestion(const StudyOptions& o, const engine::Assignment& a, const std::string& studentProgram,
+                   const fs::path& dir, int cores) {
+    const simlab::trade::Question q = tradeQuestionOf(a, "question");
+    std::vector<std::string> argv = {studentProgram.empty() ? a.studyProgramPath : studentProgram};
+    const std::vector<std::string> scene = sceneArguments(q, q.scenes.at(0));
+    argv.insert(argv.end(), scene.begin(), scene.end());
+    char value[32];
+    std::snprintf(value, sizeof value, "%.17g", q.digits);
+    argv.insert(argv.end(), {"--answer-digits", value});
+    if (o.quick) argv.push_back("--quick");
+    if (o.cap > 0) argv.insert(argv.end(), {"--cap", std::to_string(o.cap)});
+    double beyond = 0, nonePast = 0;
+    const double cap = questionCap(a, q, &beyond, &nonePast);
+    const double evaluations = cap > 0 && o.maxEvaluations > 0 ? std::min(cap, o.maxEvaluations)
+                               : cap > 0                       ? cap
+                                                               : o.maxEvaluations;
+    if (evaluations > 0) {
+        std::snprintf(value, sizeof value, "%.17g", evaluations);
+        argv.insert(argv.end(), {"--max-evaluations", value});
+    }
+    if (o.repeats > 0) argv.insert(argv.end(), {"--repeats", std::to_string(o.repeats)});
+    std::cout << std::flush;  // the question's lines before the progress lines on a shared terminal or log
+    writeTrade(o, dir, {runSweeps(argv, !studentProgram.empty(), a.id, cores)});
+}
+
+/// Each lab's study program on a core of its own (--jobs at once), each measuring its points one at a time; the
+/// labs' tables and files into `dir`.
+void studyLabs(const StudyOptions& o, const std::vector<const engine::Assignment*>& labs,
+               const std::string& studentProgram, const fs::path& dir) {
+    std::vector<SubjectRun> runs;
+    std::vector<json> minimalRows;
+    struct LabRun {
+        std::vector<SubjectRun> runs;
+        std::vector<json> minimal;
+        int status = 0;
+    };
+    std::vector<LabRun> results(labs.size());
+    forEachAtOnce(labs.size(), std::min<int>(o.jobs, static_cast<int>(labs.size())), [&](std::size_t i) {
+        const engine::Assignment* a = labs[i];
+        std::vector<std::string> argv = {studentProgram.empty() ? a->studyProgramPath : studentProgram};
+        if (o.minimal) argv.push_back("--minimal");
+        if (o.quick) argv.push_back("--quick");
+        if (o.cap > 0) argv.insert(argv.end(), {"--cap", std::to_string(o.cap)});
+        if (o.maxEvaluations > 0) argv.insert(argv.end(), {"--max-evaluations", std::to_string(o.maxEvaluations)});
+        if (o.repeats > 0) argv.insert(argv.end(), {"--repeats", std::to_string(o.repeats)});
+        LabRun& r = results[i];
+        r.status = runStudyProgram(argv, !studentProgram.empty(), [&r](const json& j) {
+            if (text(j["type"]) == "subject") r.runs.push_back({j, {}, {}});
+            else if (text(j["type"]) == "point" && !r.runs.empty()) r.runs.back().points.push_back(j);
+            else if (text(j["type"]) == "minimal") r.minimal.push_back(j);
+        });
+    });
+    for (std::size_t i = 0; i < labs.size(); ++i) {
+        if (results[i].status != 0) {
+            throw std::runtime_error("the study of " + labs[i]->id + " stopped with status " +
+                                     std::to_string(results[i].status));
+        }
+        runs.insert(runs.end(), results[i].runs.begin(), results[i].runs.end());
+        minimalRows.insert(minimalRows.end(), results[i].minimal.begin(), results[i].minimal.end());
+    }
+    if (o.minimal) {
+        writeMinimal(dir, minimalRows);
+        return;
+    }
+    writeTrade(o, dir, runs);
+}
+
+}  // namespace
+
+void runTrade(const StudyOptions& o, const CommandLine& command) {
+    const engine::Manifest manifest = engine::loadManifest();
+    const std::vector<const engine::Assignment*> labs = studiedLabs(manifest, o);
+    if ((o.question || o.fronts) && labs.front()->id == "biosim") {
+        throw engine::UsageError("biosim has no trade question: each project's is its own");
+    }
+    if (o.question && o.lab == "all") throw engine::UsageError("--question studies one lab: apple, projectile or book");
+    if (o.fronts && !o.file.empty()) throw engine::UsageError("--fronts measures the reference solution, not --file");
+    if (o.question) describeQuestion(o, *labs.front());
+    if (!o.shard.empty() || o.assemble) {
+        const char* clash = !o.file.empty() ? "--file" : o.question ? "--question" : o.fronts ? "--fronts" : nullptr;
+        if (clash)
+            throw engine::UsageError(std::string("--shard and --assemble study the reference solutions, not ") + clash);
+        if (!o.shard.empty() && o.assemble)
+            throw engine::UsageError("--shard measures parts, --assemble gathers them: give one");
+        if (!o.shard.empty()) command.parseShard(o.shard);  // a bad I/N stops before anything is built
+    }
+    ensureStudiesBuilt(manifest, labs, !o.file.empty(), command.cores);
+    if (!o.shard.empty() || o.assemble) {
+        runTradeInParts(o, labs, command);
+        return;
+    }
+    if (o.fronts) {
+        std::vector<const engine::Assignment*> withQuestions;
+        for (const engine::Assignment* a : labs) {
+            if (a->id != "biosim" && !a->studyProgramPath.empty()) withQuestions.push_back(a);
+        }
+        writeFronts(o, withQuestions);
+        return;
+    }
+    const StudyProgram student = buildStudyOfFile(o, manifest, labs, command);
+    const fs::path dir = fs::absolute(o.output);
+    fs::create_directories(dir);
+    if (o.question) {
+        studyQuestion(o, *labs.front(), student.path, dir, command.cores);
+        return;
+    }
+    studyLabs(o, labs, student.path, dir);
+}
+
+}  // namespace simlab::study
