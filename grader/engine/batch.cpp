@@ -16,6 +16,7 @@
 #include "simlab/engine/errors.h"
 #include "simlab/engine/files.h"
 #include "simlab/engine/manual.h"
+#include "simlab/engine/report.h"
 #include "simlab/isolation/process.h"
 #include "simlab/engine/text.h"
 #include "simlab/engine/writers.h"
@@ -40,20 +41,12 @@ std::string lower(std::string s) {
     return s;
 }
 
-StudentRecord recordOf(const std::string& id, const std::string& key, const GradeReport& report,
-                       const std::string& file) {
-    StudentRecord r;
+StudentRecord classRecordOf(const std::string& id, const std::string& key, const GradeReport& report,
+                            const std::string& file) {
+    StudentRecord r = recordOf(report);
     r.id = id;
     r.key = key;
-    r.status = report.status;
-    r.note = report.note;
     r.file = file;
-    r.score = report.score();
-    r.maxScore = report.maxScore();
-    r.seconds = report.seconds;
-    r.compiler = isolation::firstLines(report.build.ok ? report.build.warnings : report.build.log, 20);
-    r.sandbox = report.sandbox;
-    r.tests = report.tests;
     return r;
 }
 
@@ -303,18 +296,17 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
             pending.push_back({id, key.hex(), std::move(gathered), why});
         }
     }
-    // Kept records re-scored by the rubric's points, and graded by hand: their files say so.
+    // Kept records: results.json written again from each (its scores now, and the points given by hand); the
+    // feedback of those re-scored by the rubric's points or graded by hand says so too.
     for (auto& [id, r] : records) {
         applyManual(r, sheet, rubric);
         const bool moved = std::count(rescored.begin(), rescored.end(), id) > 0;
-        if (!moved && rubric.manual.empty()) continue;
         const std::string dir = outDir + "/students/" + id;
+        writeFileAtomically(dir + "/results.json", resultsJson(r));
+        if (!moved && rubric.manual.empty()) continue;
         if (moved) {
             writeFileDurably(dir + "/record.json", recordJson(r));
             appendHistory(dir, r, "the rubric's points changed (re-scored from the recorded verdicts)");
-        }
-        if (fs::exists(dir + "/results.json")) {
-            writeFileAtomically(dir + "/results.json", updatedResultsJson(readFile(dir + "/results.json"), r));
         }
         const std::vector<Attachment> attached = attachedBeside(dir);
         writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, r, rubric.manual, namesOf(attached)));
@@ -363,11 +355,8 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
         fs::create_directories(dir);
         record.basis = base.hex();
         applyManual(record, sheet, rubric);
-        if (report) {
-            const std::string results = resultsJson(*report);
-            writeFileAtomically(dir + "/results.json", record.manual.empty() ? results : updatedResultsJson(results, record));
-            writeFileAtomically(dir + "/output.txt", testOutputText(*report));
-        }
+        writeFileAtomically(dir + "/results.json", resultsJson(record));
+        if (report) writeFileAtomically(dir + "/output.txt", testOutputText(*report));
         std::vector<Attachment> attached;
         if (report) {
             for (const TestResult& t : report->tests) {
@@ -412,7 +401,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
                     report = notGradedReport(assignment, rubric, p.gathered.status, p.gathered.note,
                                              grade.includeHidden);
                 }
-                finish(recordOf(p.id, p.key, report, p.gathered.found.shown), true, &report, p.why);
+                finish(classRecordOf(p.id, p.key, report, p.gathered.found.shown), true, &report, p.why);
             } catch (const Interrupted&) {
                 stop = true;  // this student has no outcome: the next run grades them
             } catch (const SetupError&) {
@@ -428,6 +417,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
                 failed.status = "grader error";
                 failed.note = e.what();
                 failed.maxScore = rubric.totalPoints();
+                failed.assignment = assignment.id;
                 try {
                     finish(failed, true, nullptr, p.why + "; simlab could not grade it: " + failed.note);
                 } catch (const std::exception&) {
