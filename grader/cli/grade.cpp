@@ -105,7 +105,7 @@ void runGrade(const GradeCommandOptions& o) {
     // A platform's download is taken in as a class folder beside the gradebook, with a roster of who is who; a
     // folder that looks like one, or that holds loose files, is refused with the option to use.
     // A sheet of manual points with a mistake stops simlab before anything changes.
-    if (fs::exists(out + "/manual.csv")) readManualCsv(readFile(out + "/manual.csv"), out + "/manual.csv", rubric);
+    ManualSheet manual = readManualSheet(out, rubric);
     if (!o.from.empty()) {
         const std::size_t cap = static_cast<std::size_t>(rubric.limits.submissionKiB) * 1024;
         fs::create_directories(out);
@@ -140,6 +140,7 @@ void runGrade(const GradeCommandOptions& o) {
     options.grade.limits = limitsWith(rubric.limits, o.timeout, o.memory);
     options.shard = shard.first;
     options.shards = shard.second;
+    options.manual = std::move(manual);
 
     const SandboxSupport& sandbox = sandboxSupport();
     if (!sandbox.warning.empty()) std::cerr << "simlab: warning: " << sandbox.warning << "\n";

@@ -234,11 +234,10 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     }
     base.add(options.grade.includeHidden ? "all tests" : "visible tests");
 
-    // What a person graded (manual.csv): read first, so that a sheet with a mistake stops simlab before anything is
-    // graded; written back at once with a row for every student and item (nothing typed in it is lost).
+    // What a person graded (manual.csv, read by the caller): written back at once with a row for every student and
+    // item (nothing typed in it is lost).
     const std::string sheetPath = outDir + "/manual.csv";
-    ManualSheet sheet;
-    if (!sharded && fs::exists(sheetPath)) sheet = readManualCsv(readFile(sheetPath), sheetPath, rubric);
+    const ManualSheet sheet = sharded ? ManualSheet{} : options.manual;
     if (!sharded && (!rubric.manual.empty() || fs::exists(sheetPath))) {
         const std::vector<std::string> stray = strayManualRows(sheet, ids, rubric);
         if (!stray.empty()) {
