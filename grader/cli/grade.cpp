@@ -79,7 +79,7 @@ void onSignal(int) {
 // The folder of submissions: the one named, or the bundled sample class.
 std::string submissionsFolder(const GradeCommandOptions& o, const engine::Manifest& manifest,
                               const engine::Assignment& assignment) {
-    const std::string root = o.submissions.empty() ? manifest.sampleClass + "/" + assignment.id : o.submissions;
+    std::string root = o.submissions.empty() ? manifest.sampleClass + "/" + assignment.id : o.submissions;
     if (!std::filesystem::is_directory(root)) {
         throw engine::UsageError(o.submissions.empty() ? "this copy of simlab has no sample class for " +
                                                              assignment.id + "; name a folder of submissions"
