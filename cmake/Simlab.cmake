@@ -10,6 +10,11 @@
 set(SIMLAB_PCH_DIR ${PROJECT_BINARY_DIR}/pch)
 set(SIMLAB_PCH_HEADER ${SIMLAB_PCH_DIR}/simlab_pch.h)
 set(SIMLAB_MANIFEST ${PROJECT_BINARY_DIR}/simlab-build.json)
+include(${CMAKE_CURRENT_LIST_DIR}/SimlabJson.cmake)
+# The manifest's paths of targets' files and objects are known only at generation, and are written as they are.
+if(PROJECT_BINARY_DIR MATCHES "[\"\\\\]")
+  message(FATAL_ERROR "simlab: the build folder's path may not hold a quote or a backslash: ${PROJECT_BINARY_DIR}")
+endif()
 set(SIMLAB_SAMPLE_CLASS_DIR ${PROJECT_BINARY_DIR}/sample-class)
 
 # The compiler of student files, chosen by measurement (bench/self_check.cpp prints the figures): clang++ with a
@@ -178,15 +183,6 @@ function(simlab_compile_submission object source id)
     VERBATIM)
 endfunction()
 
-# JSON list of paths from a CMake list (generator expressions allowed).
-function(_simlab_json_list out)
-  if(ARGN)
-    set(${out} "[\"$<JOIN:${ARGN},\",\">\"]" PARENT_SCOPE)
-  else()
-    set(${out} "[]" PARENT_SCOPE)
-  endif()
-endfunction()
-
 # simlab_add_assignment(<id>
 #   TITLE <text>             what `simlab` calls it
 #   SOURCE <file name>       the one file a student writes (starter/<id>/<file>, solutions/<id>/<file>)
@@ -285,13 +281,13 @@ function(simlab_add_assignment id)
 
   # The work-precision study (`simlab study trade`), run on the reference solution where the tree has one.
   set(study_program "")
-  set(study_objects "[]")
+  set(study_objects "")
   if(A_STUDY)
     add_library(${id}_study_main OBJECT ${A_STUDY})
     target_link_libraries(${id}_study_main PRIVATE simlab_study simlab_protocol simlab_support ${Simbody_LIBRARIES})
     simlab_use_pch(${id}_study_main)
     simlab_study_target(${id}_study_main)
-    _simlab_json_list(study_objects $<TARGET_OBJECTS:${id}_study_main>)
+    set(study_objects $<TARGET_OBJECTS:${id}_study_main>)
     if(solution)
       add_executable(${A_PROGRAM}-study $<TARGET_OBJECTS:${id}_study_main> ${CMAKE_CURRENT_BINARY_DIR}/${A_PROGRAM}_reference.o)
       target_link_libraries(${A_PROGRAM}-study PRIVATE simlab_study simlab_program simlab_support ${Simbody_LIBRARIES})
@@ -324,8 +320,8 @@ function(simlab_add_assignment id)
 
   # The probe's course side: linked before the student's object, whole, so that the student can add to it but
   # never replace any of it. The probe is a shared object that the probe's host loads (simlab-probe-host).
-  _simlab_json_list(probe_objects $<TARGET_OBJECTS:simlab_probe_main> $<TARGET_OBJECTS:simlab_probe>
-                                  $<TARGET_OBJECTS:${id}_probe> $<TARGET_OBJECTS:simlab_support_objects>)
+  set(probe_objects $<TARGET_OBJECTS:simlab_probe_main> $<TARGET_OBJECTS:simlab_probe>
+                    $<TARGET_OBJECTS:${id}_probe> $<TARGET_OBJECTS:simlab_support_objects>)
   # The benchmark's floor: the tests and the probe in one program, the student's code called directly. A course
   # source both sides compile (biosim's declaration.cpp) is linked once.
   set(shared_sources "")
@@ -341,25 +337,33 @@ function(simlab_add_assignment id)
     list(JOIN shared_sources "|" shared_regex)
     set(probe_for_floor "$<FILTER:$<TARGET_OBJECTS:${id}_probe>,EXCLUDE,/(${shared_regex})\\.o$>")
   endif()
-  _simlab_json_list(floor_objects $<TARGET_OBJECTS:${id}_grader_tests> $<TARGET_OBJECTS:simlab_harness>
-                                  $<TARGET_OBJECTS:simlab_observe_local> $<TARGET_OBJECTS:simlab_probe>
-                                  ${probe_for_floor} $<TARGET_OBJECTS:simlab_support_objects>)
-  _simlab_json_list(program_objects $<TARGET_OBJECTS:${id}_program_main>)
-  _simlab_json_list(hidden_tests ${hidden_paths})
-  _simlab_json_list(compile_json ${compile})
   # How the precompiled header is made (an installed simlab makes it again where it is installed).
   get_property(pch_header GLOBAL PROPERTY SIMLAB_PCH_HEADER_${id})
-  _simlab_json_list(precompile_flags_json ${SIMLAB_PCH_FLAGS})
-  set(json "{\"id\": \"${id}\", \"title\": \"${A_TITLE}\", \"source\": \"${A_SOURCE}\",
-    \"program\": \"${A_PROGRAM}\", \"program_path\": \"$<TARGET_FILE:${A_PROGRAM}>\",
-    \"reference_program_path\": \"${reference_program}\", \"study_program_path\": \"${study_program}\",
-    \"dir\": \"${dir}\", \"rubric\": \"${dir}/${A_RUBRIC}\", \"contract_include\": \"${contract}\",
-    \"compile\": ${compile_json},
-    \"precompiled_header\": \"${pch_header}\", \"precompile_flags\": ${precompile_flags_json},
-    \"starter\": \"${starter}\", \"solution\": \"${solution}\", \"hidden_tests_built\": ${hidden_built},
-    \"hidden_tests\": ${hidden_tests}, \"judge\": \"$<TARGET_FILE:${id}-judge>\",
-    \"probe_objects\": ${probe_objects}, \"floor_objects\": ${floor_objects},
-    \"program_objects\": ${program_objects}, \"study_objects\": ${study_objects}}")
+  set(json "{}")
+  simlab_json_set_string(json id "${id}")
+  simlab_json_set_string(json title "${A_TITLE}")
+  simlab_json_set_string(json source "${A_SOURCE}")
+  simlab_json_set_string(json program "${A_PROGRAM}")
+  simlab_json_set_string(json program_path "$<TARGET_FILE:${A_PROGRAM}>")
+  simlab_json_set_string(json reference_program_path "${reference_program}")
+  simlab_json_set_string(json study_program_path "${study_program}")
+  simlab_json_set_string(json dir "${dir}")
+  simlab_json_set_string(json rubric "${dir}/${A_RUBRIC}")
+  simlab_json_set_string(json contract_include "${contract}")
+  simlab_json_set_string(json precompiled_header "${pch_header}")
+  simlab_json_set_string(json starter "${starter}")
+  simlab_json_set_string(json solution "${solution}")
+  simlab_json_set_string(json judge "$<TARGET_FILE:${id}-judge>")
+  string(JSON json SET "${json}" hidden_tests_built ${hidden_built})
+  simlab_json_set_list(json compile ${compile})
+  simlab_json_set_list(json precompile_flags ${SIMLAB_PCH_FLAGS})
+  simlab_json_set_list(json hidden_tests ${hidden_paths})
+  simlab_json_set_generated_list(json probe_objects ${probe_objects})
+  simlab_json_set_generated_list(json floor_objects
+    $<TARGET_OBJECTS:${id}_grader_tests> $<TARGET_OBJECTS:simlab_harness> $<TARGET_OBJECTS:simlab_observe_local>
+    $<TARGET_OBJECTS:simlab_probe> ${probe_for_floor} $<TARGET_OBJECTS:simlab_support_objects>)
+  simlab_json_set_generated_list(json program_objects $<TARGET_OBJECTS:${id}_program_main>)
+  simlab_json_set_generated_list(json study_objects ${study_objects})
   set_property(GLOBAL APPEND PROPERTY SIMLAB_ASSIGNMENTS ${id})
   set_property(GLOBAL PROPERTY SIMLAB_ASSIGNMENT_${id} "${json}")
 endfunction()
@@ -378,23 +382,25 @@ endfunction()
 
 # simlab_write_manifest(): the build manifest the simlab engine reads to compile and link student code.
 function(simlab_write_manifest)
-  get_property(ids GLOBAL PROPERTY SIMLAB_ASSIGNMENTS)
-  set(entries "")
-  foreach(id IN LISTS ids)
-    get_property(json GLOBAL PROPERTY SIMLAB_ASSIGNMENT_${id})
-    list(APPEND entries "${json}")
-  endforeach()
-  list(JOIN entries ",\n    " entries)
-  _simlab_json_list(compile ${SIMLAB_SUBMISSION_COMMAND})
+  set(manifest "{}")
+  simlab_json_set_string(manifest version "${PROJECT_VERSION}")
+  simlab_json_set_string(manifest source_dir "${PROJECT_SOURCE_DIR}")
+  simlab_json_set_string(manifest build_dir "${PROJECT_BINARY_DIR}")
+  simlab_json_set_string(manifest cmake "${CMAKE_COMMAND}")
+  simlab_json_set_string(manifest studies_target simlab_studies)
+  simlab_json_set_string(manifest sample_class "${SIMLAB_SAMPLE_CLASS_DIR}")
+  simlab_json_set_string(manifest catch2_include "$<TARGET_PROPERTY:Catch2::Catch2,INTERFACE_INCLUDE_DIRECTORIES>")
+  simlab_json_set_string(manifest probe_host "$<TARGET_FILE:simlab-probe-host>")
+  simlab_json_set_list(manifest compile ${SIMLAB_SUBMISSION_COMMAND})
   # A sanitizer build's course objects need the sanitizers' runtimes wherever they are linked: in the probes too.
   set(sanitizer_link "")
   if(SIMLAB_SANITIZE)
     set(sanitizer_link -fsanitize=address -fsanitize=undefined)
   endif()
-  _simlab_json_list(link ${CMAKE_CXX_COMPILER} -pthread -fno-lto -fno-use-linker-plugin ${SIMLAB_LINKER_FLAGS}
-                    ${sanitizer_link})
+  simlab_json_set_list(manifest link ${CMAKE_CXX_COMPILER} -pthread -fno-lto -fno-use-linker-plugin
+                       ${SIMLAB_LINKER_FLAGS} ${sanitizer_link})
   # Link order: the course's objects, the student's object, then libraries from most to least dependent.
-  _simlab_json_list(probe_libraries
+  simlab_json_set_generated_list(manifest probe_libraries
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
   # A probe is a shared object that simlab-probe-host loads as the test's own user (grader/isolation/host). It
   # exports its entry point alone: a function the student defines can never take the place of a library's, whoever
@@ -402,38 +408,29 @@ function(simlab_write_manifest)
   file(WRITE ${PROJECT_BINARY_DIR}/probe-exports.map "{ global: simlab_probe_entry; local: *; };\n")
   # A sanitizer build's probe leaves the sanitizers' runtime to the host, which holds it (clang links it into the
   # program, not into each shared object): there it may not insist on every symbol at link time.
-  set(probe_link "[\"-shared\", \"-Wl,-z,defs\", \"-Wl,--version-script=${PROJECT_BINARY_DIR}/probe-exports.map\"]")
+  set(defs -Wl,-z,defs)
   if(SIMLAB_SANITIZE)
-    set(probe_link "[\"-shared\", \"-Wl,--version-script=${PROJECT_BINARY_DIR}/probe-exports.map\"]")
+    set(defs "")
   endif()
-  _simlab_json_list(floor_libraries
+  simlab_json_set_list(manifest probe_link -shared ${defs}
+                       -Wl,--version-script=${PROJECT_BINARY_DIR}/probe-exports.map)
+  simlab_json_set_generated_list(manifest floor_libraries
     $<TARGET_FILE:simlab_plot> $<TARGET_FILE:simlab_rubric> $<TARGET_FILE:Catch2::Catch2WithMain> $<TARGET_FILE:tomlplusplus::tomlplusplus>
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
-  _simlab_json_list(program_libraries
+  simlab_json_set_generated_list(manifest program_libraries
     $<TARGET_FILE:simlab_program> $<TARGET_FILE:simlab_plot> $<TARGET_FILE:simlab_support>
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
-  _simlab_json_list(study_libraries
+  simlab_json_set_generated_list(manifest study_libraries
     $<TARGET_FILE:simlab_study> $<TARGET_FILE:simlab_program> $<TARGET_FILE:simlab_plot> $<TARGET_FILE:simlab_support>
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
-  file(GENERATE OUTPUT ${SIMLAB_MANIFEST} CONTENT "{
-  \"version\": \"${PROJECT_VERSION}\",
-  \"source_dir\": \"${PROJECT_SOURCE_DIR}\",
-  \"build_dir\": \"${PROJECT_BINARY_DIR}\",
-  \"cmake\": \"${CMAKE_COMMAND}\",
-  \"studies_target\": \"simlab_studies\",
-  \"sample_class\": \"${SIMLAB_SAMPLE_CLASS_DIR}\",
-  \"catch2_include\": \"$<TARGET_PROPERTY:Catch2::Catch2,INTERFACE_INCLUDE_DIRECTORIES>\",
-  \"compile\": ${compile},
-  \"link\": ${link},
-  \"probe_libraries\": ${probe_libraries},
-  \"probe_link\": ${probe_link},
-  \"probe_host\": \"$<TARGET_FILE:simlab-probe-host>\",
-  \"floor_libraries\": ${floor_libraries},
-  \"program_libraries\": ${program_libraries},
-  \"study_libraries\": ${study_libraries},
-  \"assignments\": [
-    ${entries}
-  ]
-}
-")
+  string(JSON manifest SET "${manifest}" assignments "[]")
+  get_property(ids GLOBAL PROPERTY SIMLAB_ASSIGNMENTS)
+  set(index 0)
+  foreach(id IN LISTS ids)
+    get_property(json GLOBAL PROPERTY SIMLAB_ASSIGNMENT_${id})
+    string(JSON manifest SET "${manifest}" assignments ${index} "${json}")
+    math(EXPR index "${index} + 1")
+  endforeach()
+  simlab_json_generated(manifest "${manifest}")
+  file(GENERATE OUTPUT ${SIMLAB_MANIFEST} CONTENT "${manifest}\n")
 endfunction()

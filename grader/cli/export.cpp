@@ -76,8 +76,7 @@ void runCanvas(const CanvasOptions& o) {
     // The rubric the class was graded with: simlab grade keeps a copy beside the grades.
     const std::string kept = grades + "/rubric.toml";
     const Rubric rubric = loadRubric(!o.rubric.empty() ? o.rubric : fs::exists(kept) ? kept : assignment.rubric);
-    ManualSheet sheet;
-    if (fs::exists(grades + "/manual.csv")) sheet = readManualCsv(readFile(grades + "/manual.csv"), grades + "/manual.csv", rubric);
+    const ManualSheet sheet = readManualSheet(grades, rubric);
     for (StudentRecord& r : records) applyManual(r, sheet, rubric);
     const double possible = rubric.totalPoints() + rubric.manualPoints();
     std::string column = o.name.empty() ? (assignment.title.empty() ? assignment.id : assignment.title) : o.name;

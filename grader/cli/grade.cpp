@@ -76,88 +76,92 @@ void onSignal(int) {
     isolation::interruptChildren();
 }
 
-void runGrade(const GradeCommandOptions& o) {
-    using namespace simlab::engine;
-    using namespace simlab::isolation;
-    const Manifest manifest = loadManifest();
-    const Assignment& assignment = manifest.find(o.assignment);
-    if (!assignment.hiddenTestsBuilt) {
-        throw UsageError("grading needs the hidden tests, which this copy of simlab does not have");
-    }
+// The folder of submissions: the one named, or the bundled sample class.
+std::string submissionsFolder(const GradeCommandOptions& o, const engine::Manifest& manifest,
+                              const engine::Assignment& assignment) {
     std::string root = o.submissions.empty() ? manifest.sampleClass + "/" + assignment.id : o.submissions;
-    if (!fs::is_directory(root)) {
-        throw UsageError(o.submissions.empty() ? "this copy of simlab has no sample class for " + assignment.id +
-                                                     "; name a folder of submissions"
-                                               : "no submissions folder " + root);
+    if (!std::filesystem::is_directory(root)) {
+        throw engine::UsageError(o.submissions.empty() ? "this copy of simlab has no sample class for " +
+                                                             assignment.id + "; name a folder of submissions"
+                                                       : "no submissions folder " + root);
     }
-    const std::string out = o.out.empty() ? "grades/" + assignment.id : o.out;
-    std::pair<int, int> shard{0, 0};
-    if (!o.shard.empty()) {
-        shard = parseShard(o.shard);
-        const char* clash = !o.from.empty() ? "--from" : !o.only.empty() ? "--only" : !o.junit.empty() ? "--junit" : nullptr;
-        if (clash) {
-            throw UsageError(std::string("--shard grades a share of a class folder and leaves the class's files to the "
-                                         "whole-class run: give ") + clash + " to that run instead");
+    return root;
+}
+
+// --shard as (share, shares); (0, 0) without it. A shard leaves the class's files to the whole-class run.
+std::pair<int, int> shardOf(const GradeCommandOptions& o) {
+    if (o.shard.empty()) return {0, 0};
+    const std::pair<int, int> shard = parseShard(o.shard);
+    const char* clash = !o.from.empty()    ? "--from"
+                        : !o.only.empty()  ? "--only"
+                        : !o.junit.empty() ? "--junit"
+                                           : nullptr;
+    if (clash) {
+        throw engine::UsageError(std::string("--shard grades a share of a class folder and leaves the class's files to "
+                                             "the whole-class run: give ") +
+                                 clash + " to that run instead");
+    }
+    return shard;
+}
+
+// The class folder to grade. A platform's download is taken in as a class folder beside the gradebook, with a roster
+// of who is who; a folder that looks like one, or that holds loose files, is refused with the option to use.
+std::string classFolder(const GradeCommandOptions& o, const std::string& root, const std::string& out,
+                        const Rubric& rubric) {
+    using namespace simlab::engine;
+    if (o.from.empty()) {
+        if (const std::string layout = layoutOf(root); layout == "loose files") {
+            throw UsageError(printable(root) +
+                             " holds files, not a folder per student: put each student's file in a "
+                             "folder named after them, or, for a platform's download, add --from gradescope, canvas, "
+                             "moodle or classroom");
+        } else if (!layout.empty()) {
+            throw UsageError(printable(root) + " looks like a " + layout + " download: add --from " + layout);
         }
+        return root;
     }
-    const Rubric rubric = loadRubric(o.rubric.empty() ? assignment.rubric : o.rubric);
-
-    // A platform's download is taken in as a class folder beside the gradebook, with a roster of who is who; a
-    // folder that looks like one, or that holds loose files, is refused with the option to use.
-    // A sheet of manual points with a mistake stops simlab before anything changes.
-    if (fs::exists(out + "/manual.csv")) readManualCsv(readFile(out + "/manual.csv"), out + "/manual.csv", rubric);
-    if (!o.from.empty()) {
-        const std::size_t cap = static_cast<std::size_t>(rubric.limits.submissionKiB) * 1024;
-        fs::create_directories(out);
-        std::vector<std::string> handedIn = {rubric.submission};
-        handedIn.insert(handedIn.end(), rubric.extraFiles.begin(), rubric.extraFiles.end());
-        const std::vector<IntakeStudent> students = takeIn(o.from, root, out + "/class", handedIn, cap);
-        // The roster is the instructor's to edit (Canvas ids, sections): one that differs from the download's is
-        // kept, and the download's is written beside it.
-        const std::string roster = intakeRosterCsv(students), rosterPath = out + "/roster.csv";
-        std::string written = rosterPath;
-        if (fs::exists(rosterPath) && readFile(rosterPath) != roster) {
-            written = out + "/roster.new.csv";
-            std::cerr << "simlab: warning: kept " << printable(rosterPath) << ", which differs from the download's "
-                      << "roster; the download's is " << printable(written) << "\n";
-        }
-        writeFileAtomically(written, roster);
-        std::printf("Took in %zu submitter%s of a %s download into %s/class; who is who: %s\n", students.size(),
-                    students.size() == 1 ? "" : "s", o.from.c_str(), printable(out).c_str(), printable(written).c_str());
-        root = out + "/class";
-    } else if (const std::string layout = layoutOf(root); layout == "loose files") {
-        throw UsageError(printable(root) + " holds files, not a folder per student: put each student's file in a "
-                         "folder named after them, or, for a platform's download, add --from gradescope, canvas, "
-                         "moodle or classroom");
-    } else if (!layout.empty()) {
-        throw UsageError(printable(root) + " looks like a " + layout + " download: add --from " + layout);
+    const std::size_t cap = static_cast<std::size_t>(rubric.limits.submissionKiB) * 1024;
+    fs::create_directories(out);
+    std::vector<std::string> handedIn = {rubric.submission};
+    handedIn.insert(handedIn.end(), rubric.extraFiles.begin(), rubric.extraFiles.end());
+    const std::vector<IntakeStudent> students = takeIn(o.from, root, out + "/class", handedIn, cap);
+    // The roster is the instructor's to edit (Canvas ids, sections): one that differs from the download's is kept,
+    // and the download's is written beside it.
+    const std::string roster = intakeRosterCsv(students), rosterPath = out + "/roster.csv";
+    std::string written = rosterPath;
+    if (fs::exists(rosterPath) && readFile(rosterPath) != roster) {
+        written = out + "/roster.new.csv";
+        std::cerr << "simlab: warning: kept " << printable(rosterPath) << ", which differs from the download's "
+                  << "roster; the download's is " << printable(written) << "\n";
     }
+    writeFileAtomically(written, roster);
+    std::printf("Took in %zu submitter%s of a %s download into %s/class; who is who: %s\n", students.size(),
+                students.size() == 1 ? "" : "s", o.from.c_str(), printable(out).c_str(), printable(written).c_str());
+    return out + "/class";
+}
 
-    ClassOptions options;
-    options.jobs = o.jobs;
-    options.only = o.only;
-    options.grade.includeHidden = true;
-    options.grade.limits = limitsWith(rubric.limits, o.timeout, o.memory);
-    options.shard = shard.first;
-    options.shards = shard.second;
-
+// The sandbox in use, said to be fit for grading: no test's code may reach the class's files, the grades or the
+// hidden tests.
+const isolation::SandboxSupport& checkedSandbox(const engine::Manifest& manifest, const engine::Assignment& assignment,
+                                                const std::string& root, const std::string& out) {
+    using namespace simlab::isolation;
     const SandboxSupport& sandbox = sandboxSupport();
     if (!sandbox.warning.empty()) std::cerr << "simlab: warning: " << sandbox.warning << "\n";
-    if (const std::string closed = sandboxCannotReach(manifest, assignment); !closed.empty()) throw UsageError(closed);
+    if (const std::string closed = engine::sandboxCannotReach(manifest, assignment); !closed.empty()) {
+        throw engine::UsageError(closed);
+    }
     // The class's files and the grades are no sandbox's to see, wherever they lie.
     hideFromSandboxes({root, out});
     // Hidden tests run only where no test's code can read them, nor the class's files.
-    if (const std::string exposed = secretsExposed(manifest, {root, out}); !exposed.empty()) {
-        throw UsageError(exposed);
+    if (const std::string exposed = engine::secretsExposed(manifest, {root, out}); !exposed.empty()) {
+        throw engine::UsageError(exposed);
     }
-    std::printf("Grading %s (%s) from %s into %s%s: %d jobs, sandbox: %s\n", assignment.id.c_str(),
-                assignment.title.c_str(), printable(root).c_str(), printable(out).c_str(),
-                shard.second ? (", shard " + o.shard).c_str() : "", o.jobs, sandbox.summary.c_str());
-    std::fflush(stdout);
+    return sandbox;
+}
 
-    // On a terminal, a live status line under the log; otherwise the log alone.
-    const bool live = ::isatty(STDERR_FILENO) && ::isatty(STDOUT_FILENO);
-    auto onProgress = [&](const ClassProgress& p) {
+// A line per student as they finish; on a terminal, a live status line under the log.
+std::function<void(const engine::ClassProgress&)> progressPrinter(bool live) {
+    return [live](const engine::ClassProgress& p) {
         if (live) std::fprintf(stderr, "\r\x1b[K");
         std::printf("%s\n", studentLine(*p.last, p.lastReused).c_str());
         std::fflush(stdout);
@@ -167,20 +171,12 @@ void runGrade(const GradeCommandOptions& o) {
             std::fflush(stderr);
         }
     };
+}
 
-    std::signal(SIGINT, onSignal);
-    std::signal(SIGTERM, onSignal);
-    const Builder builder(manifest);
-    ClassResult result;
-    try {
-        result = gradeClass(builder, assignment, rubric, root, out, options, onProgress);
-    } catch (const Interrupted&) {
-        if (live) std::fprintf(stderr, "\r\x1b[K");
-        std::cerr << "simlab: interrupted; what finished is in " << printable(out)
-                  << "/gradebook.csv. Run the same command again to grade the rest.\n";
-        std::exit(130);
-    }
-    if (live) std::fprintf(stderr, "\r\x1b[K");
+// What grading the class came to: what was skipped, the summary, and the files written.
+void reportClass(const GradeCommandOptions& o, bool sharded, const std::string& out,
+                 const engine::Assignment& assignment, const Rubric& rubric, const engine::ClassResult& result) {
+    using namespace simlab::engine;
     const std::vector<StudentRecord>& records = result.records;
     for (const Skipped& s : result.skipped) {
         std::cout << "  skipped " << printable(s.name) << ": " << s.why << "\n";
@@ -190,7 +186,7 @@ void runGrade(const GradeCommandOptions& o) {
     std::cout << "\n" << summaryTable(rubric, records);
     const int graded = static_cast<int>(records.size()) - result.reused;
     std::cout << "\n" << graded << " graded, " << result.reused << " up to date and kept\n";
-    if (shard.second) {
+    if (sharded) {
         std::cout << "Wrote shard " << o.shard << "'s students into " << printable(out)
                   << "/students/<id>; once every shard has finished, the same command without --shard writes the "
                      "gradebook, the summary and the reports (it grades again only what no shard finished)\n";
@@ -213,6 +209,53 @@ void runGrade(const GradeCommandOptions& o) {
                                  " student(s) could not be graded (status 'grader error'); run the command again "
                                  "to retry them");
     }
+}
+
+void runGrade(const GradeCommandOptions& o) {
+    using namespace simlab::engine;
+    const Manifest manifest = loadManifest();
+    const Assignment& assignment = manifest.find(o.assignment);
+    if (!assignment.hiddenTestsBuilt) {
+        throw UsageError("grading needs the hidden tests, which this copy of simlab does not have");
+    }
+    const std::string submissions = submissionsFolder(o, manifest, assignment);
+    const std::string out = o.out.empty() ? "grades/" + assignment.id : o.out;
+    const std::pair<int, int> shard = shardOf(o);
+    const Rubric rubric = loadRubric(o.rubric.empty() ? assignment.rubric : o.rubric);
+    // A sheet of manual points with a mistake stops simlab before anything changes.
+    ManualSheet manual = readManualSheet(out, rubric);
+    const std::string root = classFolder(o, submissions, out, rubric);
+
+    ClassOptions options;
+    options.jobs = o.jobs;
+    options.only = o.only;
+    options.grade.includeHidden = true;
+    options.grade.limits = limitsWith(rubric.limits, o.timeout, o.memory);
+    options.shard = shard.first;
+    options.shards = shard.second;
+    options.manual = std::move(manual);
+
+    const isolation::SandboxSupport& sandbox = checkedSandbox(manifest, assignment, root, out);
+    std::printf("Grading %s (%s) from %s into %s%s: %d jobs, sandbox: %s\n", assignment.id.c_str(),
+                assignment.title.c_str(), printable(root).c_str(), printable(out).c_str(),
+                shard.second ? (", shard " + o.shard).c_str() : "", o.jobs, sandbox.summary.c_str());
+    std::fflush(stdout);
+
+    const bool live = ::isatty(STDERR_FILENO) && ::isatty(STDOUT_FILENO);
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+    const Builder builder(manifest);
+    ClassResult result;
+    try {
+        result = gradeClass(builder, assignment, rubric, root, out, options, progressPrinter(live));
+    } catch (const Interrupted&) {
+        if (live) std::fprintf(stderr, "\r\x1b[K");
+        std::cerr << "simlab: interrupted; what finished is in " << printable(out)
+                  << "/gradebook.csv. Run the same command again to grade the rest.\n";
+        std::exit(130);
+    }
+    if (live) std::fprintf(stderr, "\r\x1b[K");
+    reportClass(o, shard.second != 0, out, assignment, rubric, result);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "simlab/common/errors.h"
 #include "simlab/common/files.h"
 #include "simlab/course/manual.h"
+#include "simlab/grading/report.h"
 #include "simlab/isolation/process.h"
 #include "simlab/common/text.h"
 #include "simlab/writers/writers.h"
@@ -40,20 +41,12 @@ std::string lower(std::string s) {
     return s;
 }
 
-StudentRecord recordOf(const std::string& id, const std::string& key, const GradeReport& report,
-                       const std::string& file) {
-    StudentRecord r;
+StudentRecord classRecordOf(const std::string& id, const std::string& key, const GradeReport& report,
+                            const std::string& file) {
+    StudentRecord r = recordOf(report);
     r.id = id;
     r.key = key;
-    r.status = report.status;
-    r.note = report.note;
     r.file = file;
-    r.score = report.score();
-    r.maxScore = report.maxScore();
-    r.seconds = report.seconds;
-    r.compiler = isolation::firstLines(report.build.ok ? report.build.warnings : report.build.log, 20);
-    r.sandbox = report.sandbox;
-    r.tests = report.tests;
     return r;
 }
 
@@ -193,80 +186,104 @@ GradeReport gradeFolder(const Builder& builder, const Assignment& assignment, co
     return report;
 }
 
-ClassResult gradeClass(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
-                       const std::string& submissionsDir, const std::string& outDir, const ClassOptions& options,
-                       const std::function<void(const ClassProgress&)>& onProgress) {
-    const auto start = std::chrono::steady_clock::now();
-    ClassResult result;
+namespace {
+
+// The class folder's students in name order (a shard's share of them); what is not a student's folder is listed in
+// `skipped`.
+std::vector<std::string> classStudents(const std::string& submissionsDir, const ClassOptions& options,
+                                       std::vector<Skipped>& skipped) {
     std::vector<std::string> ids;
     for (const FolderEntry& e : listFolder(submissionsDir, /*followFolder=*/true)) {
-        if (e.name[0] == '.') result.skipped.push_back({e.name, "a hidden folder or file (its name starts with a dot)"});
+        if (e.name[0] == '.') skipped.push_back({e.name, "a hidden folder or file (its name starts with a dot)"});
         else if (e.type == EntryType::Directory) ids.push_back(e.name);
-        else if (e.type == EntryType::Symlink) result.skipped.push_back({e.name, "a symbolic link, not a folder"});
-        else result.skipped.push_back({e.name, "a file, not a student's folder"});
+        else if (e.type == EntryType::Symlink) skipped.push_back({e.name, "a symbolic link, not a folder"});
+        else skipped.push_back({e.name, "a file, not a student's folder"});
     }
     for (const std::string& id : options.only) {
         if (!std::binary_search(ids.begin(), ids.end(), id)) {
             throw UsageError("no student '" + printable(id) + "' in " + printable(submissionsDir));
         }
     }
-    const bool sharded = options.shards > 0;
-    if (sharded) {
-        if (options.shard < 1 || options.shard > options.shards) {
-            throw UsageError("shard " + std::to_string(options.shard) + " of " + std::to_string(options.shards) +
-                             " does not exist: shards count from 1");
-        }
-        // A deterministic share: every shard lists the same class folder in the same (name) order.
-        std::vector<std::string> share;
-        for (std::size_t i = static_cast<std::size_t>(options.shard - 1); i < ids.size();
-             i += static_cast<std::size_t>(options.shards)) {
-            share.push_back(ids[i]);
-        }
-        ids = std::move(share);
+    if (options.shards <= 0) return ids;
+    if (options.shard < 1 || options.shard > options.shards) {
+        throw UsageError("shard " + std::to_string(options.shard) + " of " + std::to_string(options.shards) +
+                         " does not exist: shards count from 1");
     }
-    fs::create_directories(outDir + "/students");
-    // One simlab at a time writes a class's grades, or shards side by side, each its own students.
-    const OutputLock outputLock(outDir, sharded ? std::to_string(options.shard) + "-of-" +
-                                                      std::to_string(options.shards)
-                                                : "");
+    // A deterministic share: every shard lists the same class folder in the same (name) order.
+    std::vector<std::string> share;
+    for (std::size_t i = static_cast<std::size_t>(options.shard - 1); i < ids.size();
+         i += static_cast<std::size_t>(options.shards)) {
+        share.push_back(ids[i]);
+    }
+    return share;
+}
 
-    // What every grade depends on besides the student's files.
+// What every grade depends on besides the student's files.
+Hash gradingBasis(const Builder& builder, const Assignment& assignment, const Rubric& rubric, const Limits& limits,
+                  bool includeHidden) {
     Hash base;
     base.add(builder.gradingKey(assignment)).add(verdictsOf(rubric));
-    const Limits limits = options.grade.limits.value_or(rubric.limits);
     for (double v : {limits.wallSeconds, limits.cpuSeconds, double(limits.memoryMiB), double(limits.outputKiB),
                      double(limits.fileMiB), double(limits.processes), double(limits.observationMiB),
                      double(limits.submissionKiB)}) {
         base.add(std::to_string(v));
     }
-    base.add(options.grade.includeHidden ? "all tests" : "visible tests");
+    base.add(includeHidden ? "all tests" : "visible tests");
+    return base;
+}
 
-    // What a person graded (manual.csv): read first, so that a sheet with a mistake stops simlab before anything is
-    // graded; written back at once with a row for every student and item (nothing typed in it is lost).
+// The whole class's own files beside the grades: the sheet of points given by hand, written back at once with a row
+// for every student and item (nothing typed in it is lost), and the rubric the class was graded with (the exports
+// read its points).
+void writeClassSheets(const std::string& outDir, const ManualSheet& sheet, const std::vector<std::string>& ids,
+                      const Rubric& rubric, std::vector<std::string>& warnings) {
     const std::string sheetPath = outDir + "/manual.csv";
-    ManualSheet sheet;
-    if (!sharded && fs::exists(sheetPath)) sheet = readManualCsv(readFile(sheetPath), sheetPath, rubric);
-    if (!sharded && (!rubric.manual.empty() || fs::exists(sheetPath))) {
+    if (!rubric.manual.empty() || fs::exists(sheetPath)) {
         const std::vector<std::string> stray = strayManualRows(sheet, ids, rubric);
         if (!stray.empty()) {
-            result.warnings.push_back(std::to_string(stray.size()) + " row(s) of " + sheetPath +
-                                      " name no student of the class or no item of the rubric, and count for nothing "
-                                      "(kept as typed): " + stray.front() + (stray.size() > 1 ? ", ..." : ""));
+            warnings.push_back(std::to_string(stray.size()) + " row(s) of " + sheetPath +
+                               " name no student of the class or no item of the rubric, and count for nothing "
+                               "(kept as typed): " +
+                               stray.front() + (stray.size() > 1 ? ", ..." : ""));
         }
         writeFileAtomically(sheetPath, manualCsv(sheet, ids, rubric));
     }
-    // The rubric the class was graded with, beside the grades: the exports read its points.
-    if (!sharded) writeFileAtomically(outDir + "/rubric.toml", readFile(rubric.path));
+    writeFileAtomically(outDir + "/rubric.toml", readFile(rubric.path));
+}
 
-    std::map<std::string, StudentRecord> records;
-    struct Pending {
-        std::string id, key;
-        Gathered gathered;
-        std::string why;  // why it is graded again (history.jsonl)
-    };
-    std::vector<std::string> rescored;  // kept records whose scores the rubric's points moved
+// A student to grade now, and why (history.jsonl).
+struct Pending {
+    std::string id, key;
+    Gathered gathered;
+    std::string why;
+};
+
+// Each student's grade: kept (up to date with their files and the grader) or to be made.
+struct ClassPlan {
+    std::map<std::string, StudentRecord> records;  // by id: the kept ones, then each as it is graded
+    std::vector<std::string> rescored;             // kept records whose scores the rubric's points moved
     std::vector<Pending> pending;
     int reused = 0;
+};
+
+// The key of a student's grade: the basis and the bytes that will be graded, read once, with care.
+std::string submissionKey(const Hash& base, const Gathered& gathered, const Rubric& rubric) {
+    Hash key = base;
+    key.add(gathered.status).add(gathered.note).add(gathered.found.shown);
+    if (gathered.files) {
+        key.add(gathered.files->text);
+        for (const std::string& name : rubric.extraFiles) {
+            const auto extra = std::find_if(gathered.files->extras.begin(), gathered.files->extras.end(),
+                                            [&](const HandedIn& h) { return h.name == name; });
+            key.add(extra == gathered.files->extras.end() ? "(none)" : extra->ok ? extra->text : extra->refusal);
+        }
+    }
+    return key.hex();
+}
+
+ClassPlan planClass(const std::vector<std::string>& ids, const std::string& submissionsDir, const std::string& outDir,
+                    const Rubric& rubric, const Limits& limits, const Hash& base, const ClassOptions& options) {
+    ClassPlan plan;
     for (const std::string& id : ids) {
         const bool wanted = options.only.empty() || std::count(options.only.begin(), options.only.end(), id);
         const std::string recordPath = outDir + "/students/" + id + "/record.json";
@@ -274,100 +291,162 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
         if (fs::exists(recordPath)) kept = readRecordJson(readFile(recordPath));
         if (kept) kept->id = id;
         if (kept && !wanted) {
-            records[id] = *kept;
+            plan.records[id] = *kept;
             continue;
         }
         if (!wanted) continue;
-        // The key is made from the bytes that will be graded, read once, with care.
         Gathered gathered = gatherSubmission(submissionsDir + "/" + id, rubric, limits, false, false);
-        Hash key = base;
-        key.add(gathered.status).add(gathered.note).add(gathered.found.shown);
-        if (gathered.files) {
-            key.add(gathered.files->text);
-            for (const std::string& name : rubric.extraFiles) {
-                const auto extra = std::find_if(gathered.files->extras.begin(), gathered.files->extras.end(),
-                                                [&](const HandedIn& h) { return h.name == name; });
-                key.add(extra == gathered.files->extras.end() ? "(none)" : extra->ok ? extra->text : extra->refusal);
-            }
-        }
-        if (kept && options.only.empty() && kept->key == key.hex()) {
-            if (rescore(*kept, rubric)) rescored.push_back(id);
-            records[id] = *kept;
-            ++reused;
+        const std::string key = submissionKey(base, gathered, rubric);
+        if (kept && options.only.empty() && kept->key == key) {
+            if (rescore(*kept, rubric)) plan.rescored.push_back(id);
+            plan.records[id] = *kept;
+            ++plan.reused;
         } else {
             const std::string why = !kept                          ? "first graded"
                                     : kept->key == "retry"         ? "its last grading failed"
                                     : kept->basis != base.hex()    ? "the grader, the rubric's tests or the limits changed"
                                     : !options.only.empty()        ? "asked for (--only)"
                                                                    : "the submission changed";
-            pending.push_back({id, key.hex(), std::move(gathered), why});
+            plan.pending.push_back({id, key, std::move(gathered), why});
         }
     }
-    // Kept records re-scored by the rubric's points, and graded by hand: their files say so.
-    for (auto& [id, r] : records) {
+    return plan;
+}
+
+// Kept records: results.json written again from each (its scores now, and the points given by hand); the feedback
+// of those re-scored by the rubric's points or graded by hand says so too, and one graded by a simlab that wrote no
+// feedback.html gets one, so that report.html links to a page.
+void refreshKeptRecords(const Assignment& assignment, const Rubric& rubric, const std::string& outDir,
+                        const ManualSheet& sheet, ClassPlan& plan) {
+    for (auto& [id, r] : plan.records) {
         applyManual(r, sheet, rubric);
-        const bool moved = std::count(rescored.begin(), rescored.end(), id) > 0;
-        if (!moved && rubric.manual.empty()) continue;
+        const bool moved = std::count(plan.rescored.begin(), plan.rescored.end(), id) > 0;
         const std::string dir = outDir + "/students/" + id;
+        writeFileAtomically(dir + "/results.json", resultsJson(r));
+        if (!moved && rubric.manual.empty()) continue;
         if (moved) {
             writeFileDurably(dir + "/record.json", recordJson(r));
             appendHistory(dir, r, "the rubric's points changed (re-scored from the recorded verdicts)");
-        }
-        if (fs::exists(dir + "/results.json")) {
-            writeFileAtomically(dir + "/results.json", updatedResultsJson(readFile(dir + "/results.json"), r));
         }
         const std::vector<Attachment> attached = attachedBeside(dir);
         writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, r, rubric.manual, namesOf(attached)));
         writeFileAtomically(dir + "/" + kFeedbackHtml, feedbackHtml(assignment, r, rubric.manual, attached));
     }
-
-    // A kept record graded by a simlab that wrote no feedback.html gets one, so that report.html links to a page.
-    for (const auto& [id, r] : records) {
+    for (const auto& [id, r] : plan.records) {
         const std::string dir = outDir + "/students/" + id;
         if (!fs::exists(dir + "/" + kFeedbackHtml)) {
             writeFileAtomically(dir + "/" + kFeedbackHtml,
                                 feedbackHtml(assignment, r, rubric.manual, attachedBeside(dir)));
         }
     }
+}
 
-    std::mutex lock;
-    ClassProgress progress;
-    progress.total = static_cast<int>(options.only.empty() ? ids.size() : options.only.size());
-    progress.reused = reused;
-    // The gradebook as it stands, after each student: replaced whole (never half written), and flushed to the disk
-    // at the end. The records are the commits; a gradebook a power cut took back is written again from them.
-    auto publish = [&](bool durable) {
-        if (sharded) return;  // the whole-class run writes the gradebook
-        std::vector<StudentRecord> sorted;
-        for (const auto& [id, r] : records) sorted.push_back(r);
-        const std::string text = gradebookCsv(rubric, sorted);
-        if (durable) writeFileDurably(outDir + "/gradebook.csv", text);
-        else writeFileAtomically(outDir + "/gradebook.csv", text);
+// The pending students graded `jobs` at a time. Each student's files are written as they finish, the record last
+// (the commit), and the gradebook after each: replaced whole (never half written), and flushed to the disk at the
+// end. A gradebook a power cut took back is written again from the records.
+class ClassGrading {
+public:
+    struct Context {
+        const Builder& builder;
+        const Assignment& assignment;
+        const Rubric& rubric;
+        const std::string& outDir;
+        const ClassOptions& options;
+        const ManualSheet& sheet;
+        std::string basis;
+        std::chrono::steady_clock::time_point start;
+        int students;  // the students this run is about: the class, or those asked for
+        std::function<void(const ClassProgress&)> onProgress;
     };
-    publish(false);
-    for (const auto& [id, r] : records) {
-        if (options.only.empty() || std::count(options.only.begin(), options.only.end(), id)) {
-            ++progress.done;
-            progress.last = &r;
-            progress.lastReused = true;
-            if (onProgress) onProgress(progress);
+
+    ClassGrading(Context context, ClassPlan& plan, ClassResult& result)
+        : c_(std::move(context)), plan_(plan), result_(result) {
+        progress_.total = c_.students;
+        progress_.reused = plan.reused;
+    }
+
+    // The kept students reported, then the pending ones graded. Returns what stopped a setup for every student,
+    // if something did.
+    std::exception_ptr run() {
+        publish(false);
+        for (const auto& [id, r] : plan_.records) {
+            if (c_.options.only.empty() || std::count(c_.options.only.begin(), c_.options.only.end(), id)) {
+                ++progress_.done;
+                progress_.last = &r;
+                progress_.lastReused = true;
+                if (c_.onProgress) c_.onProgress(progress_);
+            }
+        }
+        alreadyDone_ = progress_.done;
+        std::vector<std::thread> workers;
+        const int jobs = std::max(1, std::min<int>(c_.options.jobs, static_cast<int>(plan_.pending.size())));
+        for (int k = 0; k < jobs; ++k) workers.emplace_back([this] { work(); });
+        for (std::thread& w : workers) w.join();
+        return setupFailure_;
+    }
+
+    void publish(bool durable) {
+        if (c_.options.shards > 0) return;  // the whole-class run writes the gradebook
+        std::vector<StudentRecord> sorted;
+        for (const auto& [id, r] : plan_.records) sorted.push_back(r);
+        const std::string text = gradebookCsv(c_.rubric, sorted);
+        if (durable) writeFileDurably(c_.outDir + "/gradebook.csv", text);
+        else writeFileAtomically(c_.outDir + "/gradebook.csv", text);
+    }
+
+private:
+    void work() {
+        for (std::size_t i = next_++; i < plan_.pending.size() && !stop_; i = next_++) gradeOne(plan_.pending[i]);
+    }
+
+    void gradeOne(const Pending& p) {
+        const GradeOptions& grade = c_.options.grade;
+        try {
+            GradeReport report;
+            if (p.gathered.files) {
+                report = gradeSubmission(c_.builder, c_.assignment, c_.rubric, *p.gathered.files, grade);
+                if (report.status == "graded") report.status = p.gathered.status;
+                if (!p.gathered.note.empty()) {
+                    report.note = p.gathered.note + (report.note.empty() ? "" : "; " + report.note);
+                }
+            } else {
+                report =
+                    notGradedReport(c_.assignment, c_.rubric, p.gathered.status, p.gathered.note, grade.includeHidden);
+            }
+            finish(classRecordOf(p.id, p.key, report, p.gathered.found.shown), &report, p.why);
+        } catch (const Interrupted&) {
+            stop_ = true;  // this student has no outcome: the next run grades them
+        } catch (const SetupError&) {
+            // No student's fault, and every one would meet it: stop, keep what was graded, and say why.
+            std::lock_guard<std::mutex> guard(lock_);
+            if (!setupFailure_) setupFailure_ = std::current_exception();
+            stop_ = true;
+        } catch (const std::exception& e) {
+            // simlab could not grade this one (a disk full, say): a row that says so, and a retry next run.
+            StudentRecord failed;
+            failed.id = p.id;
+            failed.key = "retry";
+            failed.status = "grader error";
+            failed.note = e.what();
+            failed.maxScore = c_.rubric.totalPoints();
+            failed.assignment = c_.assignment.id;
+            try {
+                finish(failed, nullptr, p.why + "; simlab could not grade it: " + failed.note);
+            } catch (const std::exception&) {
+                stop_ = true;  // nothing can be written: stop rather than lose grades silently
+            }
+            std::lock_guard<std::mutex> guard(lock_);
+            ++result_.graderErrors;
         }
     }
 
-    std::atomic<std::size_t> next{0};
-    std::atomic<bool> stop{false};
-    std::exception_ptr setupFailure;
-    const int alreadyDone = progress.done;
-    auto finish = [&](StudentRecord record, bool writeRecord, const GradeReport* report, const std::string& why) {
-        const std::string dir = outDir + "/students/" + record.id;
+    void finish(StudentRecord record, const GradeReport* report, const std::string& why) {
+        const std::string dir = c_.outDir + "/students/" + record.id;
         fs::create_directories(dir);
-        record.basis = base.hex();
-        applyManual(record, sheet, rubric);
-        if (report) {
-            const std::string results = resultsJson(*report);
-            writeFileAtomically(dir + "/results.json", record.manual.empty() ? results : updatedResultsJson(results, record));
-            writeFileAtomically(dir + "/output.txt", testOutputText(*report));
-        }
+        record.basis = c_.basis;
+        applyManual(record, c_.sheet, c_.rubric);
+        writeFileAtomically(dir + "/results.json", resultsJson(record));
+        if (report) writeFileAtomically(dir + "/output.txt", testOutputText(*report));
         std::vector<Attachment> attached;
         if (report) {
             for (const TestResult& t : report->tests) {
@@ -378,76 +457,66 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
                 }
             }
         }
-        writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, record, rubric.manual, namesOf(attached)));
-        writeFileAtomically(dir + "/" + kFeedbackHtml, feedbackHtml(assignment, record, rubric.manual, attached));
-        if (writeRecord) {
-            appendHistory(dir, record, why);
-            writeFileDurably(dir + "/record.json", recordJson(record));  // last: the commit
-        }
+        const std::vector<ManualItem>& manual = c_.rubric.manual;
+        writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(c_.assignment, record, manual, namesOf(attached)));
+        writeFileAtomically(dir + "/" + kFeedbackHtml, feedbackHtml(c_.assignment, record, manual, attached));
+        appendHistory(dir, record, why);
+        writeFileDurably(dir + "/record.json", recordJson(record));  // last: the commit
 
-        std::lock_guard<std::mutex> guard(lock);
-        records[record.id] = record;
+        std::lock_guard<std::mutex> guard(lock_);
+        plan_.records[record.id] = record;
         publish(false);
-        ++progress.done;
-        progress.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const double graded = progress.done - alreadyDone;
-        progress.eta = progress.elapsed / graded * (progress.total - progress.done);
-        progress.last = &records[record.id];
-        progress.lastReused = false;
-        if (onProgress) onProgress(progress);
-    };
-    auto worker = [&] {
-        for (std::size_t i = next++; i < pending.size() && !stop; i = next++) {
-            const Pending& p = pending[i];
-            const GradeOptions& grade = options.grade;
-            try {
-                GradeReport report;
-                if (p.gathered.files) {
-                    report = gradeSubmission(builder, assignment, rubric, *p.gathered.files, grade);
-                    if (report.status == "graded") report.status = p.gathered.status;
-                    if (!p.gathered.note.empty()) {
-                        report.note = p.gathered.note + (report.note.empty() ? "" : "; " + report.note);
-                    }
-                } else {
-                    report = notGradedReport(assignment, rubric, p.gathered.status, p.gathered.note,
-                                             grade.includeHidden);
-                }
-                finish(recordOf(p.id, p.key, report, p.gathered.found.shown), true, &report, p.why);
-            } catch (const Interrupted&) {
-                stop = true;  // this student has no outcome: the next run grades them
-            } catch (const SetupError&) {
-                // No student's fault, and every one would meet it: stop, keep what was graded, and say why.
-                std::lock_guard<std::mutex> guard(lock);
-                if (!setupFailure) setupFailure = std::current_exception();
-                stop = true;
-            } catch (const std::exception& e) {
-                // simlab could not grade this one (a disk full, say): a row that says so, and a retry next run.
-                StudentRecord failed;
-                failed.id = p.id;
-                failed.key = "retry";
-                failed.status = "grader error";
-                failed.note = e.what();
-                failed.maxScore = rubric.totalPoints();
-                try {
-                    finish(failed, true, nullptr, p.why + "; simlab could not grade it: " + failed.note);
-                } catch (const std::exception&) {
-                    stop = true;  // nothing can be written: stop rather than lose grades silently
-                }
-                std::lock_guard<std::mutex> guard(lock);
-                ++result.graderErrors;
-            }
-        }
-    };
-    std::vector<std::thread> workers;
-    const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(pending.size())));
-    for (int k = 0; k < jobs; ++k) workers.emplace_back(worker);
-    for (std::thread& w : workers) w.join();
+        ++progress_.done;
+        progress_.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - c_.start).count();
+        const double graded = progress_.done - alreadyDone_;
+        progress_.eta = progress_.elapsed / graded * (progress_.total - progress_.done);
+        progress_.last = &plan_.records[record.id];
+        progress_.lastReused = false;
+        if (c_.onProgress) c_.onProgress(progress_);
+    }
+
+    Context c_;
+    ClassPlan& plan_;
+    ClassResult& result_;
+    std::mutex lock_;
+    ClassProgress progress_;
+    int alreadyDone_ = 0;
+    std::atomic<std::size_t> next_{0};
+    std::atomic<bool> stop_{false};
+    std::exception_ptr setupFailure_;
+};
+
+}  // namespace
+
+ClassResult gradeClass(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
+                       const std::string& submissionsDir, const std::string& outDir, const ClassOptions& options,
+                       const std::function<void(const ClassProgress&)>& onProgress) {
+    const auto start = std::chrono::steady_clock::now();
+    ClassResult result;
+    const std::vector<std::string> ids = classStudents(submissionsDir, options, result.skipped);
+    const bool sharded = options.shards > 0;
+    fs::create_directories(outDir + "/students");
+    // One simlab at a time writes a class's grades, or shards side by side, each its own students.
+    const OutputLock outputLock(outDir,
+                                sharded ? std::to_string(options.shard) + "-of-" + std::to_string(options.shards) : "");
+    const Limits limits = options.grade.limits.value_or(rubric.limits);
+    const Hash base = gradingBasis(builder, assignment, rubric, limits, options.grade.includeHidden);
+    // What a person graded (manual.csv, read by the caller); a shard leaves the class's own files to the whole run.
+    const ManualSheet sheet = sharded ? ManualSheet{} : options.manual;
+    if (!sharded) writeClassSheets(outDir, sheet, ids, rubric, result.warnings);
+
+    ClassPlan plan = planClass(ids, submissionsDir, outDir, rubric, limits, base, options);
+    refreshKeptRecords(assignment, rubric, outDir, sheet, plan);
+    const int students = static_cast<int>(options.only.empty() ? ids.size() : options.only.size());
+    ClassGrading grading({builder, assignment, rubric, outDir, options, sheet, base.hex(), start, students, onProgress},
+                         plan, result);
+    const std::exception_ptr setupFailure = grading.run();
 
     for (const std::string& id : ids) {
-        if (records.count(id)) result.records.push_back(records[id]);
+        if (plan.records.count(id)) result.records.push_back(plan.records[id]);
     }
-    publish(true);
-    result.reused = reused;
+    grading.publish(true);
+    result.reused = plan.reused;
     if (!sharded) {
         writeFileAtomically(outDir + "/summary.csv", summaryCsv(rubric, result.records));
         writeFileAtomically(outDir + "/report.html", classReportHtml(assignment, rubric, result));

@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <set>
 
 #include "simlab/common/errors.h"
+#include "simlab/common/files.h"
 #include "simlab/grading/report.h"
 #include "simlab/writers/roster.h"
 #include "simlab/common/text.h"
@@ -82,6 +84,12 @@ ManualSheet readManualCsv(const std::string& text, const std::string& name, cons
         sheet.entries[key] = entry;
     }
     return sheet;
+}
+
+ManualSheet readManualSheet(const std::string& outDir, const Rubric& rubric) {
+    const std::string path = outDir + "/manual.csv";
+    if (!std::filesystem::exists(path)) return {};
+    return readManualCsv(readFile(path), path, rubric);
 }
 
 std::string manualCsv(ManualSheet sheet, const std::vector<std::string>& students, const Rubric& rubric) {

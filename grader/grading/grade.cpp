@@ -20,10 +20,10 @@
 #include <set>
 #include <thread>
 
-#include "simlab/protocol/attachments.h"
 #include "simlab/protocol/bounded_json.h"
 #include "simlab/common/errors.h"
 #include "simlab/isolation/process.h"
+#include "simlab/protocol/verdict.h"
 #include "simlab/grading/record.h"
 
 namespace fs = std::filesystem;
@@ -91,14 +91,21 @@ ProbeEvents probeEvents(const std::vector<std::string>& lines) {
     return e;
 }
 
-// The judge's "end" record for `test`, if it wrote one.
-std::optional<nlohmann::json> judgeVerdict(const std::vector<std::string>& lines, const std::string& test) {
+// The judge's verdict on `test`, if it wrote one; a malformed one leaves `malformed` saying what is wrong.
+std::optional<wire::Verdict> judgeVerdict(const std::vector<std::string>& lines, const std::string& test,
+                                          std::string* malformed) {
     std::optional<nlohmann::json> end;
     for (const std::string& line : lines) {
         nlohmann::json record = wire::parseBounded(line);
-        if (record.is_object() && record.value("event", "") == "end" && record.value("test", "") == test) end = record;
+        if (wire::isEndRecord(record, test)) end = std::move(record);
     }
-    return end;
+    if (!end) return std::nullopt;
+    try {
+        return wire::readVerdict(*end);
+    } catch (const wire::WireError& e) {
+        *malformed = e.what();
+        return std::nullopt;
+    }
 }
 
 // Why a probe that died of a signal died, as far as simlab can tell.
@@ -139,7 +146,8 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
     t.cpuSeconds = probe.cpuSeconds;
     t.output = probe.output;
     const ProbeEvents events = probeEvents(probe.reports);
-    const std::optional<nlohmann::json> verdict = judgeVerdict(judge.reports, test.name);
+    std::string malformed;
+    const std::optional<wire::Verdict> verdict = judgeVerdict(judge.reports, test.name, &malformed);
     double credit = 0;
 
     if (!probe.started) {
@@ -181,52 +189,39 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
         t.reason = crashReason(probe, events);
     } else if (!verdict) {
         t.outcome = Outcome::DidNotFinish;
-        if (judge.output.find("No test cases matched") != std::string::npos) {
+        if (!malformed.empty()) {
+            t.reason = "the grader's judge sent a malformed verdict (" + malformed +
+                       "): a fault in simlab, not in the submission";
+        } else if (judge.output.find("No test cases matched") != std::string::npos) {
             t.reason = "the grader has no test of this name: the rubric and the tests disagree";
         } else {
             t.reason = "the grader's judge ended without a verdict (" +
                        (judge.signal ? isolation::signalName(judge.signal) : "status " + std::to_string(judge.exitCode)) +
                        "): a fault in simlab, not in the submission";
         }
-    } else if (verdict->value("channel", "") == "process ended") {
+    } else if (verdict->channel == wire::ChannelFailure::ProcessEnded) {
         t.outcome = Outcome::DidNotFinish;
         t.reason = "did not finish: the student's code ended its process (exit status " +
                    std::to_string(probe.exitCode) + ") before it answered";
-    } else if (verdict->value("channel", "") == "bad report") {
+    } else if (verdict->channel == wire::ChannelFailure::BadReport) {
         t.outcome = Outcome::BadReport;
-        t.reason = "bad report: " + verdict->value("reason", "");
+        t.reason = "bad report: " + verdict->reason;
     } else {
-        const bool passed = verdict->value("passed", false);
-        t.outcome = passed ? Outcome::Passed : Outcome::Failed;
-        const nlohmann::json creditField = verdict->value("credit", nlohmann::json(0.0));
-        const double c = creditField.is_number() ? creditField.get<double>() : 0.0;
-        credit = passed ? 1.0 : std::isfinite(c) ? std::clamp(c, 0.0, 1.0) : 0.0;
-        t.reason = verdict->value("reason", "");
-        if (verdict->contains("feedback") && (*verdict)["feedback"].is_array()) {
-            for (const auto& line : (*verdict)["feedback"]) {
-                if (line.is_string()) t.feedback.push_back(line.get<std::string>());
-            }
-        }
-        if (verdict->contains("attachments") && (*verdict)["attachments"].is_array()) {
-            for (const auto& file : (*verdict)["attachments"]) {
-                if (!file.is_object() || t.attachments.size() >= wire::kMaxAttachments) continue;
-                const std::string name = file.value("name", ""), text = file.value("text", "");
-                if (wire::isAttachmentName(name) && text.size() <= wire::kMaxAttachmentBytes) {
-                    t.attachments.emplace_back(name, text);
-                }
-            }
-        }
-        if (verdict->contains("figure") && (*verdict)["figure"].is_object()) {
-            const nlohmann::json& figure = (*verdict)["figure"];
-            if (figure.contains("value") && figure["value"].is_number()) t.figure = figure["value"].get<double>();
-            t.unit = figure.value("unit", "");
+        t.outcome = verdict->passed ? Outcome::Passed : Outcome::Failed;
+        credit = verdict->passed ? 1.0 : verdict->credit;
+        t.reason = verdict->reason;
+        t.feedback = verdict->feedback;
+        for (const wire::Attachment& file : verdict->attachments) t.attachments.emplace_back(file.name, file.text);
+        if (verdict->figure) {
+            t.figure = verdict->figure->value;
+            t.unit = verdict->figure->unit;
         }
     }
     // The judge's account of the test's time (the student's process's, and the judge's own: drawing, say) and of
     // the shared questions it used: hints for sharing the next self-check's tests out, nothing scored.
-    if (const std::optional<TestCost> cost = verdict ? readTestCost(*verdict) : std::nullopt) {
-        t.seconds = std::max(t.seconds, cost->seconds);
-        t.shared = cost->shared;
+    if (verdict) {
+        t.seconds = std::max(t.seconds, verdict->seconds);
+        t.shared = verdict->shared;
     }
     t.credit = credit;
     t.score = roundScore(test.points * credit);

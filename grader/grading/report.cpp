@@ -48,23 +48,29 @@ std::string indent(const std::string& text, const std::string& prefix) {
     return out;
 }
 
-std::string notRunLine(const GradeReport& r) {
-    if (r.notRunCount == 0) return "";
-    return std::to_string(r.notRunCount) + (r.notRunCount == 1 ? " hidden test" : " hidden tests") + " worth " +
-           points(r.notRunPoints) + " points " + (r.notRunCount == 1 ? "is" : "are") +
-           " left for instructor grading.";
+std::string notRunLine(int count, double notRunPoints) {
+    if (count == 0) return "";
+    return std::to_string(count) + (count == 1 ? " hidden test" : " hidden tests") + " worth " + points(notRunPoints) +
+           " points " + (count == 1 ? "is" : "are") + " left for instructor grading.";
 }
 
-/// "Graded by hand, pending: 25 points (the schematic is clear, 10; ...)"; empty without manual items.
-std::string manualLine(const GradeReport& r) {
-    if (r.manual.empty()) return "";
+/// "Graded by hand, pending: 25 points (the schematic is clear, 10; ...)"; empty without pending items.
+std::string manualLine(const std::vector<ManualGrade>& manual) {
     double total = 0;
     std::string items;
-    for (const ManualItem& m : r.manual) {
-        total += m.points;
-        items += (items.empty() ? "" : "; ") + m.name + ", " + points(m.points);
+    for (const ManualGrade& m : manual) {
+        if (m.points) continue;
+        total += m.maxPoints;
+        items += (items.empty() ? "" : "; ") + m.name + ", " + points(m.maxPoints);
     }
+    if (items.empty()) return "";
     return "Graded by hand, pending: " + points(total) + " points (" + items + ").";
+}
+
+std::vector<ManualGrade> pending(const std::vector<ManualItem>& items) {
+    std::vector<ManualGrade> manual;
+    for (const ManualItem& m : items) manual.push_back({m.name, m.points, std::nullopt, ""});
+    return manual;
 }
 
 }  // namespace
@@ -104,9 +110,9 @@ std::string renderText(const GradeReport& r) {
         for (const std::string& line : t.feedback) out << "                            - " << printable(line) << "\n";
     }
     out << "Score: " << points(r.score()) << "/" << points(r.maxScore()) << "\n";
-    const std::string left = notRunLine(r);
+    const std::string left = notRunLine(r.notRunCount, r.notRunPoints);
     if (!left.empty()) out << left << "\n";
-    const std::string manual = manualLine(r);
+    const std::string manual = manualLine(pending(r.manual));
     if (!manual.empty()) out << manual << "\n";
     return out.str();
 }
@@ -120,13 +126,34 @@ std::string gradescopeVisibility(const TestResult& t) {
     return t.visibility;
 }
 
-nlohmann::json toGradescope(const GradeReport& r) {
+StudentRecord recordOf(const GradeReport& report) {
+    StudentRecord r;
+    r.status = report.status;
+    r.note = report.note;
+    r.score = report.score();
+    r.maxScore = report.maxScore();
+    r.seconds = report.seconds;
+    r.compiler = isolation::firstLines(report.build.ok ? report.build.warnings : report.build.log, 20);
+    r.sandbox = report.sandbox;
+    r.assignment = report.assignment;
+    r.built = report.build.ok;
+    r.build = buildLine(report.build);
+    r.notRunCount = report.notRunCount;
+    r.notRunPoints = report.notRunPoints;
+    r.tests = report.tests;
+    r.manual = pending(report.manual);
+    return r;
+}
+
+nlohmann::json toGradescope(const StudentRecord& r) {
+    // The compiler's first lines, as the record keeps them.
+    const std::string compiler = printable(r.compiler, true);
     nlohmann::json tests = nlohmann::json::array();
     for (const TestResult& t : r.tests) {
         std::string output = outcomeName(t.outcome);
         if (!t.reason.empty() && t.outcome != Outcome::DidNotCompile) output += ": " + printable(t.reason);
         for (const std::string& line : t.feedback) output += "\n- " + printable(line);
-        if (t.outcome == Outcome::DidNotCompile) output += "\n" + isolation::firstLines(printable(r.build.log, true), 12);
+        if (t.outcome == Outcome::DidNotCompile) output += "\n" + isolation::firstLines(compiler, 12);
         nlohmann::json test = {{"name", t.name},
                                {"score", t.score},
                                {"max_score", t.maxScore},
@@ -141,38 +168,47 @@ nlohmann::json toGradescope(const GradeReport& r) {
         tests.push_back(test);
     }
     std::string output = r.note.empty() ? "" : printable(r.note) + "\n";
-    output += buildLine(r.build) + "\n";
+    if (!r.build.empty()) output += r.build + "\n";
     if (!r.sandbox.empty()) output += "sandbox: " + r.sandbox + "\n";
-    if (!r.build.ok) output += isolation::firstLines(printable(r.build.log, true), 20);
-    output += warningLines(r.build, 20);
-    const std::string left = notRunLine(r);
+    if (!r.built || warningCount(r.compiler) > 0) output += compiler;
+    const std::string left = notRunLine(r.notRunCount, r.notRunPoints);
     if (!left.empty()) output += left + "\n";
-    const std::string manual = manualLine(r);
+    const std::string manual = manualLine(r.manual);
     if (!manual.empty()) output += manual + "\n";
     // The items a person grades: Gradescope grades them as questions of their own beside the autograder's score.
-    nlohmann::json pending = nlohmann::json::array();
-    double pendingPoints = 0;
-    for (const ManualItem& m : r.manual) {
-        pending.push_back({{"name", m.name}, {"max_score", m.points}, {"status", "pending"}});
-        pendingPoints += m.points;
+    nlohmann::json pendingItems = nlohmann::json::array(), given = nlohmann::json::array();
+    for (const ManualGrade& m : r.manual) {
+        if (m.points) {
+            given.push_back(
+                {{"name", m.name}, {"score", *m.points}, {"max_score", m.maxPoints}, {"comment", m.comment}});
+        } else {
+            pendingItems.push_back({{"name", m.name}, {"max_score", m.maxPoints}, {"status", "pending"}});
+        }
+    }
+    nlohmann::json extra = {{"assignment", r.assignment},
+                            {"status", r.status},
+                            {"sandbox", r.sandbox},
+                            {"max_score", r.maxScore},
+                            {"hidden_tests_not_run", r.notRunCount},
+                            {"hidden_points_not_run", r.notRunPoints},
+                            {"manual_pending", pendingItems},
+                            {"manual_points_pending", r.pendingPoints()}};
+    if (!r.manual.empty()) {
+        extra["manual_graded"] = given;
+        extra["total_with_manual"] = r.total();
+        extra["max_with_manual"] = r.maxTotal();
     }
     // Everything is plain text (never HTML or Markdown a student's bytes could shape), valid UTF-8.
-    return {{"score", r.score()},
+    return {{"score", r.score},
             {"execution_time", static_cast<int>(std::ceil(r.seconds))},
             {"output", output},
             {"output_format", "text"},
             {"test_output_format", "text"},
             {"stdout_visibility", "hidden"},
             {"tests", tests},
-            {"extra_data",
-             {{"assignment", r.assignment},
-              {"status", r.status},
-              {"sandbox", r.sandbox},
-              {"max_score", r.maxScore()},
-              {"hidden_tests_not_run", r.notRunCount},
-              {"hidden_points_not_run", r.notRunPoints},
-              {"manual_pending", pending},
-              {"manual_points_pending", pendingPoints}}}};
+            {"extra_data", extra}};
 }
+
+nlohmann::json toGradescope(const GradeReport& report) { return toGradescope(recordOf(report)); }
 
 }  // namespace simlab::engine

@@ -33,6 +33,7 @@
 #include "simlab/harness/observe.h"
 #include "simlab/plot.h"
 #include "simlab/rubric/rubric.h"
+#include "simlab/protocol/verdict.h"
 
 namespace simlab::grading {
 
@@ -73,22 +74,22 @@ void send(const nlohmann::json& record) {
 }
 
 // What the running test case has said about itself.
-struct Verdict {
+struct Running {
     std::string test;
     std::optional<double> figure;
     std::string unit;
     std::string text;
     std::optional<double> credit;
     std::vector<std::string> feedback;
-    nlohmann::json attachments = nlohmann::json::array();
+    std::vector<wire::Attachment> attachments;
     std::string firstFailure;  // reason taken from the first failed assertion
     bool failureIsException = false;
     bool failureHasInfo = false;
     std::chrono::steady_clock::time_point started;
 };
 
-Verdict& verdict() {
-    static Verdict v;
+Running& verdict() {
+    static Running v;
     return v;
 }
 
@@ -160,7 +161,7 @@ void attach(const std::string& name, const std::string& text) {
     if (verdict().attachments.size() >= wire::kMaxAttachments) throw std::invalid_argument("attach: too many files");
     if (!isAttachmentName(name)) throw std::invalid_argument("attach: '" + name + "' is not a plain file name");
     if (text.size() > kMaxAttachmentBytes) throw std::invalid_argument("attach: " + name + " is over 256 KiB");
-    verdict().attachments.push_back({{"name", name}, {"text", text}});
+    verdict().attachments.push_back({name, text});
 }
 
 void attachPlot(const std::string& name, const Plot& plot) {
@@ -220,17 +221,17 @@ struct Listener : Catch::TestEventListenerBase {
     using TestEventListenerBase::TestEventListenerBase;
 
     void testCaseStarting(const Catch::TestCaseInfo& info) override {
-        verdict() = Verdict{};
+        verdict() = Running{};
         verdict().test = info.name;
         verdict().started = std::chrono::steady_clock::now();
         observe::startTest(info.name);
-        send({{"event", "start"}, {"test", info.name}});
+        send(wire::startRecord(info.name));
         TestEventListenerBase::testCaseStarting(info);
     }
 
     bool assertionEnded(const Catch::AssertionStats& stats) override {
         const Catch::AssertionResult& result = stats.assertionResult;
-        Verdict& v = verdict();
+        Running& v = verdict();
         if (result.isOk() || !v.firstFailure.empty()) return true;
         const auto kind = result.getResultType();
         std::string info;
@@ -254,7 +255,7 @@ struct Listener : Catch::TestEventListenerBase {
     }
 
     void testCaseEnded(const Catch::TestCaseStats& stats) override {
-        const Verdict& v = verdict();
+        const Running& v = verdict();
         // Whatever the test concluded, the channel must have carried exactly the answers it asked for.
         const bool failedBefore = observe::lastFailure() != observe::ChannelFailure::None;
         const std::string extra = observe::finishTest();
@@ -264,22 +265,21 @@ struct Listener : Catch::TestEventListenerBase {
         std::string reason = v.text;
         if (!passed && (v.failureIsException || v.failureHasInfo || v.text.empty())) reason = v.firstFailure;
         if (!extra.empty() && !failedBefore) reason = extra;
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - v.started).count();
-        nlohmann::json record = {{"event", "end"},
-                                 {"test", v.test},
-                                 {"passed", passed},
-                                 {"credit", passed ? 1.0 : v.credit.value_or(0.0)},
-                                 {"reason", reason},
-                                 {"feedback", v.feedback},
-                                 {"attachments", v.attachments},
-                                 // how long the test took here, the student's process included, and the shared
-                                 // questions it used: what the next self-check shares the tests out by
-                                 {"seconds", seconds},
-                                 {"shared", observe::sharedUsed()}};
-        if (channel == observe::ChannelFailure::BadReport) record["channel"] = "bad report";
-        if (channel == observe::ChannelFailure::ProcessEnded) record["channel"] = "process ended";
-        if (v.figure) record["figure"] = {{"value", std::isfinite(*v.figure) ? *v.figure : 0.0}, {"unit", v.unit}};
-        send(record);
+        wire::Verdict end;
+        end.test = v.test;
+        end.passed = passed;
+        end.credit = passed ? 1.0 : v.credit.value_or(0.0);
+        end.reason = reason;
+        end.feedback = v.feedback;
+        end.attachments = v.attachments;
+        if (v.figure) end.figure = wire::Figure{std::isfinite(*v.figure) ? *v.figure : 0.0, v.unit};
+        if (channel == observe::ChannelFailure::BadReport) end.channel = wire::ChannelFailure::BadReport;
+        if (channel == observe::ChannelFailure::ProcessEnded) end.channel = wire::ChannelFailure::ProcessEnded;
+        // how long the test took here, the student's process included, and the shared questions it used: what
+        // the next self-check shares the tests out by
+        end.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - v.started).count();
+        end.shared = observe::sharedUsed();
+        send(wire::endRecord(end));
         TestEventListenerBase::testCaseEnded(stats);
     }
 };

@@ -13,10 +13,23 @@ std::string recordJson(const StudentRecord& r) {
         if (t.figure) j["figure"] = {{"value", *t.figure}, {"unit", t.unit}};
         tests.push_back(j);
     }
-    const nlohmann::json record = {{"id", r.id},       {"key", r.key},           {"basis", r.basis},  {"status", r.status},
-                                   {"note", r.note},   {"file", r.file},         {"score", r.score},
-                                   {"max_score", r.maxScore}, {"seconds", r.seconds}, {"compiler", r.compiler},
-                                   {"sandbox", r.sandbox},    {"tests", tests}};
+    const nlohmann::json record = {{"id", r.id},
+                                   {"key", r.key},
+                                   {"basis", r.basis},
+                                   {"status", r.status},
+                                   {"note", r.note},
+                                   {"file", r.file},
+                                   {"score", r.score},
+                                   {"max_score", r.maxScore},
+                                   {"seconds", r.seconds},
+                                   {"compiler", r.compiler},
+                                   {"sandbox", r.sandbox},
+                                   {"assignment", r.assignment},
+                                   {"built", r.built},
+                                   {"build", r.build},
+                                   {"not_run_count", r.notRunCount},
+                                   {"not_run_points", r.notRunPoints},
+                                   {"tests", tests}};
     return writers::jsonText(record);
 }
 
@@ -35,6 +48,12 @@ std::optional<StudentRecord> readRecordJson(const std::string& text) {
         r.seconds = j.at("seconds");
         r.compiler = j.at("compiler");
         r.sandbox = j.value("sandbox", "");
+        // What results.json shows besides the tests: a record without it is from an older simlab (regraded).
+        r.assignment = j.at("assignment");
+        r.built = j.at("built");
+        r.build = j.at("build");
+        r.notRunCount = j.at("not_run_count");
+        r.notRunPoints = j.at("not_run_points");
         for (const nlohmann::json& t : j.at("tests")) {
             TestResult x;
             x.name = t.at("name");

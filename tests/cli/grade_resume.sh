@@ -44,7 +44,11 @@ student_lines() { grep -E '^  [a-z0-9-]+ +[0-9.]+/100 ' "$1"; }
 check "after one file changes, only that student is regraded" test "$(student_lines changed.out | grep -vc '(unchanged)')" -eq 1
 check "the gradebook is unchanged (the comment changes no score)" cmp -s before.csv grades/gradebook.csv
 
+# A damaged results.json of a student kept as graded is written again from the student's record.
+echo '{"score": 100' >grades/students/starter/results.json
 run_capture only "$SIMLAB" grade apple class --out grades --only reference --junit junit.xml
+check "a kept student's damaged results.json is written again from the record" \
+  python3 -c 'import json, sys; sys.exit(json.load(open("grades/students/starter/results.json"))["score"] != 0)'
 check "--only grades just that student" test "$(student_lines only.out | wc -l)" -eq 1
 check "--only keeps every other row as it was" cmp -s before.csv grades/gradebook.csv
 run_capture unknown "$SIMLAB" grade apple class --out grades --only nobody

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "simlab/grading/grade.h"
+#include "simlab/course/manual.h"
 #include "simlab/grading/record.h"
 #include "simlab/writers/writers.h"
 
@@ -76,6 +77,9 @@ struct ClassOptions {
     /// report and the sheet of manual points are left to a whole-class run, which assembles them. 0: the class.
     int shard = 0;
     int shards = 0;
+    /// The points given by hand (readManualSheet), read by the caller before anything changes; a shard has no use
+    /// for them.
+    ManualSheet manual;
 };
 
 /// Grade every student folder of `submissionsDir` into `outDir`. Returns the records of every student in the

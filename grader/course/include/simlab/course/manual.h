@@ -45,6 +45,9 @@ std::vector<std::string> strayManualRows(const ManualSheet& sheet, const std::ve
 /// from 0 to the item's points.
 ManualSheet readManualCsv(const std::string& text, const std::string& name, const Rubric& rubric);
 
+/// OUT/manual.csv of the grades in `outDir`, read and checked by readManualCsv; an empty sheet where there is none.
+ManualSheet readManualSheet(const std::string& outDir, const Rubric& rubric);
+
 /// The sheet with a row for each of `students` and each manual item of `rubric` (new rows pending), the rows
 /// already there kept with their points and comments; as CSV (cells neutralized against formulas).
 std::string manualCsv(ManualSheet sheet, const std::vector<std::string>& students, const Rubric& rubric);

@@ -32,9 +32,14 @@ struct StudentRecord {
     double seconds = 0;
     std::string compiler;  ///< the compiler's message: why it failed, or its warnings (first lines)
     std::string sandbox;   ///< the sandbox its code ran in, one line (empty when nothing ran)
+    std::string assignment;  ///< the lab's id
+    bool built = false;      ///< the build succeeded: `compiler` holds its warnings, else why it failed
+    std::string build;       ///< the build in one line: "compiled in 1.2 s, linked in 0.3 s", "did not compile"
+    int notRunCount = 0;     ///< hidden tests left for the instructor (a self-check)
+    double notRunPoints = 0;
     std::vector<TestResult> tests;
     /// The rubric's manual items with the points manual.csv gives them (not in record.json: the sheet is the
-    /// instructor's); empty where there is no sheet (a self-check).
+    /// instructor's); pending where the sheet gives none.
     std::vector<ManualGrade> manual;
 
     /// The tests' points and the manual points given so far.

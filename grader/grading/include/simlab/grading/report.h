@@ -5,6 +5,7 @@
 #include <string>
 
 #include "simlab/grading/grade.h"
+#include "simlab/grading/record.h"
 
 namespace simlab::engine {
 
@@ -15,8 +16,13 @@ std::string points(double value);
 /// messages when it failed, then "Score: N/M" and what is left for the instructor.
 std::string renderText(const GradeReport& report);
 
-/// The report as a Gradescope results.json document: top-level score and output, one entry per test with
-/// name, score, max_score, status (passed/failed), output and visibility.
+/// What a record keeps of the report (no id, key or file: the class names those); its manual items pending.
+StudentRecord recordOf(const GradeReport& report);
+
+/// The record as a Gradescope results.json document: top-level score and output, one entry per test with
+/// name, score, max_score, status (passed/failed), output and visibility; the manual items, pending or graded.
+nlohmann::json toGradescope(const StudentRecord& record);
+/// toGradescope(recordOf(report)).
 nlohmann::json toGradescope(const GradeReport& report);
 
 }  // namespace simlab::engine

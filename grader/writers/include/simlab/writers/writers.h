@@ -65,13 +65,11 @@ std::string feedbackHtml(const Assignment& assignment, const StudentRecord& reco
 /// lowest, the slowest ones, and what was skipped; each student linked to students/<id>/feedback.html.
 std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, const ClassResult& result);
 
-/// results.json: Gradescope's document for the report (toGradescope), as text in valid UTF-8.
+/// results.json: Gradescope's document for the record (toGradescope), as text in valid UTF-8: the scores it has
+/// now and, with manual items, the points given by hand so far.
+std::string resultsJson(const StudentRecord& record);
+/// resultsJson(recordOf(report)).
 std::string resultsJson(const GradeReport& report);
-/// `text` (a results.json written when the student was graded) with the scores of `record` now (re-scored by the
-/// rubric's points) and, when the record has manual items, the points given by hand: manual_graded (name, score,
-/// max_score, comment), manual_pending, total_with_manual and max_with_manual in extra_data. `text` as it is if
-/// it is not such a document.
-std::string updatedResultsJson(const std::string& text, const StudentRecord& record);
 
 /// record.json: the record as simlab keeps it to resume a class.
 std::string recordJson(const StudentRecord& record);

@@ -1,0 +1,88 @@
+// results.json is written whole from a student's record: the scores it has now, the points given by hand, and
+// what the build said; record.json keeps all of that, and a record without it is read as from another version.
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "simlab/grading/report.h"
+#include "simlab/writers/writers.h"
+
+namespace engine = simlab::engine;
+using engine::GradeReport;
+
+namespace {
+
+GradeReport classReport() {
+    GradeReport r;
+    r.assignment = "apple";
+    r.status = "graded";
+    r.build.ok = true;
+    r.build.compileSeconds = 1.25;
+    r.build.linkSeconds = 0.5;
+    r.sandbox = "bubblewrap";
+    r.seconds = 2.2;
+    engine::TestResult t;
+    t.name = "the apple lands";
+    t.maxScore = 20;
+    t.score = 20;
+    t.credit = 1;
+    t.outcome = engine::Outcome::Passed;
+    t.reason = "14.8 digits";
+    t.figure = 14.8;
+    t.unit = "digits";
+    r.tests.push_back(t);
+    r.manual = {{"the schematic is clear", 10, ""}, {"the paragraph describes the system", 5, ""}};
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("results.json from a record says the points given by hand and only the items still pending", "[report]") {
+    engine::StudentRecord r = engine::recordOf(classReport());
+    r.manual[0].points = 7.0;
+    r.manual[0].comment = "label the knee";
+    const nlohmann::json doc = nlohmann::json::parse(engine::resultsJson(r));
+    CHECK(doc["score"] == 20);
+    CHECK(doc["execution_time"] == 3);
+    CHECK_THAT(doc["output"].get<std::string>(),
+               Catch::Contains("compiled in 1.2 s, linked in 0.5 s\nsandbox: bubblewrap\n"
+                               "Graded by hand, pending: 5 points (the paragraph describes the system, 5)."));
+    const nlohmann::json& extra = doc["extra_data"];
+    CHECK(extra["assignment"] == "apple");
+    REQUIRE(extra["manual_graded"].size() == 1);
+    CHECK(extra["manual_graded"][0]["score"] == 7);
+    CHECK(extra["manual_graded"][0]["comment"] == "label the knee");
+    REQUIRE(extra["manual_pending"].size() == 1);
+    CHECK(extra["manual_points_pending"] == 5);
+    CHECK(extra["total_with_manual"] == 27);
+    CHECK(extra["max_with_manual"] == 35);
+    CHECK(doc["tests"][0]["extra_data"]["figure"] == 14.8);
+}
+
+TEST_CASE("results.json from a re-scored record has its new points", "[report]") {
+    engine::StudentRecord r = engine::recordOf(classReport());
+    r.tests[0].maxScore = r.tests[0].score = 30;
+    r.score = r.maxScore = 30;
+    const nlohmann::json doc = nlohmann::json::parse(engine::resultsJson(r));
+    CHECK(doc["score"] == 30);
+    CHECK(doc["tests"][0]["score"] == 30);
+    CHECK(doc["extra_data"]["max_score"] == 30);
+}
+
+TEST_CASE("record.json keeps what results.json shows, and an older record is read as none", "[report]") {
+    engine::StudentRecord r = engine::recordOf(classReport());
+    r.id = "ada";
+    r.key = "k";
+    r.notRunCount = 2;
+    r.notRunPoints = 15;
+    const std::string text = engine::recordJson(r);
+    const std::optional<engine::StudentRecord> back = engine::readRecordJson(text);
+    REQUIRE(back);
+    CHECK(back->assignment == "apple");
+    CHECK(back->built);
+    CHECK(back->build == r.build);
+    CHECK(back->notRunCount == 2);
+    CHECK(back->notRunPoints == 15);
+    nlohmann::json older = nlohmann::json::parse(text);
+    older.erase("build");
+    CHECK_FALSE(engine::readRecordJson(older.dump()));
+}
