@@ -140,12 +140,12 @@ inline std::string firstNull(const nlohmann::json& j, const std::string& where =
     if (j.is_null()) return where.empty() ? "the answer" : where;
     if (j.is_array()) {
         for (std::size_t i = 0; i < j.size(); ++i) {
-            const std::string found = firstNull(j[i], where + "[" + std::to_string(i) + "]");
+            std::string found = firstNull(j[i], where + "[" + std::to_string(i) + "]");
             if (!found.empty()) return found;
         }
     } else if (j.is_object()) {
         for (auto it = j.begin(); it != j.end(); ++it) {
-            const std::string found = firstNull(it.value(), where.empty() ? it.key() : where + "." + it.key());
+            std::string found = firstNull(it.value(), where.empty() ? it.key() : where + "." + it.key());
             if (!found.empty()) return found;
         }
     }
