@@ -103,6 +103,16 @@ void writeFileThenRename(const std::string& path, const std::string& text, bool 
 
 }  // namespace
 
+void createPrivateFolder(const std::string& path) {
+    if (::mkdir(path.c_str(), 0700) == 0) return;
+    const int error = errno;
+    struct stat info {};
+    if (error == EEXIST && ::lstat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode) && ::chmod(path.c_str(), 0700) == 0) {
+        return;
+    }
+    throw std::runtime_error("cannot create the folder " + path + ": " + std::strerror(error));
+}
+
 void writeFileAtomically(const std::string& path, const std::string& text) { writeFileThenRename(path, text, false); }
 
 void writeFileDurably(const std::string& path, const std::string& text) { writeFileThenRename(path, text, true); }

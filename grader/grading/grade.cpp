@@ -236,7 +236,8 @@ struct Workspace {
 
 // A judge's files: the rubric, and the files handed in beside the source (or why each was refused).
 void writeJudgeFiles(const std::string& dir, const Rubric& rubric, const SubmissionFiles& files) {
-    fs::create_directories(dir + "/submission");
+    createPrivateFolder(dir);
+    createPrivateFolder(dir + "/submission");
     writeFileAtomically(dir + "/rubric.toml", readFile(rubric.path));
     for (const HandedIn& extra : files.extras) {
         if (extra.ok) writeFileAtomically(dir + "/submission/" + extra.name, extra.text);
@@ -260,9 +261,10 @@ std::unique_ptr<isolation::TestServer> startProbeServer(const Workspace& w, cons
     if (!isolation::testServers()) return nullptr;
     const std::string program = w.root + "/" + tag + "server";
     const std::string home = w.root + "/" + tag + "probes";
-    fs::create_directory(program);
-    fs::create_directory(home);
+    createPrivateFolder(program);
+    createPrivateFolder(home);
     writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
+    // Opened to the tests' users only once it is whole: each loads it after it has become its user.
     fs::permissions(program, fs::perms::owner_all | fs::perms::others_exec);
     fs::permissions(program + "/probe.so", fs::perms::owner_read | fs::perms::others_read);
     // Each test's child makes its folder there, through root's group (probe_host.cpp): nothing else of it is
@@ -290,8 +292,8 @@ isolation::ProcessResult runProbe(isolation::ProcessRequest probe, isolation::Te
     // test's user never touches another's files, even as one test ends and the next begins).
     const std::string dir = w.root + "/" + tag + "test" + std::to_string(number);
     const std::string program = w.root + "/" + tag + "program" + std::to_string(number);
-    fs::create_directory(dir);
-    fs::create_directory(program);
+    createPrivateFolder(dir);
+    createPrivateFolder(program);
     writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
     fs::permissions(program + "/probe.so", fs::perms::owner_read);
     probe.argv = {w.host, program + "/probe.so"};
@@ -368,7 +370,7 @@ isolation::ProcessResult runJudge(const Assignment& assignment, const std::vecto
                  "SIMLAB_RUBRIC=" + judgeFiles + "/rubric.toml", "SIMLAB_SUBMISSION_DIR=" + judgeFiles + "/submission",
                  "SIMLAB_ANSWER_LIMIT=" + std::to_string(static_cast<unsigned long long>(limits.observationMiB) << 20)};
     judge.workDir = w.root + "/" + tag + "judge-home";
-    fs::create_directory(judge.workDir);
+    createPrivateFolder(judge.workDir);
     judge.limits = judgeLimits(limits, tests.size());
     judge.reportChannel = true;
     judge.passFds = {{6, probes}};
@@ -692,12 +694,13 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
     // is lent - never a probe's. Each process gets an empty folder of its own as well.
     TempDir work("simlab-" + assignment.id + "-", options.workRoot);
     Workspace w{work.path(), work.path() + "/build", work.path() + "/probe", builder.probeHost()};
-    for (const std::string& dir : {w.build, w.probe}) fs::create_directory(dir);
-    // Each folder below is handed to the sandbox user of the process that works in it, for that run (0700); the
-    // probe's is simlab's alone (each test gets a copy of its own): where files are kept apart by their modes
-    // alone, no other student's test may read this one's probe.
+    // Every folder of the grading is private from the moment it exists: the judge's copy, the rubric and the
+    // student's source are never another user's to read, even while they are being written. Each folder below is
+    // handed to the sandbox user of the process that works in it, for that run (0700); the probe's is simlab's
+    // alone (each test gets a copy of its own): where files are kept apart by their modes alone, no other
+    // student's test may read this one's probe.
+    for (const std::string& dir : {w.build, w.probe}) createPrivateFolder(dir);
     makePassable(w.root);
-    fs::permissions(w.probe, fs::perms::owner_all);
     if (options.progress) options.progress("building");
     report.build =
         builder.buildProbe(assignment, files.name, files.text, w.build, w.probe + "/probe.so", options.checkObject);

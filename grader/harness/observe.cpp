@@ -14,6 +14,13 @@ namespace simlab::observe {
 
 namespace {
 
+/// A student's text as reports show it: its first 400 bytes, and how many more there were.
+std::string shortened(const std::string& text) {
+    constexpr std::size_t kShown = 400;
+    if (text.size() <= kShown) return text;
+    return text.substr(0, kShown) + "... (" + std::to_string(text.size() - kShown) + " more bytes)";
+}
+
 int gLastId = 0;
 ChannelFailure gFailure = ChannelFailure::None;
 
@@ -88,7 +95,9 @@ nlohmann::json ask(const std::string& kind, const nlohmann::json& arguments) {
             !e["message"].is_string()) {
             badReport(what + " reports an exception in the wrong shape");
         }
-        const std::string type = e["type"], message = e["message"];
+        // Cut to what a report shows: Catch2 echoes an exception's message whole onto the judge's output, whose
+        // size is capped, and a student's megabytes there must not stop the judge.
+        const std::string type = shortened(e["type"]), message = shortened(e["message"]);
         // A SIMLAB_TODO speaks for itself: "not done yet (NewtonsApple.cpp:39): build the model: ...".
         throw StudentError(type == "simlab::NotDoneYet" ? message : "threw " + type + ": " + message);
     }

@@ -20,6 +20,10 @@ private:
     std::string path_;
 };
 
+/// A folder only its owner may enter (0700) from the moment it exists, so that nothing written into it is ever
+/// another user's to read; a folder already there is closed to others. Throws std::runtime_error on failure.
+void createPrivateFolder(const std::string& path);
+
 /// The whole file; throws std::runtime_error naming the file and the reason.
 std::string readFile(const std::string& path);
 /// Write `text` to `path` atomically: a temporary file in the same directory, renamed over `path`.

@@ -1,0 +1,67 @@
+# Nothing of a grading is another user's to read, at any moment: while simlab check grades the solution (with
+# bubblewrap, and with limits only), a local user with no part in it (nobody) reads every file it can reach in every
+# grading folder under /tmp, by listing and by the names simlab gives them. It must find none but the probe a test
+# server opens to the tests' users once it is whole (the student's own compiled code, never a judge, rubric or
+# source). Each folder is private from the moment it exists (createPrivateFolder), not made so later.
+# shellcheck source=../smoke/lib.sh
+source "$(dirname "$0")/../smoke/lib.sh"
+
+if [[ $(id -u) -ne 0 ]] || ! command -v setpriv >/dev/null; then
+  echo "skipped: needs root and setpriv, to read as another user"
+  exit 77
+fi
+cat >poll.py <<'PY'
+import glob, os, sys, time
+end = time.time() + float(sys.argv[1])
+seen, read = set(), set()
+names = ["build", "probe"] + [f"judge{k}" for k in range(1, 5)]
+for k in range(1, 5):
+    names += [f"j{k}-server", f"j{k}-probes", f"j{k}-judge-home"]
+    names += [f"j{k}-test{n}" for n in range(1, 17)] + [f"j{k}-program{n}" for n in range(1, 17)]
+files = ["judge", "rubric.toml", "probe.so", "NewtonsApple.cpp", "NewtonsApple.o", "submission"]
+allowed = lambda rel: rel.split("/")[0].endswith("-server") and rel.endswith("/probe.so")
+while time.time() < end:
+    for root in glob.glob("/tmp/simlab-apple-*"):
+        seen.add(root)
+        for sub in names:
+            folder = root + "/" + sub
+            try:
+                found = os.listdir(folder)
+            except OSError:
+                found = []
+            for name in set(found) | set(files):
+                path = folder + "/" + name
+                try:
+                    fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+                except OSError:
+                    continue
+                os.close(fd)
+                rel = path[len(root) + 1:]
+                if os.path.isfile(path) and not allowed(rel):
+                    read.add(rel)
+    time.sleep(0.002)
+gone = [root for root in seen if not os.path.exists(root)]
+print(f"{len(gone)} grading folders seen while they lived")
+for rel in sorted(read):
+    print(f"read {rel}")
+PY
+chmod 0755 "$work" && chmod 0644 poll.py
+solution=$SOURCE_DIR/solutions/apple/NewtonsApple.cpp
+for mode in bubblewrap limits-only; do
+  settings=()
+  [[ $mode == limits-only ]] && settings=(SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1)
+  setpriv --reuid=65534 --regid=65534 --clear-groups /usr/bin/python3 poll.py 14 >"$mode.poll" 2>&1 &
+  poller=$!
+  sleep 0.5
+  for round in 1 2 3; do
+    env "${settings[@]}" "$SIMLAB" check apple "$solution" --jobs 2 \
+      --test "the apple starts at rest at the drop height" --test "the velocity follows v = -g t at every sample" \
+      >"$mode.$round.out" 2>&1 </dev/null
+  done
+  wait "$poller"
+  sed 's/^/    /' "$mode.poll"
+  check "$mode: the solution was graded while the reader looked" grep -q "passed" "$mode.1.out"
+  check "$mode: the reader saw the gradings as they ran" grep -qE '^[1-9][0-9]* grading folders seen while they lived' "$mode.poll"
+  check "$mode: it read nothing of them" bash -c "! grep -q '^read ' '$mode.poll'"
+done
+finish
