@@ -289,6 +289,11 @@ ClassPlan planClass(const std::vector<std::string>& ids, const std::string& subm
         const std::string recordPath = outDir + "/students/" + id + "/record.json";
         std::optional<StudentRecord> kept;
         if (fs::exists(recordPath)) kept = readRecordJson(readFile(recordPath));
+        // A record of tests the rubric does not hold was not written for this rubric: damaged, so graded again.
+        if (kept && std::any_of(kept->tests.begin(), kept->tests.end(),
+                                [&](const TestResult& t) { return !rubric.find(t.name); })) {
+            kept.reset();
+        }
         if (kept) kept->id = id;
         if (kept && !wanted) {
             plan.records[id] = *kept;

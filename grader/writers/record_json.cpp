@@ -2,6 +2,9 @@
 #include "common.h"
 #include "simlab/writers/writers.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace simlab::engine {
 
 std::string recordJson(const StudentRecord& r) {
@@ -71,6 +74,13 @@ std::optional<StudentRecord> readRecordJson(const std::string& text) {
             if (t.contains("figure")) {
                 x.figure = t["figure"].at("value").get<double>();
                 x.unit = t["figure"].at("unit");
+            }
+            // What a grade is made of, as simlab writes it; anything else is a damaged record.
+            const bool named = std::none_of(r.tests.begin(), r.tests.end(),
+                                             [&](const TestResult& other) { return other.name == x.name; });
+            if (!named || !std::isfinite(x.credit) || x.credit < 0 || x.credit > 1 || !std::isfinite(x.score) ||
+                !std::isfinite(x.maxScore) || x.maxScore < 0) {
+                return std::nullopt;
             }
             r.tests.push_back(x);
         }

@@ -44,6 +44,20 @@ student_lines() { grep -E '^  [a-z0-9-]+ +[0-9.]+/100 ' "$1"; }
 check "after one file changes, only that student is regraded" test "$(student_lines changed.out | grep -vc '(unchanged)')" -eq 1
 check "the gradebook is unchanged (the comment changes no score)" cmp -s before.csv grades/gradebook.csv
 
+# A kept record edited by hand (a test the rubric does not hold, worth 1000) is damaged: that student is graded
+# again, and the gradebook keeps the score the file earns.
+python3 - grades/students/starter/record.json <<'PY'
+import json, sys
+record = json.load(open(sys.argv[1]))
+made_up = dict(record["tests"][0], name="a test nobody wrote", score=1000, max_score=1000, credit=1)
+record["tests"].append(made_up)
+json.dump(record, open(sys.argv[1], "w"))
+PY
+run_capture edited "$SIMLAB" grade apple class --out grades --jobs 2
+check "a kept record naming a test the rubric lacks is graded again" \
+  bash -c "student_lines() { grep -E '^  [a-z0-9-]+ +[0-9.]+/100 ' \"\$1\"; }; student_lines edited.out | grep -v '(unchanged)' | grep -q '^  starter '"
+check "and the gradebook keeps the score the file earns" cmp -s before.csv grades/gradebook.csv
+
 # A damaged results.json of a student kept as graded is written again from the student's record.
 echo '{"score": 100' >grades/students/starter/results.json
 run_capture only "$SIMLAB" grade apple class --out grades --only reference --junit junit.xml

@@ -86,3 +86,20 @@ TEST_CASE("record.json keeps what results.json shows, and an older record is rea
     older.erase("build");
     CHECK_FALSE(engine::readRecordJson(older.dump()));
 }
+
+TEST_CASE("a record whose credit is out of 0 to 1, or that names a test twice, is read as damaged", "[report]") {
+    engine::StudentRecord r = engine::recordOf(classReport());
+    r.id = "ada";
+    r.key = "k";
+    const nlohmann::json good = nlohmann::json::parse(engine::recordJson(r));
+    REQUIRE(engine::readRecordJson(good.dump()));
+    REQUIRE_FALSE(good["tests"].empty());
+    for (const double credit : {5.0, -0.5}) {
+        nlohmann::json edited = good;
+        edited["tests"][0]["credit"] = credit;
+        CHECK_FALSE(engine::readRecordJson(edited.dump()));
+    }
+    nlohmann::json twice = good;
+    twice["tests"].push_back(good["tests"][0]);
+    CHECK_FALSE(engine::readRecordJson(twice.dump()));
+}
