@@ -3,6 +3,8 @@
 # grading folder under /tmp, by listing and by the names simlab gives them. It must find none but the probe a test
 # server opens to the tests' users once it is whole (the student's own compiled code, never a judge, rubric or
 # source). Each folder is private from the moment it exists (createPrivateFolder), not made so later.
+# The reader is a user id no other test runs simlab as (cli/isolation grades as nobody, whose own folders are its
+# to read), and it looks only at gradings root owns, the ones this test starts.
 # shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
@@ -22,6 +24,11 @@ files = ["judge", "rubric.toml", "probe.so", "NewtonsApple.cpp", "NewtonsApple.o
 allowed = lambda rel: rel.split("/")[0].endswith("-server") and rel.endswith("/probe.so")
 while time.time() < end:
     for root in glob.glob("/tmp/simlab-apple-*"):
+        try:
+            if os.lstat(root).st_uid != 0:
+                continue
+        except OSError:
+            continue
         seen.add(root)
         for sub in names:
             folder = root + "/" + sub
@@ -50,7 +57,7 @@ solution=$SOURCE_DIR/solutions/apple/NewtonsApple.cpp
 for mode in bubblewrap limits-only; do
   settings=()
   [[ $mode == limits-only ]] && settings=(SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1)
-  setpriv --reuid=65534 --regid=65534 --clear-groups /usr/bin/python3 poll.py 14 >"$mode.poll" 2>&1 &
+  setpriv --reuid=65532 --regid=65532 --clear-groups /usr/bin/python3 poll.py 14 >"$mode.poll" 2>&1 &
   poller=$!
   sleep 0.5
   for round in 1 2 3; do
