@@ -7,6 +7,12 @@
 # folder, its contract: the assignment's header and the support headers a student may include, copied into the
 # build tree. A student file sees nothing else of the course - no tests, rubric, solution or build tree.
 
+# SIMLAB_SOURCE_DIR is the course's tree (its support headers, its starter/ and solutions/): this project's, or an
+# installed simlab's copy of it where a lab is built out of the tree (simlabConfig.cmake).
+if(NOT SIMLAB_SOURCE_DIR)
+  set(SIMLAB_SOURCE_DIR ${PROJECT_SOURCE_DIR})
+endif()
+set(SIMLAB_CMAKE_DIR ${CMAKE_CURRENT_LIST_DIR})
 set(SIMLAB_PCH_DIR ${PROJECT_BINARY_DIR}/pch)
 set(SIMLAB_PCH_HEADER ${SIMLAB_PCH_DIR}/simlab_pch.h)
 set(SIMLAB_MANIFEST ${PROJECT_BINARY_DIR}/simlab-build.json)
@@ -77,7 +83,7 @@ set(SIMLAB_CONTRACT_DIR ${PROJECT_BINARY_DIR}/contract)
 # none of it again: the apple's reference file compiles in about 0.25 s against its lab's header, 0.35 s against one
 # of Simbody alone (bench-self-check's floor shows it). GCC's .gch lies beside its header, which -include finds;
 # clang's .pch is named by -include-pch.
-configure_file(${PROJECT_SOURCE_DIR}/assignments/support/include/simlab/pch.h ${SIMLAB_PCH_HEADER} COPYONLY)
+configure_file(${SIMLAB_SOURCE_DIR}/assignments/support/include/simlab/pch.h ${SIMLAB_PCH_HEADER} COPYONLY)
 if(SIMLAB_STUDENT_CXX_ID STREQUAL "Clang")
   set(SIMLAB_PCH_FLAGS -fpch-instantiate-templates)
 else()
@@ -121,7 +127,7 @@ function(simlab_contract id header)
   set(dir ${SIMLAB_CONTRACT_DIR}/${id})
   get_filename_component(contract_name ${header} NAME)  # a student's file includes "<id>/<name>"
   configure_file(${CMAKE_CURRENT_SOURCE_DIR}/${header} ${dir}/${id}/${contract_name} COPYONLY)
-  file(GLOB support_headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/assignments/support/include/simlab/*.h)
+  file(GLOB support_headers CONFIGURE_DEPENDS ${SIMLAB_SOURCE_DIR}/assignments/support/include/simlab/*.h)
   foreach(file IN LISTS support_headers)
     get_filename_component(name ${file} NAME)
     if(NOT name STREQUAL "pch.h")
@@ -150,7 +156,7 @@ function(simlab_contract id header)
   # Its inputs by content (cmake/PchInputs.cmake), looked at on every build: the header is made again when a
   # system header's bytes change, even where the package gave it a time older than the header's.
   set(inputs_command ${CMAKE_COMMAND} -DDEPFILE=${pch}.d -DSTAMP=${pch}.inputs
-                     -P ${PROJECT_SOURCE_DIR}/cmake/PchInputs.cmake)
+                     -P ${SIMLAB_CMAKE_DIR}/PchInputs.cmake)
   add_custom_target(simlab_pch_inputs_${id} COMMAND ${inputs_command} BYPRODUCTS ${pch}.inputs VERBATIM)
   add_custom_command(
     OUTPUT ${pch}
@@ -159,7 +165,7 @@ function(simlab_contract id header)
     COMMAND ${inputs_command}
     COMMAND ${CMAKE_COMMAND} -E touch_nocreate ${pch}  # not older than the record of its inputs
     DEPFILE ${pch}.d
-    DEPENDS ${pch_header} ${pch}.inputs ${PROJECT_SOURCE_DIR}/cmake/PchInputs.cmake
+    DEPENDS ${pch_header} ${pch}.inputs ${SIMLAB_CMAKE_DIR}/PchInputs.cmake
     COMMENT "Precompiling the headers of ${id}'s student files"
     VERBATIM)
   add_custom_target(simlab_pch_${id} ALL DEPENDS ${pch})
@@ -185,7 +191,10 @@ endfunction()
 
 # simlab_add_assignment(<id>
 #   TITLE <text>             what `simlab` calls it
-#   SOURCE <file name>       the one file a student writes (starter/<id>/<file>, solutions/<id>/<file>)
+#   SOURCE <file name>       the one file a student writes
+#   STARTER <file>           what students start from (default: the course tree's starter/<id>/<SOURCE>)
+#   SOLUTION <file>          the reference solution (default: the course tree's solutions/<id>/<SOURCE>); a
+#                            folder of a lab without one (a student bundle's) has none
 #   PROGRAM <name>           the runnable lab program (course main + student file)
 #   CONTRACT <header>        the header the student implements, the only one of the assignment they may include
 #   PRECOMPILED <header>     the end of the assignment's precompiled header: includes the contract, and names the
@@ -200,7 +209,7 @@ endfunction()
 #                            (trade_question.inc); optional
 #   HIDDEN_TRADE <file>)     its hidden variants (trade_hidden.inc); absent from the student bundle, so optional
 function(simlab_add_assignment id)
-  cmake_parse_arguments(A "" "TITLE;SOURCE;PROGRAM;RUBRIC;CONTRACT;PRECOMPILED;TRADE;HIDDEN_TRADE"
+  cmake_parse_arguments(A "" "TITLE;SOURCE;STARTER;SOLUTION;PROGRAM;RUBRIC;CONTRACT;PRECOMPILED;TRADE;HIDDEN_TRADE"
                         "MAIN;PROBE;TESTS;HIDDEN_TESTS;STUDY" ${ARGN})
   foreach(required TITLE SOURCE PROGRAM RUBRIC CONTRACT MAIN PROBE TESTS)
     if(NOT A_${required})
@@ -208,8 +217,14 @@ function(simlab_add_assignment id)
     endif()
   endforeach()
   set(dir ${CMAKE_CURRENT_SOURCE_DIR})
-  set(starter ${PROJECT_SOURCE_DIR}/starter/${id}/${A_SOURCE})
-  set(solution ${PROJECT_SOURCE_DIR}/solutions/${id}/${A_SOURCE})
+  set(starter ${SIMLAB_SOURCE_DIR}/starter/${id}/${A_SOURCE})
+  set(solution ${SIMLAB_SOURCE_DIR}/solutions/${id}/${A_SOURCE})
+  if(A_STARTER)
+    set(starter ${dir}/${A_STARTER})
+  endif()
+  if(A_SOLUTION)
+    set(solution ${dir}/${A_SOLUTION})
+  endif()
   if(NOT EXISTS ${starter})
     message(FATAL_ERROR "simlab_add_assignment(${id}): no starter file ${starter}")
   endif()
@@ -242,8 +257,8 @@ function(simlab_add_assignment id)
       add_custom_command(
         OUTPUT ${trade_dir}/trade_${kind}.inc
         COMMAND ${CMAKE_COMMAND} -DIN=${dir}/${file} -DOUT=${trade_dir}/trade_${kind}.inc
-                -P ${PROJECT_SOURCE_DIR}/cmake/EmbedText.cmake
-        DEPENDS ${dir}/${file} ${PROJECT_SOURCE_DIR}/cmake/EmbedText.cmake
+                -P ${SIMLAB_CMAKE_DIR}/EmbedText.cmake
+        DEPENDS ${dir}/${file} ${SIMLAB_CMAKE_DIR}/EmbedText.cmake
         VERBATIM)
       list(APPEND trade_texts ${trade_dir}/trade_${kind}.inc)
     endif()
@@ -257,6 +272,9 @@ function(simlab_add_assignment id)
   add_library(${id}_program_main OBJECT ${A_MAIN})
   target_link_libraries(${id}_program_main PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
   simlab_use_pch(${id}_program_main)
+  # The course's side includes its lab's files as "<id>/program/exact.h": from the folder that holds the lab's.
+  get_filename_component(labs_dir ${dir} DIRECTORY)
+  target_include_directories(${id}_program_main PRIVATE ${labs_dir})
 
   # The lab program, built from the student file in this tree (the starter unless told otherwise) ...
   set(SIMLAB_${id}_SOURCE ${starter} CACHE FILEPATH "Student file the ${A_PROGRAM} program is built from")
@@ -286,6 +304,7 @@ function(simlab_add_assignment id)
     add_library(${id}_study_main OBJECT ${A_STUDY})
     target_link_libraries(${id}_study_main PRIVATE simlab_study simlab_protocol simlab_support ${Simbody_LIBRARIES})
     simlab_use_pch(${id}_study_main)
+    target_include_directories(${id}_study_main PRIVATE ${labs_dir})
     simlab_study_target(${id}_study_main)
     set(study_objects $<TARGET_OBJECTS:${id}_study_main>)
     if(solution)
@@ -311,6 +330,8 @@ function(simlab_add_assignment id)
   target_link_libraries(${id}_probe PRIVATE simlab_probe simlab_support ${Simbody_LIBRARIES})
   set_target_properties(${id}_probe PROPERTIES POSITION_INDEPENDENT_CODE ON)
   simlab_use_pch(${id}_grader_tests ${id}_probe)
+  target_include_directories(${id}_grader_tests PRIVATE ${labs_dir})
+  target_include_directories(${id}_probe PRIVATE ${labs_dir})
   # Everything the manifest entry below names is built with it, so that `--target <id>_grader` alone makes a
   # tree that grades, links a floor and builds the lab program from a submission.
   add_custom_target(${id}_grader ALL DEPENDS ${id}-judge ${id}_probe ${id}_program_main ${pch_depends})
