@@ -335,9 +335,12 @@ function(simlab_add_assignment id)
   # Everything the manifest entry below names is built with it, so that `--target <id>_grader` alone makes a
   # tree that grades, links a floor and builds the lab program from a submission.
   add_custom_target(${id}_grader ALL DEPENDS ${id}-judge ${id}_probe ${id}_program_main ${pch_depends})
-  add_dependencies(${id}_grader ${id}_grader_tests simlab_probe_main simlab_probe simlab_support_objects
-                   simlab_sanitizer_defaults simlab_harness simlab_observe_local simlab_rubric simlab_plot
-                   simlab_program simlab_support simlab-probe-host)
+  add_dependencies(${id}_grader ${id}_grader_tests)
+  if(NOT SIMLAB_KIT)  # simlab's own targets: built here, or installed ready (a lab built out of the tree)
+    add_dependencies(${id}_grader simlab_probe_main simlab_probe simlab_support_objects simlab_sanitizer_defaults
+                     simlab_harness simlab_observe_local simlab_rubric simlab_plot simlab_program simlab_support
+                     simlab-probe-host)
+  endif()
 
   # The probe's course side: linked before the student's object, whole, so that the student can add to it but
   # never replace any of it. The probe is a shared object that the probe's host loads (simlab-probe-host).
@@ -385,6 +388,7 @@ function(simlab_add_assignment id)
     $<TARGET_OBJECTS:simlab_probe> ${probe_for_floor} $<TARGET_OBJECTS:simlab_support_objects>)
   simlab_json_set_generated_list(json program_objects $<TARGET_OBJECTS:${id}_program_main>)
   simlab_json_set_generated_list(json study_objects ${study_objects})
+  simlab_json_set_string(json build_dir "${CMAKE_CURRENT_BINARY_DIR}")
   set_property(GLOBAL APPEND PROPERTY SIMLAB_ASSIGNMENTS ${id})
   set_property(GLOBAL PROPERTY SIMLAB_ASSIGNMENT_${id} "${json}")
 endfunction()
@@ -444,14 +448,77 @@ function(simlab_write_manifest)
   simlab_json_set_generated_list(manifest study_libraries
     $<TARGET_FILE:simlab_study> $<TARGET_FILE:simlab_program> $<TARGET_FILE:simlab_plot> $<TARGET_FILE:simlab_support>
     $<TARGET_FILE:SimTKsimbody> $<TARGET_FILE:SimTKmath> $<TARGET_FILE:SimTKcommon>)
-  string(JSON manifest SET "${manifest}" assignments "[]")
+  simlab_kit(manifest)
+  simlab_json_assignments(manifest)
+  simlab_json_generated(manifest "${manifest}")
+  file(GENERATE OUTPUT ${SIMLAB_MANIFEST} CONTENT "${manifest}\n")
+endfunction()
+
+# simlab_json_assignments(<var>): member `assignments` of the JSON object in <var>, every simlab_add_assignment's.
+function(simlab_json_assignments var)
+  string(JSON json SET "${${var}}" assignments "[]")
   get_property(ids GLOBAL PROPERTY SIMLAB_ASSIGNMENTS)
   set(index 0)
   foreach(id IN LISTS ids)
-    get_property(json GLOBAL PROPERTY SIMLAB_ASSIGNMENT_${id})
-    string(JSON manifest SET "${manifest}" assignments ${index} "${json}")
+    get_property(entry GLOBAL PROPERTY SIMLAB_ASSIGNMENT_${id})
+    string(JSON json SET "${json}" assignments ${index} "${entry}")
     math(EXPR index "${index} + 1")
   endforeach()
+  set(${var} "${json}" PARENT_SCOPE)
+endfunction()
+
+# simlab_kit(<var>): member `kit` of the manifest in <var>: what a lab built out of the tree builds against, its
+# course side, tests and probe (simlabConfig.cmake makes imported targets of it with `simlab project
+# cmake-config`). The headers of the support library and of the grader's modules a lab's code includes, this
+# folder of CMake scripts, and each library simlab_add_assignment() names, with what it links after it.
+function(simlab_kit var)
+  set(kit "{}")
+  set(grader ${PROJECT_SOURCE_DIR}/grader)
+  simlab_json_set_list(kit include ${SIMLAB_SOURCE_DIR}/assignments/support/include ${grader}/rubric/include
+                       ${grader}/protocol/include ${grader}/probe/include ${grader}/harness/include)
+  simlab_json_set_string(kit cmake_dir "${SIMLAB_CMAKE_DIR}")
+  string(JSON kit SET "${kit}" targets "[]")
+  set(index 0)
+  # name kind links...
+  foreach(spec
+      "simlab_support STATIC Simbody Boost::headers"
+      "simlab_plot STATIC simlab_support"
+      "simlab_program STATIC simlab_support simlab_plot"
+      "simlab_study STATIC simlab_support simlab_program nlohmann_json::nlohmann_json"
+      "simlab_rubric STATIC tomlplusplus::tomlplusplus"
+      "simlab_protocol INTERFACE nlohmann_json::nlohmann_json"
+      "simlab_support_objects OBJECT Simbody Boost::headers"
+      "simlab_sanitizer_defaults OBJECT"
+      "simlab_probe OBJECT simlab_protocol simlab_support"
+      "simlab_probe_main OBJECT simlab_probe"
+      "simlab_harness OBJECT simlab_rubric simlab_protocol simlab_support simlab_plot Catch2::Catch2"
+      "simlab_observe_remote OBJECT simlab_harness"
+      "simlab_observe_local OBJECT simlab_harness simlab_probe")
+    string(REPLACE " " ";" spec "${spec}")
+    list(POP_FRONT spec name kind)
+    set(target "{}")
+    simlab_json_set_string(target name ${name})
+    simlab_json_set_string(target kind ${kind})
+    simlab_json_set_list(target links ${spec})
+    if(kind STREQUAL "OBJECT")
+      simlab_json_set_generated_list(target files $<TARGET_OBJECTS:${name}>)
+    elseif(kind STREQUAL "STATIC")
+      simlab_json_set_generated_list(target files $<TARGET_FILE:${name}>)
+    else()
+      simlab_json_set_list(target files)
+    endif()
+    string(JSON kit SET "${kit}" targets ${index} "${target}")
+    math(EXPR index "${index} + 1")
+  endforeach()
+  string(JSON json SET "${${var}}" kit "${kit}")
+  set(${var} "${json}" PARENT_SCOPE)
+endfunction()
+
+# simlab_write_lab_manifest(<file>): what a lab built out of the tree adds to simlab's manifest: its assignments.
+function(simlab_write_lab_manifest file)
+  set(manifest "{}")
+  simlab_json_set_string(manifest version "${simlab_VERSION}")
+  simlab_json_assignments(manifest)
   simlab_json_generated(manifest "${manifest}")
-  file(GENERATE OUTPUT ${SIMLAB_MANIFEST} CONTENT "${manifest}\n")
+  file(GENERATE OUTPUT ${file} CONTENT "${manifest}\n")
 endfunction()

@@ -1,4 +1,5 @@
 #include "simlab/build/manifest.h"
+#include "simlab/build/lab.h"
 #include "simlab/isolation/process.h"
 
 #include <pwd.h>
@@ -68,7 +69,49 @@ void placePrecompiledHeaders(Manifest& m) {
     }
 }
 
+// One assignment of a manifest (simlab_add_assignment's entry).
+Assignment readAssignment(const nlohmann::json& a) {
+    Assignment x;
+    x.id = a.at("id");
+    x.title = a.at("title");
+    x.source = a.at("source");
+    x.program = a.at("program");
+    x.programPath = a.at("program_path");
+    x.referenceProgramPath = a.at("reference_program_path");
+    x.studyProgramPath = a.value("study_program_path", std::string());
+    x.dir = a.at("dir");
+    x.rubric = a.at("rubric");
+    x.starter = a.at("starter");
+    x.solution = a.at("solution");
+    x.hiddenTestsBuilt = a.at("hidden_tests_built");
+    x.hiddenTests = a.at("hidden_tests").get<std::vector<std::string>>();
+    x.contractInclude = a.at("contract_include");
+    x.compile = a.at("compile").get<std::vector<std::string>>();
+    x.judge = a.at("judge");
+    x.probeObjects = a.at("probe_objects").get<std::vector<std::string>>();
+    x.floorObjects = a.at("floor_objects").get<std::vector<std::string>>();
+    x.programObjects = a.at("program_objects").get<std::vector<std::string>>();
+    x.studyObjects = a.value("study_objects", std::vector<std::string>());
+    x.precompiledHeader = a.value("precompiled_header", std::string());
+    x.precompileFlags = a.value("precompile_flags", std::vector<std::string>());
+    x.buildDir = a.value("build_dir", std::string());
+    return x;
+}
+
 }  // namespace
+
+std::vector<Assignment> loadLabManifest(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw UsageError("no lab manifest at " + path);
+    try {
+        std::vector<Assignment> out;
+        const nlohmann::json j = nlohmann::json::parse(in);
+        for (const nlohmann::json& a : j.at("assignments")) out.push_back(readAssignment(a));
+        return out;
+    } catch (const nlohmann::json::exception& e) {
+        throw UsageError("lab manifest " + path + " is damaged (" + e.what() + ")");
+    }
+}
 
 std::vector<std::string> secretPaths(const Manifest& manifest, const Assignment& assignment) {
     std::vector<std::string> secrets = assignment.hiddenTests;
@@ -76,13 +119,16 @@ std::vector<std::string> secretPaths(const Manifest& manifest, const Assignment&
     // built from the solution (the reference lab program, its study).
     std::error_code error;
     const fs::path relative = fs::path(assignment.dir).lexically_relative(manifest.sourceDir);
-    const bool inTree = !relative.empty() && *relative.begin() != "..";
-    const fs::path built = fs::path(manifest.buildDir) / relative;
+    // A lab built out of the tree (simlab/build/lab.h) names its build folder; its corpus holds the solution's edits.
+    const bool built = !assignment.buildDir.empty() || (!relative.empty() && *relative.begin() != "..");
+    const fs::path buildDir =
+        assignment.buildDir.empty() ? fs::path(manifest.buildDir) / relative : fs::path(assignment.buildDir);
     for (const std::string& path :
          {assignment.solution.empty() ? std::string() : fs::path(assignment.solution).parent_path().string(),
           assignment.judge, manifest.sampleClass, assignment.referenceProgramPath, assignment.studyProgramPath,
-          inTree ? (built / "CMakeFiles" / (assignment.id + "_grader_tests.dir")).string() : std::string(),
-          inTree ? (built / "trade").string() : std::string()}) {
+          built ? (buildDir / "CMakeFiles" / (assignment.id + "_grader_tests.dir")).string() : std::string(),
+          built ? (buildDir / "trade").string() : std::string(),
+          assignment.buildDir.empty() ? std::string() : assignment.dir + "/corpus"}) {
         if (!path.empty()) secrets.push_back(path);
     }
     return secrets;
@@ -90,8 +136,11 @@ std::vector<std::string> secretPaths(const Manifest& manifest, const Assignment&
 
 std::vector<std::string> courseSecrets(const Manifest& manifest) {
     std::vector<std::string> secrets;
-    for (const Assignment& a : manifest.assignments) {
-        for (const std::string& secret : secretPaths(manifest, a)) {
+    std::vector<const Assignment*> all;
+    for (const Assignment& a : manifest.assignments) all.push_back(&a);
+    for (const auto& lab : manifest.labs) all.push_back(lab.get());
+    for (const Assignment* a : all) {
+        for (const std::string& secret : secretPaths(manifest, *a)) {
             if (std::find(secrets.begin(), secrets.end(), secret) == secrets.end()) secrets.push_back(secret);
         }
     }
@@ -112,12 +161,21 @@ std::string installedManifestPath(const std::string& exe) {
 }
 
 const Assignment& Manifest::find(const std::string& id) const {
+    if (isLabFolder(id)) {
+        labs.push_back(std::make_unique<Assignment>(buildLab(*this, id)));
+        std::vector<std::string> hidden = secretPaths(*this, *labs.back());
+        hidden.push_back(labBuildFolder(*this, id));
+        isolation::hideFromSandboxes(hidden);
+        return *labs.back();
+    }
     for (const Assignment& a : assignments) {
         if (a.id == id) return a;
     }
     std::string known;
     for (const std::string& k : ids()) known += (known.empty() ? "" : ", ") + k;
-    throw UsageError("unknown assignment '" + id + "'; available: " + known);
+    std::error_code error;
+    const std::string folder = fs::is_directory(id, error) ? " (the folder " + id + " is a lab of one's own: ./" + id + ")" : "";
+    throw UsageError("unknown assignment '" + id + "'; available: " + known + ", or a lab's folder" + folder);
 }
 
 std::vector<std::string> Manifest::ids() const {
@@ -165,31 +223,14 @@ Manifest loadManifest(const std::string& path) {
         m.floorLibraries = j.at("floor_libraries").get<std::vector<std::string>>();
         m.programLibraries = j.at("program_libraries").get<std::vector<std::string>>();
         m.studyLibraries = j.value("study_libraries", std::vector<std::string>());
-        for (const nlohmann::json& a : j.at("assignments")) {
-            Assignment x;
-            x.id = a.at("id");
-            x.title = a.at("title");
-            x.source = a.at("source");
-            x.program = a.at("program");
-            x.programPath = a.at("program_path");
-            x.referenceProgramPath = a.at("reference_program_path");
-            x.studyProgramPath = a.value("study_program_path", std::string());
-            x.dir = a.at("dir");
-            x.rubric = a.at("rubric");
-            x.starter = a.at("starter");
-            x.solution = a.at("solution");
-            x.hiddenTestsBuilt = a.at("hidden_tests_built");
-            x.hiddenTests = a.at("hidden_tests").get<std::vector<std::string>>();
-            x.contractInclude = a.at("contract_include");
-            x.compile = a.at("compile").get<std::vector<std::string>>();
-            x.judge = a.at("judge");
-            x.probeObjects = a.at("probe_objects").get<std::vector<std::string>>();
-            x.floorObjects = a.at("floor_objects").get<std::vector<std::string>>();
-            x.programObjects = a.at("program_objects").get<std::vector<std::string>>();
-            x.studyObjects = a.value("study_objects", std::vector<std::string>());
-            x.precompiledHeader = a.value("precompiled_header", std::string());
-            x.precompileFlags = a.value("precompile_flags", std::vector<std::string>());
-            m.assignments.push_back(std::move(x));
+        for (const nlohmann::json& a : j.at("assignments")) m.assignments.push_back(readAssignment(a));
+        if (const auto kit = j.find("kit"); kit != j.end()) {
+            m.kit.include = kit->at("include").get<std::vector<std::string>>();
+            m.kit.cmakeDir = kit->at("cmake_dir");
+            for (const nlohmann::json& t : kit->at("targets")) {
+                m.kit.targets.push_back({t.at("name"), t.at("kind"), t.at("files").get<std::vector<std::string>>(),
+                                         t.at("links").get<std::vector<std::string>>()});
+            }
         }
         m.cacheDir = m.installed ? userCacheDir(m.prefix, m.version) : m.buildDir + "/cache";
         if (m.installed) placePrecompiledHeaders(m);

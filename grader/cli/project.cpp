@@ -136,6 +136,33 @@ std::string cmakeList(const std::vector<std::string>& items) {
     return out;
 }
 
+// What a lab of one's own builds against (simlab_add_lab in cmake/simlabConfig.cmake.in): the folders of simlab's
+// CMake scripts and of the course's tree, and simlab_kit_targets(), which makes each library of the manifest's kit
+// an imported target of the name simlab_add_assignment() uses, its headers the kit's.
+std::string cmakeKit(const engine::Manifest& manifest) {
+    const engine::Kit& kit = manifest.kit;
+    if (kit.targets.empty()) return "";
+    std::string out = "set(SIMLAB_KIT_CMAKE_DIR" + cmakeList({kit.cmakeDir}) + ")\n"
+                      "set(SIMLAB_KIT_SOURCE_DIR" + cmakeList({manifest.sourceDir}) + ")\n"
+                      "function(simlab_kit_targets)\n";
+    out += "  set(include" + cmakeList(kit.include) + ")\n";
+    for (const engine::Kit::Target& t : kit.targets) {
+        std::string links;
+        for (const std::string& link : t.links) {
+            links += link == "Simbody" ? std::string(" ${Simbody_LIBRARIES}") : cmakeList({link});
+        }
+        out += "  add_library(" + t.name + " " + t.kind + " IMPORTED GLOBAL)\n"
+               "  set(files" + cmakeList(t.files) + ")\n"
+               "  set(links" + links + ")\n"
+               "  set_target_properties(" + t.name + " PROPERTIES INTERFACE_INCLUDE_DIRECTORIES \"${include}\"\n"
+               "                        INTERFACE_LINK_LIBRARIES \"${links}\"";
+        if (t.kind == "OBJECT") out += " IMPORTED_OBJECTS \"${files}\"";
+        if (t.kind == "STATIC") out += " IMPORTED_LOCATION \"${files}\"";
+        out += ")\n";
+    }
+    return out + "endfunction()\n";
+}
+
 // What simlab's CMake package (cmake/simlabConfig.cmake.in) reads to build a project: the biosim lab's compile
 // command, with its precompiled header made if this is an installed simlab, and the lab program's link.
 void runCMakeConfig(const ProjectOptions& o) {
@@ -149,7 +176,7 @@ void runCMakeConfig(const ProjectOptions& o) {
                   "set(SIMLAB_PROJECT_CONTRACT" + cmakeList({biosim.contractInclude}) + ")\n"
                   "set(SIMLAB_PROJECT_LINK_OPTIONS" + cmakeList(linkOptions) + ")\n"
                   "set(SIMLAB_PROJECT_OBJECTS" + cmakeList(biosim.programObjects) + ")\n"
-                  "set(SIMLAB_PROJECT_LIBRARIES" + cmakeList(manifest.programLibraries) + ")\n");
+                  "set(SIMLAB_PROJECT_LIBRARIES" + cmakeList(manifest.programLibraries) + ")\n" + cmakeKit(manifest));
 }
 
 }  // namespace

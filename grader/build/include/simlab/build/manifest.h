@@ -2,6 +2,7 @@
 // (written by cmake/Simlab.cmake to <build>/simlab-build.json).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -29,8 +30,23 @@ struct Assignment {
     std::vector<std::string> floorObjects;  ///< tests and probe in one program (the benchmark's floor)
     std::vector<std::string> programObjects;
     std::vector<std::string> studyObjects;  ///< the work-precision study's side, for a study of any student file
+    std::string buildDir;              ///< where CMake built the assignment's folder (its judge, its tests' objects)
     std::string precompiledHeader;     ///< the header `compile` reads precompiled (<pch>/<id>.h), "" without one
     std::vector<std::string> precompileFlags;  ///< what building it adds to Manifest::compile
+};
+
+/// What a lab built out of the tree builds against (cmake/Simlab.cmake's simlab_kit): the headers its code
+/// includes, simlab's CMake scripts, and each library simlab_add_assignment() names, with what it links after it.
+struct Kit {
+    struct Target {
+        std::string name;
+        std::string kind;  ///< STATIC, OBJECT or INTERFACE
+        std::vector<std::string> files;
+        std::vector<std::string> links;
+    };
+    std::vector<std::string> include;
+    std::string cmakeDir;
+    std::vector<Target> targets;
 };
 
 struct Manifest {
@@ -59,11 +75,18 @@ struct Manifest {
     std::vector<std::string> programLibraries;
     std::vector<std::string> studyLibraries;
     std::vector<Assignment> assignments;
+    Kit kit;
 
-    /// The assignment with this id; throws UsageError listing the known ones.
+    /// The assignment with this id; throws UsageError listing the known ones. A folder (a path, or a name with a
+    /// slash) is a lab of one's own: built on first use against this simlab (simlab/build/lab.h) and kept in
+    /// `labs`, whose secrets are then every sandbox's to miss as the course's are.
     const Assignment& find(const std::string& id) const;
+    mutable std::vector<std::unique_ptr<Assignment>> labs;
     std::vector<std::string> ids() const;
 };
+
+/// The assignments a lab built out of the tree declares (its build's simlab-lab.json).
+std::vector<Assignment> loadLabManifest(const std::string& path);
 
 /// What no test's code may read, for one assignment: its hidden tests' sources, its solution's folder, its judge
 /// (which holds the hidden tests) and its tests' objects, the hidden trade question's text as the build embeds

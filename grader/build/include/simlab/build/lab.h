@@ -1,0 +1,23 @@
+// A lab of one's own: an assignment's folder outside simlab's tree, built against this simlab on first use.
+#pragma once
+
+#include <string>
+
+#include "simlab/build/manifest.h"
+
+namespace simlab::engine {
+
+/// Whether an assignment named on the command line is a lab's folder rather than one of the course's ids: a path
+/// ("./pendulum", "labs/pendulum", "/srv/labs/pendulum", ".").
+bool isLabFolder(const std::string& name);
+
+/// The assignment the folder `dir` declares (its CMakeLists.txt calls simlab_add_assignment), built against this
+/// simlab's CMake package (find_package(simlab)) in the user's cache: configured on first use, brought up to date
+/// incrementally after (an edited test or rubric is built again). Its build log is kept beside the build; a
+/// failure is one line naming the log. Throws UsageError.
+Assignment buildLab(const Manifest& manifest, const std::string& dir);
+
+/// Where buildLab builds the lab in `dir` (its canonical path).
+std::string labBuildFolder(const Manifest& manifest, const std::string& dir);
+
+}  // namespace simlab::engine

@@ -1,0 +1,129 @@
+#include "simlab/build/lab.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <thread>
+
+#include "simlab/common/errors.h"
+#include "simlab/common/files.h"
+#include "simlab/common/text.h"
+#include "simlab/isolation/process.h"
+
+extern char** environ;
+
+namespace simlab::engine {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A CMake bracket argument: nothing in it is read as CMake syntax.
+std::string bracketed(const std::string& text) {
+    if (text.find("]==]") != std::string::npos) throw UsageError("a path CMake cannot be given: " + printable(text));
+    return "[==[" + text + "]==]";
+}
+
+// Where find_package(simlab) finds this simlab's package: an installation's lib/cmake/simlab, or its build folder.
+std::string packageFolder(const Manifest& manifest) {
+    return manifest.installed ? manifest.prefix + "/lib/cmake/simlab" : manifest.buildDir;
+}
+
+// Run a step of the lab's build (cmake, trusted) with its output appended to `log`; its last error line on failure.
+void runStep(const std::vector<std::string>& argv, const std::string& dir, const std::string& log,
+             const std::string& what) {
+    std::ofstream out(log, std::ios::app);
+    out << "$";
+    for (const std::string& a : argv) out << " " << a;
+    out << "\n" << std::flush;
+    isolation::ProcessRequest request;
+    request.argv = argv;
+    for (char** variable = environ; *variable; ++variable) request.env.emplace_back(*variable);
+    request.workDir = dir;
+    request.limits.cpuSeconds = request.limits.wallSeconds = 3600;
+    request.limits.memoryMiB = 1 << 16;
+    request.limits.processes = 4096;
+    request.limits.fileMiB = 1 << 12;
+    request.limits.outputKiB = 1 << 20;
+    request.keepOutput = 0;
+    std::string firstError;
+    request.onOutputLine = [&](const std::string& line) {
+        out << line << '\n';
+        if (firstError.empty() && (line.find("error") != std::string::npos || line.find("Error") != std::string::npos)) {
+            firstError = line;
+        }
+    };
+    const isolation::ProcessResult result = isolation::runProcess(request);
+    out.flush();
+    if (!result.started) throw UsageError("cannot run " + argv.front() + ": " + result.error);
+    if (!result.exitedCleanly()) {
+        throw UsageError(what + " failed" + (firstError.empty() ? "" : ": " + printable(firstError.substr(0, 300))) +
+                         " (all of it in " + log + ")");
+    }
+}
+
+}  // namespace
+
+bool isLabFolder(const std::string& name) {
+    return name == "." || name == ".." || name.find('/') != std::string::npos;
+}
+
+std::string labBuildFolder(const Manifest& manifest, const std::string& dir) {
+    const fs::path canonical = fs::canonical(dir);
+    return manifest.cacheDir + "/labs/" + canonical.filename().string() + "-" +
+           sha256Hex(canonical.string()).substr(0, 12);
+}
+
+Assignment buildLab(const Manifest& manifest, const std::string& dir) {
+    std::error_code error;
+    if (!fs::is_directory(dir, error)) throw UsageError("no lab folder " + printable(dir));
+    const fs::path lab = fs::canonical(dir);
+    if (!fs::is_regular_file(lab / "CMakeLists.txt", error)) {
+        throw UsageError(printable(lab.string()) + " is not a lab's folder: it has no CMakeLists.txt calling "
+                         "simlab_add_assignment (simlab assignment new makes one)");
+    }
+    if (manifest.kit.targets.empty()) {
+        throw UsageError("this simlab (" + printable(manifest.path) + ") was built without what a lab of one's own "
+                         "builds against: build and install it again");
+    }
+    const std::string root = labBuildFolder(manifest, lab.string());
+    createPrivateFolder(manifest.cacheDir);
+    createPrivateFolder(manifest.cacheDir + "/labs");
+    createPrivateFolder(root);
+    const std::string project = root + "/project", build = root + "/build", log = root + "/build.log";
+    fs::create_directories(project);
+    const std::string lists = "# The lab in " + lab.string() + ", built against simlab " + manifest.version +
+                              " (simlab/build/lab.h).\n"
+                              "cmake_minimum_required(VERSION 3.25)\n"
+                              "project(simlab_lab LANGUAGES CXX)\n"
+                              "find_package(simlab " + manifest.version + " EXACT REQUIRED CONFIG PATHS " +
+                              bracketed(packageFolder(manifest)) + " NO_DEFAULT_PATH)\n"
+                              "simlab_add_lab(" + bracketed(lab.string()) + ")\n";
+    std::string before;
+    try {
+        before = readFile(project + "/CMakeLists.txt");
+    } catch (const std::exception&) {
+    }
+    if (before != lists) writeFileAtomically(project + "/CMakeLists.txt", lists);
+    const bool first = !fs::exists(build + "/CMakeCache.txt", error);
+    if (first) {
+        std::cerr << "simlab: building the lab in " << printable(lab.string()) << " against simlab "
+                  << manifest.version << " (once; about a minute; the log: " << log << ")" << std::endl;
+        fs::remove(log, error);
+        runStep({manifest.cmake, "-S", project, "-B", build, "-DCMAKE_BUILD_TYPE=Release"}, root, log,
+                "configuring the lab in " + printable(lab.string()));
+    }
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    runStep({manifest.cmake, "--build", build, "-j", std::to_string(cores)}, root, log,
+            "building the lab in " + printable(lab.string()));
+    std::vector<Assignment> declared = loadLabManifest(build + "/simlab-lab.json");
+    if (declared.size() != 1) {
+        throw UsageError(printable(lab.string()) + " declares " + std::to_string(declared.size()) +
+                         " assignments: a lab's folder declares one (simlab_add_assignment)");
+    }
+    return std::move(declared.front());
+}
+
+}  // namespace simlab::engine
