@@ -89,9 +89,15 @@ Assignment buildLab(const Manifest& manifest, const std::string& dir) {
                          "builds against: build and install it again");
     }
     const std::string root = labBuildFolder(manifest, lab.string());
-    createPrivateFolder(manifest.cacheDir);
-    createPrivateFolder(manifest.cacheDir + "/labs");
-    createPrivateFolder(root);
+    // Private from the start, then passable (never listable) by others: without bubblewrap the compiler and the
+    // linker run as throwaway users, who must reach the lab's contract, precompiled header and probe objects. What
+    // no test's code may read (the judge, the hidden tests' objects, the programs of the solution) is closed after
+    // every build.
+    fs::create_directories(fs::path(manifest.cacheDir).parent_path());
+    for (const std::string& folder : {manifest.cacheDir, manifest.cacheDir + "/labs", root}) {
+        createPrivateFolder(folder);
+        fs::permissions(folder, fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
+    }
     const std::string project = root + "/project", build = root + "/build", log = root + "/build.log";
     fs::create_directories(project);
     const std::string lists = "# The lab in " + lab.string() + ", built against simlab " + manifest.version +
@@ -123,6 +129,10 @@ Assignment buildLab(const Manifest& manifest, const std::string& dir) {
         throw UsageError(printable(lab.string()) + " declares " + std::to_string(declared.size()) +
                          " assignments: a lab's folder declares one (simlab_add_assignment)");
     }
+    for (const std::string& secret : secretPaths(manifest, declared.front())) {
+        if (secret.rfind(root + "/", 0) == 0) closeToOthers(secret);
+    }
+    closeToOthers(log);
     return std::move(declared.front());
 }
 

@@ -113,6 +113,20 @@ void createPrivateFolder(const std::string& path) {
     throw std::runtime_error("cannot create the folder " + path + ": " + std::strerror(error));
 }
 
+void closeToOthers(const std::string& path) {
+    std::error_code error;
+    if (!fs::exists(path, error)) return;
+    const auto close = [&](const fs::path& p) {
+        fs::permissions(p, fs::perms::group_all | fs::perms::others_all, fs::perm_options::remove, error);
+    };
+    close(path);
+    if (!fs::is_directory(path, error)) return;
+    for (auto it = fs::recursive_directory_iterator(path, error); !error && it != fs::recursive_directory_iterator();
+         it.increment(error)) {
+        close(it->path());
+    }
+}
+
 void writeFileAtomically(const std::string& path, const std::string& text) { writeFileThenRename(path, text, false); }
 
 void writeFileDurably(const std::string& path, const std::string& text) { writeFileThenRename(path, text, true); }

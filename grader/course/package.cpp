@@ -577,18 +577,7 @@ PackageSummary writeInstalledTree(const Manifest& manifest, const std::string& r
     }
     for (const std::string& secret : secrets) {
         const std::string path = installedPath(secret);
-        std::error_code error;
-        if (path.empty() || !fs::exists(path, error)) continue;
-        const auto closeUp = [&](const fs::path& p) {
-            fs::permissions(p, fs::perms::group_all | fs::perms::others_all, fs::perm_options::remove, error);
-        };
-        closeUp(path);
-        if (fs::is_directory(path, error)) {
-            for (auto it = fs::recursive_directory_iterator(path, error); !error && it != fs::recursive_directory_iterator();
-                 it.increment(error)) {
-                closeUp(it->path());
-            }
-        }
+        if (!path.empty()) closeToOthers(path);
     }
     j["installed"] = true;
     fs::create_directories(root + "/lib/simlab");

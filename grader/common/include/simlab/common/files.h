@@ -24,6 +24,10 @@ private:
 /// another user's to read; a folder already there is closed to others. Throws std::runtime_error on failure.
 void createPrivateFolder(const std::string& path);
 
+/// `path`, and everything below it if a folder, closed to group and others (what no test's code may read, where no
+/// sandbox hides it). Nothing there is no error.
+void closeToOthers(const std::string& path);
+
 /// The whole file; throws std::runtime_error naming the file and the reason.
 std::string readFile(const std::string& path);
 /// Write `text` to `path` atomically: a temporary file in the same directory, renamed over `path`.
