@@ -1,42 +1,7 @@
 // simlab-corpus: the corpus of sample submissions, each with the score the grader must give it.
 //
-// A case is a TOML file, tests/corpus/<assignment>/<case>.toml: a base file (the reference solution or the
-// starter) plus exact edits, so the bug a case carries is the few lines it changes:
-//
-//     description = "Gravity points up."
-//     base = "solution"                        # or "starter"
-//     score = 35                               # total the grader must give, hidden tests included
-//     status = "graded"                        # optional: the gradebook's status for it
-//     report_contains = ["...", ["a", "b"]]   # optional: text the report must show; a list inside is a choice
-//                                              # (the compiler's own words: clang's, or GCC's where it compiles)
-//     report_lacks = ["..."]                   # optional: text it must not show (an answer key, say)
-//     [[edit]]                                 # `find` must occur exactly once in the base
-//     find = "Vec3(0, -scene.gravity, 0)"
-//     replace = "Vec3(0, scene.gravity, 0)"
-//     file = "BookAnswers.toml"                # optional: edit one of the rubric's extra files instead
-//     percent = true                           # optional: %XX in `replace` is the byte XX (TOML holds only UTF-8)
-//     [outcomes]                               # every test not listed must pass
-//     "y at the final time has the target accuracy digits" = "failed"
-//     tests = ["..."]                          # optional: the tests the edit concerns, which `check` runs (its
-//                                              # [outcomes] among them; default: the tests [outcomes] names, or
-//                                              # the rubric's first); a class grades every test of every case
-//     sandbox = true                           # optional: what it does depends on the sandbox's mode (a class
-//                                              # graded in each mode takes these)
-//
-// Attacks on the files themselves are [[file]] entries, applied after the edits, and a folder name:
-//
-//     folder = "%1B]0;pwned%07"                # the student's folder in a class (percent escapes decoded)
-//     skipped = true                           # in a class, the folder is listed as skipped, with no row
-//     [[file]]
-//     name = "NewtonsApple.cpp"
-//     symlink = "/etc/shadow"                  # or: fifo = true; sparse_bytes = 3221225472; remove = true;
-//                                              # rename = "other name" (percent escapes decoded);
-//                                              # text = "..." (with percent = true for raw bytes)
-//
-// In a symlink target, {class} is the class folder (to point at another student's file). In a symlink target and
-// in an edit's `replace`, {source_dir} and {build_dir} are this tree's folders (an attacker may guess them). In a
-// `replace`, {witness} is tests/corpus/witness.inc, code that records where it runs, as whom, with what, and which
-// of simlab's secrets it can read ({secrets}: their paths for the build graded with, one per line).
+// A case is a TOML file, tests/corpus/<assignment>/<case>.toml, in the format simlab/course/corpus.h describes:
+// a base file (the reference solution or the starter) plus exact edits, the score and outcomes the grader must give.
 //
 // A case of the isolation's invariants (tests/corpus/<id>/invariants/) also says which of its code must be
 // recorded, or must never run:
@@ -85,6 +50,7 @@
 #include <toml++/toml.h>
 
 #include "simlab/course/batch.h"
+#include "simlab/course/corpus.h"
 #include "simlab/common/errors.h"
 #include "simlab/common/files.h"
 #include "simlab/grading/grade.h"
@@ -99,204 +65,25 @@ using namespace simlab::isolation;
 
 namespace {
 
-// A file of the student's folder as a case lays it out.
-struct File {
-    std::string text;
-    std::string symlink;          // a symbolic link to this target instead
-    bool fifo = false;            // a named pipe instead
-    unsigned long long sparse = 0;  // a sparse file of this many bytes instead
-};
-
-struct Case {
-    std::string name;
-    std::string invariantEntry;  // [invariant] entry: the witness's record that must be there
-    bool invariantRuns = true;   // [invariant] runs
-    std::string folder;  // the student's folder name in a class (raw bytes)
-    std::string description;
-    std::map<std::string, File> files;  // what the student hands in
-    double score = 0;
-    std::string status;
-    bool skipped = false;
-    std::vector<std::vector<std::string>> reportContains;  // each: any one of these
-    std::vector<std::string> reportLacks;
-    std::map<std::string, std::string> outcomes;
-    std::vector<std::string> tests;  // what `check` runs: the `tests` key, else the tests [outcomes] names
-    bool sandbox = false;            // `sandbox = true`: what it does depends on the sandbox's mode
-};
-
 std::string gSourceDir, gBuildDir;  // this tree's, for {source_dir} and {build_dir}
 std::string gWitness;               // tests/corpus/witness.inc with {secrets} written in, for {witness}
 std::vector<std::string> gSecrets;  // the witness's paths, by line
 
-std::string withFolders(std::string text) {
-    for (const auto& [name, value] : {std::pair<std::string, std::string>{"{source_dir}", gSourceDir}, {"{build_dir}", gBuildDir},
-                                      {"{witness}", gWitness}}) {
-        for (std::size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + value.size())) {
-            text.replace(at, name.size(), value);
-        }
-    }
-    return text;
-}
+using Case = CorpusCase;
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-    throw std::runtime_error(path + ": " + what);
-}
-
-// "%1B" is the byte 0x1B; "%%" is "%".
-std::string percentDecoded(const std::string& text) {
-    std::string out;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        if (text[i] == '%' && i + 2 < text.size() + 0 && std::isxdigit(static_cast<unsigned char>(text[i + 1])) &&
-            std::isxdigit(static_cast<unsigned char>(text[i + 2]))) {
-            out += static_cast<char>(std::stoi(text.substr(i + 1, 2), nullptr, 16));
-            i += 2;
-        } else if (text[i] == '%' && i + 1 < text.size() && text[i + 1] == '%') {
-            out += '%';
-            ++i;
-        } else {
-            out += text[i];
-        }
-    }
-    return out;
-}
-
+// A case with this tree's folders and the witness written into its edits and links.
 Case loadCase(const Assignment& assignment, const simlab::Rubric& rubric, const std::string& path) {
-    toml::table t;
-    try {
-        t = toml::parse_file(path);
-    } catch (const toml::parse_error& e) {
-        fail(path, std::string(e.description()));
-    }
-    Case c;
-    c.name = fs::path(path).stem().string();
-    c.folder = percentDecoded(t["folder"].value_or(c.name));
-    c.description = t["description"].value_or(std::string());
-    c.status = t["status"].value_or(std::string());
-    c.skipped = t["skipped"].value_or(false);
-    const std::string base = t["base"].value_or(std::string());
-    if (base != "solution" && base != "starter") fail(path, "base must be \"solution\" or \"starter\"");
-    const std::string basePath = base == "solution" ? assignment.solution : assignment.starter;
-    if (basePath.empty()) fail(path, "this tree has no solution for " + assignment.id);
-    c.files[assignment.source].text = readFile(basePath);
-    for (const std::string& extra : rubric.extraFiles) {
-        const fs::path file = fs::path(basePath).parent_path() / extra;
-        if (fs::exists(file)) c.files[extra].text = readFile(file.string());
-    }
-    const auto score = t["score"].value<double>();
-    if (!score) fail(path, "score is missing");
-    c.score = *score;
-    if (const toml::array* edits = t["edit"].as_array()) {
-        for (const toml::node& node : *edits) {
-            const toml::table* edit = node.as_table();
-            const auto find = edit ? (*edit)["find"].value<std::string>() : std::nullopt;
-            auto replace = edit ? (*edit)["replace"].value<std::string>() : std::nullopt;
-            if (!find || !replace) fail(path, "each [[edit]] needs find and replace");
-            if ((*edit)["percent"].value_or(false)) replace = percentDecoded(*replace);
-            replace = withFolders(*replace);
-            const std::string file = (*edit)["file"].value_or(assignment.source);
-            if (!c.files.count(file)) fail(path, "the " + base + " has no " + file + " to edit");
-            std::string& text = c.files[file].text;
-            const std::size_t at = text.find(*find);
-            if (at == std::string::npos || text.find(*find, at + 1) != std::string::npos) {
-                fail(path, "edit must match exactly once in the " + base + "'s " + file + ", and does not: " + *find);
-            }
-            text.replace(at, find->size(), *replace);
-        }
-    }
-    if (const toml::array* files = t["file"].as_array()) {
-        for (const toml::node& node : *files) {
-            const toml::table* entry = node.as_table();
-            const auto name = entry ? (*entry)["name"].value<std::string>() : std::nullopt;
-            if (!name) fail(path, "each [[file]] needs a name");
-            const std::string fileName = percentDecoded(*name);
-            if ((*entry)["remove"].value_or(false)) {
-                c.files.erase(fileName);
-                continue;
-            }
-            if (const auto rename = (*entry)["rename"].value<std::string>()) {
-                if (!c.files.count(fileName)) fail(path, "no " + fileName + " to rename");
-                c.files[percentDecoded(*rename)] = c.files[fileName];
-                c.files.erase(fileName);
-                continue;
-            }
-            File f;
-            f.symlink = withFolders((*entry)["symlink"].value_or(std::string()));
-            f.fifo = (*entry)["fifo"].value_or(false);
-            f.sparse = static_cast<unsigned long long>((*entry)["sparse_bytes"].value_or(0.0));
-            f.text = (*entry)["text"].value_or(std::string());
-            if ((*entry)["percent"].value_or(false)) f.text = percentDecoded(f.text);
-            c.files[fileName] = f;
-        }
-    }
-    if (const toml::array* texts = t["report_contains"].as_array()) {
-        for (const toml::node& node : *texts) {
-            std::vector<std::string> choice;
-            if (const toml::array* either = node.as_array()) {
-                for (const toml::node& one : *either) choice.push_back(one.value_or(std::string()));
-            } else {
-                choice.push_back(node.value_or(std::string()));
-            }
-            c.reportContains.push_back(choice);
-        }
-    }
-    if (const toml::array* texts = t["report_lacks"].as_array()) {
-        for (const toml::node& node : *texts) c.reportLacks.push_back(node.value_or(std::string()));
-    }
-    if (const toml::table* outcomes = t["outcomes"].as_table()) {
-        for (auto&& [test, outcome] : *outcomes) c.outcomes[std::string(test.str())] = outcome.value_or(std::string());
-    }
-    if (const toml::array* tests = t["tests"].as_array()) {
-        for (const toml::node& node : *tests) {
-            const auto name = node.value<std::string>();
-            if (!name || !rubric.find(*name)) fail(path, "tests names '" + name.value_or("?") + "', which the rubric has not");
-            c.tests.push_back(*name);
-        }
-    }
-    for (const auto& [test, outcome] : c.outcomes) {
-        if (!rubric.find(test)) fail(path, "no test named '" + test + "' in " + assignment.rubric);
-        // A test the edit changes is one `check` runs: [outcomes] within `tests`.
-        if (!c.tests.empty() && std::find(c.tests.begin(), c.tests.end(), test) == c.tests.end()) {
-            fail(path, "'" + test + "' has an outcome of its own but is not among `tests`");
-        }
-    }
-    if (c.tests.empty()) {
-        for (const auto& [test, outcome] : c.outcomes) c.tests.push_back(test);
-    }
-    if (c.tests.empty() && !rubric.tests.empty()) c.tests.push_back(rubric.tests.front().name);
-    c.sandbox = t["sandbox"].value_or(false);
-    c.invariantEntry = t["invariant"]["entry"].value_or(std::string());
-    c.invariantRuns = t["invariant"]["runs"].value_or(true);
-    return c;
+    return loadCorpusCase(assignment, rubric, path,
+                          {{"{source_dir}", gSourceDir}, {"{build_dir}", gBuildDir}, {"{witness}", gWitness}});
 }
 
-// Write a case's files into `dir`; a regular file is rewritten only when it changed, so it keeps its time stamp.
-void writeCase(const Case& c, const fs::path& dir, const std::string& classDir) {
-    fs::create_directories(dir);
-    for (const auto& [name, file] : c.files) {
-        const fs::path path = dir / name;
-        std::error_code ignored;
-        if (!file.symlink.empty()) {
-            std::string target = file.symlink;
-            const std::size_t at = target.find("{class}");
-            if (at != std::string::npos) target.replace(at, 7, classDir);
-            fs::remove(path, ignored);
-            fs::create_symlink(target, path);
-        } else if (file.fifo) {
-            fs::remove(path, ignored);
-            if (::mkfifo(path.c_str(), 0644) != 0) throw std::runtime_error("cannot make a named pipe " + path.string());
-        } else if (file.sparse > 0) {
-            fs::remove(path, ignored);
-            const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-            if (fd < 0 || ::ftruncate(fd, static_cast<off_t>(file.sparse)) != 0) {
-                throw std::runtime_error("cannot make a sparse file " + path.string());
-            }
-            ::close(fd);
-        } else if (fs::is_symlink(path) || !fs::exists(path) || readFile(path.string()) != file.text) {
-            fs::remove(path, ignored);
-            writeFileAtomically(path.string(), file.text);
-        }
-    }
+void writeCase(const Case& c, const fs::path& dir, const std::string& classDir) { writeCorpusCase(c, dir.string(), classDir); }
+
+std::vector<std::string> compare(const Case& c, const std::vector<TestResult>& tests, std::optional<double> score,
+                                 const std::string& status, const std::string& text, bool everyTest = true) {
+    return compareWithCase(c, tests, score, status, text, everyTest);
 }
+
 
 int materialize(const Assignment& assignment, const simlab::Rubric& rubric, const std::vector<std::string>& cases,
                 const std::string& out) {
@@ -368,34 +155,6 @@ std::string firstControl(const std::string& text) {
     return "";
 }
 
-// What differs between a case's expectations and a grade: outcomes, the score, texts the report must show.
-std::vector<std::string> compare(const Case& c, const std::vector<TestResult>& tests, std::optional<double> score,
-                                 const std::string& status, const std::string& text, bool everyTest = true) {
-    std::vector<std::string> mismatches;
-    for (const TestResult& t : tests) {
-        const auto listed = c.outcomes.find(t.name);
-        const std::string expected = listed == c.outcomes.end() ? "passed" : listed->second;
-        if (outcomeName(t.outcome) != expected) {
-            mismatches.push_back("'" + t.name + "' " + outcomeName(t.outcome) + ", expected " + expected);
-        }
-    }
-    if (score && std::abs(*score - c.score) > 0.005) {
-        mismatches.push_back("score " + points(*score) + ", expected " + points(c.score));
-    }
-    if (!c.status.empty() && status != c.status) mismatches.push_back("status '" + status + "', expected '" + c.status + "'");
-    for (const std::vector<std::string>& choice : everyTest ? c.reportContains : std::vector<std::vector<std::string>>{}) {
-        const bool said = std::any_of(choice.begin(), choice.end(),
-                                      [&](const std::string& needle) { return text.find(needle) != std::string::npos; });
-        if (said) continue;
-        std::string needles;
-        for (const std::string& needle : choice) needles += (needles.empty() ? "'" : " or '") + needle + "'";
-        mismatches.push_back("the report does not say " + needles);
-    }
-    for (const std::string& needle : c.reportLacks) {
-        if (text.find(needle) != std::string::npos) mismatches.push_back("the report says '" + needle + "'");
-    }
-    return mismatches;
-}
 
 int check(const Manifest& manifest, const Assignment& assignment, const simlab::Rubric& rubric,
           const std::string& path) {
