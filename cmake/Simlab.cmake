@@ -512,6 +512,11 @@ function(simlab_kit var)
   endforeach()
   string(JSON json SET "${${var}}" kit "${kit}")
   set(${var} "${json}" PARENT_SCOPE)
+  # `--target simlab_kit` builds what a lab builds against (a package's setup of a lab of one's own builds it alone).
+  add_custom_target(simlab_kit)
+  add_dependencies(simlab_kit simlab simlab-probe-host simlab_support simlab_plot simlab_program simlab_study
+                   simlab_rubric simlab_support_objects simlab_sanitizer_defaults simlab_probe simlab_probe_main
+                   simlab_harness simlab_observe_remote simlab_observe_local)
 endfunction()
 
 # simlab_write_lab_manifest(<file>): what a lab built out of the tree adds to simlab's manifest: its assignments.

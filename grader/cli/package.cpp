@@ -90,11 +90,11 @@ void runAutograde(const AutogradeOptions& o) {
 using PackageWriter =
     std::function<engine::PackageSummary(const engine::Manifest&, const engine::Assignment&, const PackageOptions&)>;
 
-// The manifest of a build tree: packages are made from the project's sources, which an installed simlab has
-// only the graded part of.
+// The manifest of a build tree or of an installation: packages are made from the project's sources, which an
+// installation made before it carried them all has only the graded part of.
 engine::Manifest sourceTreeManifest() {
     engine::Manifest manifest = engine::loadManifest();
-    if (manifest.installed) {
+    if (manifest.installed && !fs::exists(manifest.sourceDir + "/scripts/setup")) {
         throw engine::UsageError("simlab package makes its packages from the project's source tree, and this simlab is "
                                  "installed (" + engine::printable(manifest.prefix) + "): run the simlab of a build of "
                                  "the project (build/bin/simlab)");
@@ -128,10 +128,20 @@ void addPackage(CLI::App& app) {
     CLI::App* s = package->add_subcommand(
         "student", "Write the student bundle: everything but the solutions, the hidden tests and the corpus. It "
                    "builds with scripts/setup and self-checks with simlab check.");
+    s->add_option("lab", student->assignment,
+                  "a lab of one's own (its folder) the bundle carries too, as labs/<its folder's name>");
     s->add_option("-o,--output", student->output, "a new folder for the bundle")->required();
     s->callback([student] {
         const engine::Manifest manifest = sourceTreeManifest();
-        printSummary(engine::writeStudentBundle(manifest, student->output), student->output);
+        const engine::Assignment* lab = nullptr;
+        if (!student->assignment.empty()) {
+            lab = &manifest.find(student->assignment);
+            if (!engine::isOwnLab(manifest, *lab)) {
+                throw engine::UsageError(student->assignment + " is one of the course's labs, which every bundle "
+                                         "carries: name a lab of one's own (its folder), or none");
+            }
+        }
+        printSummary(engine::writeStudentBundle(manifest, student->output, lab), student->output);
     });
 
     // What `cmake --install` runs (the project's CMakeLists.txt): not listed, since nobody types it.

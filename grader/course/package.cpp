@@ -234,7 +234,45 @@ std::vector<std::string> projectFiles(const std::string& sourceDir) {
     return files;
 }
 
-PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& outDir) {
+bool isOwnLab(const Manifest& manifest, const Assignment& assignment) {
+    const fs::path relative = fs::path(assignment.dir).lexically_relative(manifest.sourceDir);
+    return relative.empty() || *relative.begin() == "..";
+}
+
+std::string labPlace(const Assignment& assignment) { return "labs/" + fs::path(assignment.dir).filename().string(); }
+
+namespace {
+
+// A lab of one's own in a package, as labs/<its folder's name>: its folder but its corpus (the solution's edits),
+// its solution's folder, the hidden tests unless `withHidden`, and anything hidden or built in it.
+void addLab(const Assignment& lab, const std::string& dir, bool withHidden, PackageSummary& summary) {
+    const fs::path from(lab.dir), to = fs::path(dir) / labPlace(lab);
+    const std::string solution = lab.solution.empty() ? "" : fs::path(lab.solution).parent_path().string();
+    int left = 0;
+    for (auto it = fs::recursive_directory_iterator(from); it != fs::recursive_directory_iterator(); ++it) {
+        const fs::path& p = it->path();
+        const std::string name = p.filename().string();
+        const bool hidden = std::find(lab.hiddenTests.begin(), lab.hiddenTests.end(), p.string()) != lab.hiddenTests.end();
+        if (it->is_directory() && (p == from / "corpus" || p.string() == solution || name.front() == '.' ||
+                                   fs::exists(p / "CMakeCache.txt"))) {
+            it.disable_recursion_pending();
+            ++left;
+        } else if (it->is_regular_file() && (name.front() == '.' || (hidden && !withHidden))) {
+            ++left;
+        } else if (it->is_regular_file()) {
+            const fs::path target = to / p.lexically_relative(from);
+            fs::create_directories(target.parent_path());
+            fs::copy_file(p, target, fs::copy_options::overwrite_existing);
+            ++summary.files;
+        }
+    }
+    summary.made.push_back(labPlace(lab) + ": the lab " + lab.id + " without its corpus and solution" +
+                           (withHidden ? "" : " and hidden tests") + " (" + std::to_string(left) + " left out)");
+}
+
+}  // namespace
+
+PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& outDir, const Assignment* lab) {
     requireNewFolder(outDir);
     std::set<std::string> hidden;
     for (const Assignment& a : manifest.assignments) {
@@ -250,6 +288,7 @@ PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& o
     ++summary.files;
     addCatch2(manifest, outDir, summary);
     addHandoutPages(manifest, outDir, summary);
+    if (lab) addLab(*lab, outDir, false, summary);
     return summary;
 }
 
@@ -262,6 +301,26 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
     }
     TempDir staging("simlab-gradescope-");
     PackageSummary summary = copyFiles(manifest, instructorOnly(), staging.path());
+    // simlab and this assignment's grader alone: the other labs, their programs and the studies are not built. A lab
+    // of one's own is built against simlab once simlab is, its hidden tests then closed as the course's are.
+    const bool own = isOwnLab(manifest, assignment);
+    std::string named = assignment.id, setup;
+    if (own) {
+        addLab(assignment, staging.path(), true, summary);
+        named = "\"$root/source/" + labPlace(assignment) + "\"";
+        setup = "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" SIMLAB_TARGETS=\"simlab_kit\" \\\n"
+                "  \"$source_dir/scripts/setup\"\n"
+                "\"$source_dir/build/bin/simlab\" assignment build \"$source_dir/" + labPlace(assignment) + "\"\n";
+        for (const std::string& hidden : assignment.hiddenTests) {
+            setup += "chmod -R go-rwx \"$source_dir/" + labPlace(assignment) + "/" +
+                     fs::path(hidden).lexically_relative(assignment.dir).generic_string() + "\"\n";
+        }
+    } else {
+        setup = "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" SIMLAB_TARGETS=\"simlab " + assignment.id +
+                "_grader\" \\\n  \"$source_dir/scripts/setup\"\n";
+    }
+    setup += "# The hidden tests, solutions and judges readable by root alone, should neither bubblewrap nor Landlock run.\n"
+             "\"$source_dir/scripts/lock-course\"\n";
 
     writeFileAtomically(staging.path() + "/setup.sh",
         "#!/usr/bin/env bash\n"
@@ -282,20 +341,14 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
         "       \"autograder's settings (simlab needs CMake 3.25 and libtomlplusplus-dev)\" >&2\n"
         "  exit 1\n"
         "fi\n"
-        "source_dir=$(cd \"$(dirname \"${BASH_SOURCE[0]}\")\" && pwd)\n"
-        "# simlab and this assignment's grader alone: the other labs, their programs and the studies are not built.\n"
-        "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" SIMLAB_TARGETS=\"simlab " + assignment.id +
-            "_grader\" \\\n"
-        "  \"$source_dir/scripts/setup\"\n"
-        "# The hidden tests, solutions and judges readable by root alone, should neither bubblewrap nor Landlock run.\n"
-        "\"$source_dir/scripts/lock-course\"\n");
+        "source_dir=$(cd \"$(dirname \"${BASH_SOURCE[0]}\")\" && pwd)\n" + setup);
     writeFileAtomically(staging.path() + "/run_autograder",
         "#!/usr/bin/env bash\n"
         "# Gradescope runs this for every submission: it grades /autograder/submission on every test of the\n"
         "# " + assignment.id + " assignment and writes /autograder/results/results.json.\n"
         "# AUTOGRADER_ROOT replaces /autograder (for testing).\n"
         "root=${AUTOGRADER_ROOT:-/autograder}\n"
-        "exec \"$root/source/build/bin/simlab\" autograde " + assignment.id +
+        "exec \"$root/source/build/bin/simlab\" autograde " + named +
             " --submission \"$root/submission\" --results \"$root/results/results.json\"\n");
     addCatch2(manifest, staging.path(), summary);
     makeExecutable(staging.path() + "/setup.sh");
@@ -426,13 +479,16 @@ PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignm
 }
 
 PackageSummary writeClassroomTemplate(const Manifest& manifest, const Assignment& assignment, const std::string& outDir) {
-    PackageSummary summary = writeStudentBundle(manifest, outDir);
+    const bool own = isOwnLab(manifest, assignment);
+    PackageSummary summary = writeStudentBundle(manifest, outDir, own ? &assignment : nullptr);
     // The template is a repository: the carried Catch2 header must be committed with it (GitHub's Ubuntu 24.04
     // ships Catch2 3).
     if (fs::exists(outDir + "/.gitignore")) dropLine(outDir + "/.gitignore", "/third_party/");
 
-    const std::string file = relativeTo(assignment.starter, manifest.sourceDir);
-    const std::string check = "build/bin/simlab check " + assignment.id + " " + file;
+    const std::string file = own ? labPlace(assignment) + "/" + relativeTo(assignment.starter, assignment.dir)
+                                 : relativeTo(assignment.starter, manifest.sourceDir);
+    const std::string check =
+        "build/bin/simlab check " + (own ? labPlace(assignment) : assignment.id) + " " + file;
     double visible = 0;
     for (const RubricTest& t : loadRubric(assignment.rubric).tests) {
         if (t.visible()) visible += t.points;
@@ -564,6 +620,15 @@ PackageSummary writeInstalledTree(const Manifest& manifest, const std::string& r
         value = text;
     };
     relocate(j);
+    // The project's other sources too, so that an installed simlab makes packages (they build simlab where they
+    // are unpacked): all but the corpus and its tests, CI and benchmarks. What the manifest names is copied already.
+    for (const std::string& file : projectFiles(manifest.sourceDir)) {
+        if (startsWith(file, "tests/") || startsWith(file, ".ci/") || startsWith(file, "bench/")) continue;
+        const std::string from = manifest.sourceDir + "/" + file;
+        if (!copied.count(from) && !copied.count(fs::path(from).parent_path().string())) {
+            copy(from, root + "/share/simlab/source/" + file);
+        }
+    }
     // What no test's code may read, readable by the installing user alone: in a container without bubblewrap, a
     // prefix in /usr/local lies among the system's files, which every sandboxed process may read, and there the
     // files' modes are what keeps the throwaway users out (simlab check and grade refuse to run otherwise).

@@ -27,7 +27,14 @@ struct PackageSummary {
 /// systems that ship Catch2 3. It builds and self-checks on its own. Where pandoc is installed, each handout is
 /// also a page (handouts/<id>.html: one file that opens offline), with the reference solution's run drawn in it
 /// and its replay page beside it (for each assignment whose program draws and replays).
-PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& outDir);
+/// With `lab` (a lab of one's own), the bundle carries it too, as labs/<its folder's name>, without its corpus,
+/// solution and hidden tests: students build simlab and self-check with `simlab check labs/<name> FILE`.
+PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& outDir, const Assignment* lab = nullptr);
+
+/// Whether `assignment` is a lab of one's own: its folder is outside the project's tree (simlab/build/lab.h).
+bool isOwnLab(const Manifest& manifest, const Assignment& assignment);
+/// Where packages carry a lab of one's own: labs/<its folder's name>.
+std::string labPlace(const Assignment& assignment);
 
 /// Write Gradescope's autograder archive for `assignment`: the project without solutions, tests, CI and
 /// benchmarks, plus setup.sh (install packages, build) and run_autograder (grade /autograder/submission into
