@@ -49,6 +49,7 @@ std::string shellWord(const std::string& word);
 /// --shard's "I/N" as (I, N), 1 <= I <= N <= 10000; a UsageError in one line otherwise.
 std::pair<int, int> parseShard(const std::string& text);
 
+void addAssignment(CLI::App& app);
 void addCheck(CLI::App& app);
 void addGrade(CLI::App& app);
 void addBuild(CLI::App& app);

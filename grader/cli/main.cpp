@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
     simlab::cli::addAutograde(app);
     simlab::cli::addExport(app);
     simlab::cli::addProject(app);
+    simlab::cli::addAssignment(app);
     simlab::cli::addStudy(app);
     simlab::cli::addPlot(app);
     simlab::cli::addSimilarity(app);

@@ -272,6 +272,12 @@ void addLab(const Assignment& lab, const std::string& dir, bool withHidden, Pack
 
 }  // namespace
 
+PackageSummary writeStudentLab(const Assignment& lab, const std::string& dir) {
+    PackageSummary summary;
+    addLab(lab, dir, false, summary);
+    return summary;
+}
+
 PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& outDir, const Assignment* lab) {
     requireNewFolder(outDir);
     std::set<std::string> hidden;

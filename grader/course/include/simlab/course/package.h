@@ -31,6 +31,10 @@ struct PackageSummary {
 /// solution and hidden tests: students build simlab and self-check with `simlab check labs/<name> FILE`.
 PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& outDir, const Assignment* lab = nullptr);
 
+/// A lab of one's own as students receive it, in `dir`/labs/<its folder's name>: all but its corpus, its solution and
+/// its hidden tests.
+PackageSummary writeStudentLab(const Assignment& lab, const std::string& dir);
+
 /// Whether `assignment` is a lab of one's own: its folder is outside the project's tree (simlab/build/lab.h).
 bool isOwnLab(const Manifest& manifest, const Assignment& assignment);
 /// Where packages carry a lab of one's own: labs/<its folder's name>.
