@@ -1,0 +1,85 @@
+# A lab of one's own, as an instructor makes it: simlab installed with cmake --install, the example lab
+# (examples/pendulum) copied out of the tree, and every command given its folder. The installed simlab builds it
+# against its CMake package on first use; `assignment verify` exits 0 (reference full, starter low, each corpus
+# case its score, no hidden file in the students' copy); a class of the reference and the starter is graded; the
+# Gradescope package carries the lab with its hidden tests and without its solution and corpus, and its setup
+# builds it. A broken copy makes verify fail, one line per check.
+# Usage: authoring.sh BUILD_DIR
+# shellcheck source=../smoke/lib.sh
+source "$(dirname "$0")/../smoke/lib.sh"
+build=$1
+chmod 0755 "$work"  # without bubblewrap, the sandbox's throwaway users read the prefix and the lab's build
+export HOME=$work/home XDG_CACHE_HOME=$work/cache
+mkdir -p "$HOME" "$XDG_CACHE_HOME"
+chmod 0711 "$HOME" "$XDG_CACHE_HOME"
+
+run_capture install cmake --install "$build" --prefix "$work/prefix"
+check "cmake --install writes simlab and its CMake package" \
+  test "$(status_of install)" -eq 0 -a -x prefix/bin/simlab -a -f prefix/lib/cmake/simlab/simlabConfig.cmake
+simlab=$work/prefix/bin/simlab
+mkdir labs
+cp -r "$SOURCE_DIR/examples/pendulum" labs/pendulum
+
+run_capture verify "$simlab" assignment verify labs/pendulum
+sed 's/^/    /' verify.out
+check "verify builds the lab against the installed simlab and every check holds" \
+  bash -c "test $(status_of verify) -eq 0 && grep -q '^ok    build: pendulum' verify.out && grep -q '^verify: .* 0 fail' verify.out"
+check "the reference earns every point, the starter none" \
+  bash -c "grep -q '^ok    reference: 100/100' verify.out && grep -q '^ok    starter: 0/100' verify.out"
+check "each corpus case gets its expected score" \
+  test "$(grep -c '^ok    corpus .* as expected$' verify.out)" -eq "$(ls labs/pendulum/corpus/*.toml | wc -l)"
+check "the students' copy holds no hidden test and the CPU limit has its margin" \
+  bash -c "grep -q '^ok    hidden: ' verify.out && grep -q '^ok    time limit: ' verify.out"
+check "the lab was built in the user's cache, not in its folder or the prefix" \
+  bash -c "test -d cache/simlab && ! find labs prefix -name CMakeCache.txt | grep -q ."
+
+mkdir -p class/ada class/bob
+cp labs/pendulum/solution/Pendulum.cpp class/ada/
+cp labs/pendulum/starter/Pendulum.cpp class/bob/
+run_capture grade "$simlab" grade labs/pendulum class --out grades
+check "a class of the reference and the starter is graded: 100 and 0" \
+  bash -c "test $(status_of grade) -eq 0 && grep -q '^ada,100,100,graded' grades/gradebook.csv &&
+    grep -q '^bob,0,100,graded' grades/gradebook.csv"
+
+run_capture package "$simlab" package gradescope labs/pendulum -o autograder.zip
+check "the installed simlab makes the lab's Gradescope package" test "$(status_of package)" -eq 0
+unzip -Z1 autograder.zip >listed.txt 2>/dev/null
+check "it carries the lab with its hidden tests, without its solution or corpus" \
+  bash -c "grep -qx labs/pendulum/grading/hidden.cpp listed.txt && grep -qx labs/pendulum/starter/Pendulum.cpp listed.txt &&
+    ! grep -q '^labs/pendulum/solution/' listed.txt && ! grep -q '^labs/pendulum/corpus/' listed.txt"
+unzip -q -o autograder.zip setup.sh run_autograder
+check "its setup builds what a lab builds against, then the lab, and closes the hidden tests" \
+  bash -c "grep -q 'SIMLAB_TARGETS=\"simlab_kit\"' setup.sh && grep -q 'assignment build \"\$source_dir/labs/pendulum\"' setup.sh &&
+    grep -q 'chmod -R go-rwx \"\$source_dir/labs/pendulum/grading/hidden.cpp\"' setup.sh"
+check "and run_autograder grades with the lab's folder" grep -q 'autograde "$root/source/labs/pendulum"' run_autograder
+# Gradescope's side: setup.sh builds simlab and the lab from the archive (the objects it shares with the build
+# under test from that build's ccache: tests/smoke/lib.sh), and run_autograder grades the reference in full.
+root=$work/autograder
+mkdir -p "$root/source" "$root/submission" "$root/results"
+unzip -q autograder.zip -d "$root/source"
+shared_objects "$root/source"
+SIMLAB_SKIP_APT=1 SIMLAB_JOBS=2 SIMLAB_CMAKE_ARGS="$shared_objects" "$root/source/setup.sh" >setup.log 2>&1
+check "setup.sh builds simlab and the lab" bash -c "test $? -eq 0 && test -x '$root/source/build/bin/simlab'" ||
+  tail -20 setup.log
+check "and closes the lab's hidden tests to others" \
+  test "$(stat -c %a "$root/source/labs/pendulum/grading/hidden.cpp")" = 600
+cp labs/pendulum/solution/Pendulum.cpp "$root/submission/"
+AUTOGRADER_ROOT=$root "$root/source/run_autograder" >autograde.out 2>autograde.err
+check "run_autograder grades the reference: 100/100 on 10 tests" \
+  "$VALIDATE" "$root/results/results.json" --score 100 --max 100 --tests 10 || tail -5 autograde.err
+
+run_capture student "$simlab" package student labs/pendulum -o bundle
+check "the student bundle carries the lab without its solution, hidden tests or corpus" \
+  bash -c "test $(status_of student) -eq 0 && test -f bundle/labs/pendulum/starter/Pendulum.cpp &&
+    test ! -e bundle/labs/pendulum/solution && test ! -e bundle/labs/pendulum/grading/hidden.cpp &&
+    test ! -e bundle/labs/pendulum/corpus && test -f bundle/scripts/setup"
+
+# A wrong expectation: verify names it in one line and exits 1.
+sed -i 's/^score = 35$/score = 40/' labs/pendulum/corpus/half-length.toml
+run_capture broken "$simlab" assignment verify labs/pendulum
+check "a corpus case that gets another score fails verify, in one line naming it" \
+  bash -c "test $(status_of broken) -eq 1 && grep -q '^FAIL  corpus half-length: 35/100: score 35, expected 40' broken.out"
+run_capture missing "$simlab" check labs/nowhere labs/pendulum/solution/Pendulum.cpp
+check "a folder that is not there is one line" \
+  bash -c "test $(status_of missing) -eq 2 && test \$(wc -l <missing.err) -eq 1 && grep -q 'no lab folder' missing.err"
+finish
