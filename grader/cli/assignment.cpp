@@ -41,7 +41,7 @@ void addAssignment(CLI::App& app) {
         "new", "Write a new lab NAME in the folder DIR from the template: a block on a spring that builds, a "
                "reference that earns every point, a starter with SIMLAB_TODOs, one test of each kind, a rubric, a "
                "handout and a corpus; its comments marked CHANGE say what to make your own.");
-    make->add_option("name", made->name, "the lab's id (lowercase letters, digits, '_' or '-')")->required();
+    make->add_option("name", made->name, "the lab's id and C++ namespace (lowercase letters, digits or '_')")->required();
     make->add_option("dir", made->dir, "a new folder (default: ./NAME)");
     make->callback([made] {
         const engine::Manifest manifest = engine::loadManifest();

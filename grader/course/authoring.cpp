@@ -115,9 +115,9 @@ std::vector<std::string> flipped(const GradeReport& a, const GradeReport& b) {
 }  // namespace
 
 int writeLabSkeleton(const Manifest& manifest, const std::string& name, const std::string& dir) {
-    if (!std::regex_match(name, std::regex("[a-z][a-z0-9_-]{0,39}"))) {
-        throw UsageError("a lab's name is its id: a lowercase letter, then up to 39 lowercase letters, digits, '_' "
-                         "or '-' (got '" + printable(name) + "')");
+    if (!std::regex_match(name, std::regex("[a-z][a-z0-9_]{0,39}"))) {
+        throw UsageError("a lab's name is its id and its C++ namespace: a lowercase letter, then up to 39 lowercase "
+                         "letters, digits or '_' (got '" + printable(name) + "')");
     }
     const fs::path from = fs::path(manifest.sourceDir) / "examples/template";
     if (!fs::is_directory(from)) throw UsageError("this simlab has no lab template (" + from.string() + ")");

@@ -369,6 +369,11 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
 
 PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignment& assignment,
                                          const std::string& outDir, const PrairieLearnOptions& options) {
+    if (isOwnLab(manifest, assignment)) {
+        throw UsageError("a PrairieLearn question is made for the course's labs; a lab of one's own goes to Gradescope "
+                         "(package gradescope), GitHub Classroom (package github-classroom) or students (package "
+                         "student) for now");
+    }
     requireHiddenTests(assignment);
     requireNewFolder(outDir);
     if (options.timeout < 1 || options.timeout > 600) {

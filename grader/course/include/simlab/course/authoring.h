@@ -9,7 +9,7 @@
 
 namespace simlab::engine {
 
-/// Write a new lab called `name` (an id: a lowercase letter, then lowercase letters, digits, '_' or '-') in the new
+/// Write a new lab called `name` (an id: a lowercase letter, then lowercase letters, digits or '_') in the new
 /// folder `dir`, from this simlab's template (examples/template: a block on a spring, one test of each kind, a
 /// starter and a reference), its id and file names made the name's. Returns the files written. Throws UsageError.
 int writeLabSkeleton(const Manifest& manifest, const std::string& name, const std::string& dir);
