@@ -51,7 +51,8 @@ void runStep(const std::vector<std::string>& argv, const std::string& dir, const
     std::string firstError;
     request.onOutputLine = [&](const std::string& line) {
         out << line << '\n';
-        if (firstError.empty() && (line.find("error") != std::string::npos || line.find("Error") != std::string::npos)) {
+        if (firstError.empty() &&
+            (line.find("error") != std::string::npos || line.find("Error") != std::string::npos)) {
             firstError = line;
         }
     };
@@ -66,9 +67,7 @@ void runStep(const std::vector<std::string>& argv, const std::string& dir, const
 
 }  // namespace
 
-bool isLabFolder(const std::string& name) {
-    return name == "." || name == ".." || name.find('/') != std::string::npos;
-}
+bool isLabFolder(const std::string& name) { return name == "." || name == ".." || name.find('/') != std::string::npos; }
 
 std::string labBuildFolder(const Manifest& manifest, const std::string& dir) {
     const fs::path canonical = fs::canonical(dir);
@@ -81,11 +80,13 @@ Assignment buildLab(const Manifest& manifest, const std::string& dir) {
     if (!fs::is_directory(dir, error)) throw UsageError("no lab folder " + printable(dir));
     const fs::path lab = fs::canonical(dir);
     if (!fs::is_regular_file(lab / "CMakeLists.txt", error)) {
-        throw UsageError(printable(lab.string()) + " is not a lab's folder: it has no CMakeLists.txt calling "
+        throw UsageError(printable(lab.string()) +
+                         " is not a lab's folder: it has no CMakeLists.txt calling "
                          "simlab_add_assignment (simlab assignment new makes one)");
     }
     if (manifest.kit.targets.empty()) {
-        throw UsageError("this simlab (" + printable(manifest.path) + ") was built without what a lab of one's own "
+        throw UsageError("this simlab (" + printable(manifest.path) +
+                         ") was built without what a lab of one's own "
                          "builds against: build and install it again");
     }
     const std::string root = labBuildFolder(manifest, lab.string());
@@ -104,9 +105,11 @@ Assignment buildLab(const Manifest& manifest, const std::string& dir) {
                               " (simlab/build/lab.h).\n"
                               "cmake_minimum_required(VERSION 3.25)\n"
                               "project(simlab_lab LANGUAGES CXX)\n"
-                              "find_package(simlab " + manifest.version + " EXACT REQUIRED CONFIG PATHS " +
-                              bracketed(packageFolder(manifest)) + " NO_DEFAULT_PATH)\n"
-                              "simlab_add_lab(" + bracketed(lab.string()) + ")\n";
+                              "find_package(simlab " +
+                              manifest.version + " EXACT REQUIRED CONFIG PATHS " + bracketed(packageFolder(manifest)) +
+                              " NO_DEFAULT_PATH)\n"
+                              "simlab_add_lab(" +
+                              bracketed(lab.string()) + ")\n";
     std::string before;
     try {
         before = readFile(project + "/CMakeLists.txt");
@@ -115,8 +118,8 @@ Assignment buildLab(const Manifest& manifest, const std::string& dir) {
     if (before != lists) writeFileAtomically(project + "/CMakeLists.txt", lists);
     const bool first = !fs::exists(build + "/CMakeCache.txt", error);
     if (first) {
-        std::cerr << "simlab: building the lab in " << printable(lab.string()) << " against simlab "
-                  << manifest.version << " (once; about a minute; the log: " << log << ")" << std::endl;
+        std::cerr << "simlab: building the lab in " << printable(lab.string()) << " against simlab " << manifest.version
+                  << " (once; about a minute; the log: " << log << ")" << std::endl;
         fs::remove(log, error);
         runStep({manifest.cmake, "-S", project, "-B", build, "-DCMAKE_BUILD_TYPE=Release"}, root, log,
                 "configuring the lab in " + printable(lab.string()));

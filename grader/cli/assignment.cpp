@@ -31,17 +31,20 @@ std::string asFolder(const std::string& dir) { return engine::isLabFolder(dir) ?
 }  // namespace
 
 void addAssignment(CLI::App& app) {
-    CLI::App* assignment = app.add_subcommand(
-        "assignment", "Labs of one's own, kept in a folder anywhere: start one, build it, verify it "
-                      "(docs/authors.md). Every command that takes an assignment takes such a folder too.");
+    CLI::App* assignment =
+        app.add_subcommand("assignment",
+                           "Labs of one's own, kept in a folder anywhere: start one, build it, verify it "
+                           "(docs/authors.md). Every command that takes an assignment takes such a folder too.");
     assignment->require_subcommand(1);
 
     auto made = std::make_shared<AssignmentOptions>();
     CLI::App* make = assignment->add_subcommand(
-        "new", "Write a new lab NAME in the folder DIR from the template: a block on a spring that builds, a "
-               "reference that earns every point, a starter with SIMLAB_TODOs, one test of each kind, a rubric, a "
-               "handout and a corpus; its comments marked CHANGE say what to make your own.");
-    make->add_option("name", made->name, "the lab's id and C++ namespace (lowercase letters, digits or '_')")->required();
+        "new",
+        "Write a new lab NAME in the folder DIR from the template: a block on a spring that builds, a "
+        "reference that earns every point, a starter with SIMLAB_TODOs, one test of each kind, a rubric, a "
+        "handout and a corpus; its comments marked CHANGE say what to make your own.");
+    make->add_option("name", made->name, "the lab's id and C++ namespace (lowercase letters, digits or '_')")
+        ->required();
     make->add_option("dir", made->dir, "a new folder (default: ./NAME)");
     make->callback([made] {
         const engine::Manifest manifest = engine::loadManifest();
@@ -57,8 +60,9 @@ void addAssignment(CLI::App& app) {
 
     auto built = std::make_shared<AssignmentOptions>();
     CLI::App* build = assignment->add_subcommand(
-        "build", "Build the lab in DIR against this simlab now (every command builds it on first use; a "
-                 "package's setup builds it here).");
+        "build",
+        "Build the lab in DIR against this simlab now (every command builds it on first use; a "
+        "package's setup builds it here).");
     build->add_option("dir", built->dir, "the lab's folder")->required();
     build->callback([built] {
         const engine::Manifest manifest = engine::loadManifest();
@@ -69,14 +73,16 @@ void addAssignment(CLI::App& app) {
 
     auto verified = std::make_shared<AssignmentOptions>();
     CLI::App* verify = assignment->add_subcommand(
-        "verify", "Check the lab in DIR before students see it, one line per check: it builds; the reference "
-                  "earns every point, hidden tests included; the starter earns at most --starter-share; each corpus "
-                  "case its score; each extreme case names its outcome; a graded trade has measured fronts; the "
-                  "students' copy holds no hidden test; the CPU limit leaves the reference a margin of 2. Exit 0 "
-                  "only when every check holds.");
+        "verify",
+        "Check the lab in DIR before students see it, one line per check: it builds; the reference "
+        "earns every point, hidden tests included; the starter earns at most --starter-share; each corpus "
+        "case its score; each extreme case names its outcome; a graded trade has measured fronts; the "
+        "students' copy holds no hidden test; the CPU limit leaves the reference a margin of 2. Exit 0 "
+        "only when every check holds.");
     verify->add_option("dir", verified->dir, "the lab's folder")->required();
-    verify->add_option("--starter-share", verified->verify.starterShare,
-                       "the most the starter may earn, as a share of the points")
+    verify
+        ->add_option("--starter-share", verified->verify.starterShare,
+                     "the most the starter may earn, as a share of the points")
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str();
     verify->add_option("-j,--jobs", verified->verify.judges, "judges a grading runs at once (default: the cores)");
@@ -84,8 +90,8 @@ void addAssignment(CLI::App& app) {
         const engine::Manifest manifest = engine::loadManifest();
         if (verified->verify.judges < 1) verified->verify.judges = cores();
         int counts[4] = {0, 0, 0, 0};
-        const int failures = engine::verifyLab(
-            manifest, asFolder(verified->dir), verified->verify, [&](const engine::VerifyLine& line) {
+        const int failures =
+            engine::verifyLab(manifest, asFolder(verified->dir), verified->verify, [&](const engine::VerifyLine& line) {
                 const std::string statuses[4] = {"ok", "FAIL", "warn", "skip"};
                 for (int i = 0; i < 4; ++i) counts[i] += line.status == statuses[i];
                 std::printf("%-5s %s\n", line.status.c_str(), engine::printable(line.text).c_str());

@@ -96,7 +96,8 @@ std::string shown(const GradeReport& r) {
 std::string scoreOf(const GradeReport& r) { return points(r.score()) + "/" + points(r.maxScore()); }
 
 bool timedOut(const GradeReport& r) {
-    return std::any_of(r.tests.begin(), r.tests.end(), [](const TestResult& t) { return t.outcome == Outcome::TimedOut; });
+    return std::any_of(r.tests.begin(), r.tests.end(),
+                       [](const TestResult& t) { return t.outcome == Outcome::TimedOut; });
 }
 
 // The tests whose outcome differs between two gradings of one submission.
@@ -105,7 +106,8 @@ std::vector<std::string> flipped(const GradeReport& a, const GradeReport& b) {
     for (const TestResult& t : a.tests) {
         for (const TestResult& u : b.tests) {
             if (t.name == u.name && t.outcome != u.outcome) {
-                out.push_back("'" + t.name + "' " + outcomeName(t.outcome) + " at 1x, " + outcomeName(u.outcome) + " at 2x");
+                out.push_back("'" + t.name + "' " + outcomeName(t.outcome) + " at 1x, " + outcomeName(u.outcome) +
+                              " at 2x");
             }
         }
     }
@@ -116,8 +118,10 @@ std::vector<std::string> flipped(const GradeReport& a, const GradeReport& b) {
 
 int writeLabSkeleton(const Manifest& manifest, const std::string& name, const std::string& dir) {
     if (!std::regex_match(name, std::regex("[a-z][a-z0-9_]{0,39}"))) {
-        throw UsageError("a lab's name is its id and its C++ namespace: a lowercase letter, then up to 39 lowercase "
-                         "letters, digits or '_' (got '" + printable(name) + "')");
+        throw UsageError(
+            "a lab's name is its id and its C++ namespace: a lowercase letter, then up to 39 lowercase "
+            "letters, digits or '_' (got '" +
+            printable(name) + "')");
     }
     const fs::path from = fs::path(manifest.sourceDir) / "examples/template";
     if (!fs::is_directory(from)) throw UsageError("this simlab has no lab template (" + from.string() + ")");
@@ -130,8 +134,7 @@ int writeLabSkeleton(const Manifest& manifest, const std::string& name, const st
     for (auto it = fs::recursive_directory_iterator(from); it != fs::recursive_directory_iterator(); ++it) {
         if (!it->is_regular_file()) continue;
         const std::string relative = it->path().lexically_relative(from).generic_string();
-        const fs::path target =
-            fs::path(dir) / replaced(replaced(relative, kTemplateName, Name), kTemplateId, name);
+        const fs::path target = fs::path(dir) / replaced(replaced(relative, kTemplateName, Name), kTemplateId, name);
         fs::create_directories(target.parent_path());
         writeFileAtomically(target.string(),
                             replaced(replaced(readFile(it->path().string()), kTemplateName, Name), kTemplateId, name));
@@ -139,6 +142,234 @@ int writeLabSkeleton(const Manifest& manifest, const std::string& name, const st
     }
     return files;
 }
+
+namespace {
+
+// The checks of verifyLab, in order, each telling its verdicts as it knows them.
+struct Verifier {
+    const Manifest& manifest;
+    const Assignment& lab;
+    const Rubric& rubric;
+    const VerifyOptions& o;
+    std::function<void(const std::string&, const std::string&)> say;
+    std::optional<GradeReport> reference, starter;
+    std::vector<std::string> cases;
+    std::vector<std::pair<CorpusCase, GradeReport>> timedOutCases;
+
+    // The reference: every point of every test.
+    void checkReference() {
+        if (lab.solution.empty() || !fs::exists(lab.solution)) {
+            say("FAIL", "reference: the lab has no solution (SOLUTION in its CMakeLists.txt)");
+        } else {
+            reference = gradeFile(manifest, lab, rubric, lab.solution, o);
+            std::vector<std::string> short_;
+            for (const TestResult& t : reference->tests) {
+                if (t.outcome != Outcome::Passed || t.credit < 1)
+                    short_.push_back("'" + t.name + "' " + outcomeName(t.outcome) + ": " + t.reason);
+            }
+            if (reference->status != "graded" || !reference->build.ok) {
+                say("FAIL", "reference: " + reference->status +
+                                (reference->build.ok
+                                     ? ""
+                                     : ", it does not build: " + isolation::firstLines(reference->build.log, 1)));
+            } else if (short_.empty() && reference->score() == reference->maxScore()) {
+                say("ok", "reference: " + scoreOf(*reference) + ", every one of its " +
+                              std::to_string(reference->tests.size()) + " tests in full");
+            } else {
+                std::string list;
+                for (const std::string& s : short_) list += (list.empty() ? "" : "; ") + s;
+                say("FAIL", "reference: " + scoreOf(*reference) + ", short on " + list);
+            }
+        }
+    }
+
+    // The starter: at most a share.
+    void checkStarter() {
+        starter = gradeFile(manifest, lab, rubric, lab.starter, o);
+        const double share = starter->maxScore() > 0 ? starter->score() / starter->maxScore() : 0;
+        say(share <= o.starterShare ? "ok" : "FAIL",
+            "starter: " + scoreOf(*starter) + (share <= o.starterShare ? ", at most " : ", more than ") +
+                points(100 * o.starterShare) + " % of the points" +
+                (starter->build.ok ? "" : " (it does not build: a starter must compile and fail at its TODOs)"));
+    }
+
+    // The corpus: each case its score and outcomes.
+    void checkCorpus() {
+        std::error_code error;
+        if (fs::is_directory(lab.dir + "/corpus", error)) {
+            for (const auto& entry : fs::directory_iterator(lab.dir + "/corpus")) {
+                if (entry.path().extension() == ".toml") cases.push_back(entry.path().string());
+            }
+        }
+        std::sort(cases.begin(), cases.end());
+        if (cases.empty())
+            say("warn", "corpus: no cases (corpus/*.toml): add the submissions you expect, with their scores");
+        for (const std::string& path : cases) {
+            const std::string name = fs::path(path).stem().string();
+            try {
+                const CorpusCase c = loadCorpusCase(lab, rubric, path);
+                const GradeReport report = gradeCase(manifest, lab, rubric, c, o);
+                const std::vector<std::string> mismatches =
+                    compareWithCase(c, report.tests, report.score(), report.status, shown(report));
+                std::string list;
+                for (const std::string& m : mismatches) list += (list.empty() ? "" : "; ") + m;
+                say(mismatches.empty() ? "ok" : "FAIL",
+                    "corpus " + name + ": " + scoreOf(report) + (mismatches.empty() ? " as expected" : ": " + list));
+                if (timedOut(report)) timedOutCases.emplace_back(c, report);
+            } catch (const std::exception& e) {
+                say("FAIL", "corpus " + name + ": " + e.what());
+            }
+        }
+    }
+
+    // The extremes: each names the outcome the lab promises.
+    void checkExtremes() {
+        const std::string extremes = lab.dir + "/study/extremes.toml";
+        if (!fs::exists(extremes)) {
+            say("skip", "extremes: none declared (study/extremes.toml)");
+        } else {
+            try {
+                const toml::table t = toml::parse_file(extremes);
+                int count = 0;
+                std::vector<std::string> unnamed;
+                if (const toml::array* list = t["case"].as_array()) {
+                    for (const toml::node& node : *list) {
+                        ++count;
+                        const toml::table* c = node.as_table();
+                        const std::string expect = c ? (*c)["expect"].value_or(std::string()) : "";
+                        if (expect != "accurate" && expect != "rejected" && expect != "trouble") {
+                            unnamed.push_back(c ? (*c)["name"].value_or(std::string("case ") + std::to_string(count))
+                                                : std::to_string(count));
+                        }
+                    }
+                }
+                if (unnamed.empty()) {
+                    say("ok", "extremes: each of " + std::to_string(count) + " cases names its outcome");
+                } else {
+                    say("FAIL", "extremes: " + std::to_string(unnamed.size()) +
+                                    " cases name no outcome (expect = accurate, "
+                                    "rejected or trouble), the first '" +
+                                    unnamed.front() + "'");
+                }
+            } catch (const toml::parse_error& e) {
+                say("FAIL", "extremes: " + extremes + ": " + std::string(e.description()));
+            }
+        }
+    }
+
+    // A trade the rubric grades: its fronts measured.
+    void checkTrade() {
+        std::error_code error;
+        const bool gradesTrade = std::any_of(rubric.tests.begin(), rubric.tests.end(),
+                                             [](const RubricTest& t) { return t.params.count("full_within") > 0; });
+        std::vector<std::string> trades;
+        if (fs::is_directory(lab.dir + "/grading", error)) {
+            for (const auto& entry : fs::directory_iterator(lab.dir + "/grading")) {
+                const std::string name = entry.path().filename().string();
+                if (name.rfind("trade-", 0) == 0 && entry.path().extension() == ".json")
+                    trades.push_back(entry.path().string());
+            }
+        }
+        if (!gradesTrade) {
+            say("skip", "trade: the rubric grades no trade (no test with full_within)");
+        } else if (trades.empty()) {
+            say("FAIL",
+                "trade: the rubric grades a trade, but grading/ has no trade-*.json with its fronts (simlab study "
+                "trade DIR --fronts measures them)");
+        } else {
+            for (const std::string& path : trades) {
+                try {
+                    const nlohmann::json j = nlohmann::json::parse(readFile(path));
+                    std::size_t scenes = 0, measured = 0;
+                    for (const nlohmann::json& scene : j.at("scenes")) {
+                        ++scenes;
+                        if (scene.contains("front") && !scene.at("front").empty()) ++measured;
+                    }
+                    say(scenes > 0 && measured == scenes ? "ok" : "FAIL",
+                        "trade " + fs::path(path).filename().string() + ": " + std::to_string(measured) + " of " +
+                            std::to_string(scenes) + " scenes have a measured front");
+                } catch (const std::exception& e) {
+                    say("FAIL", "trade " + fs::path(path).filename().string() + ": " + e.what());
+                }
+            }
+        }
+    }
+
+    // The students' copy: no hidden test, solution or corpus file, by name or by content.
+    void checkHidden() {
+        {
+            TempDir dir("simlab-verify-");
+            writeStudentLab(lab, dir.path());
+            std::map<std::string, std::string> secret;  // content -> what it is
+            for (const std::string& h : lab.hiddenTests) {
+                if (fs::is_regular_file(h)) secret[readFile(h)] = fs::path(h).lexically_relative(lab.dir).string();
+            }
+            if (!lab.solution.empty() && fs::exists(lab.solution)) secret[readFile(lab.solution)] = "the solution";
+            for (const std::string& c : cases) secret[readFile(c)] = fs::path(c).lexically_relative(lab.dir).string();
+            std::vector<std::string> found;
+            int files = 0;
+            for (auto it = fs::recursive_directory_iterator(dir.path()); it != fs::recursive_directory_iterator();
+                 ++it) {
+                if (!it->is_regular_file()) continue;
+                ++files;
+                const std::string relative = it->path().lexically_relative(dir.path()).string();
+                const auto s = secret.find(readFile(it->path().string()));
+                if (s != secret.end()) found.push_back(relative + " (" + s->second + ")");
+                if (relative.find("/corpus/") != std::string::npos || relative.find("hidden") != std::string::npos) {
+                    found.push_back(relative);
+                }
+            }
+            say(found.empty() ? "ok" : "FAIL",
+                found.empty() ? "hidden: the students' copy of the lab (" + std::to_string(files) +
+                                    " files) holds no hidden test, solution or corpus case"
+                              : "hidden: the students' copy of the lab holds " + found.front() +
+                                    (found.size() > 1 ? " and " + std::to_string(found.size() - 1) + " more" : ""));
+        }
+    }
+
+    // The time limit: a margin over the reference's slowest test, and no verdict that a doubled limit changes.
+    void checkTimeLimit() {
+        if (reference) {
+            double slowest = 0;
+            std::string slowestTest;
+            for (const TestResult& t : reference->tests) {
+                if (t.cpuSeconds > slowest) {
+                    slowest = t.cpuSeconds;
+                    slowestTest = t.name;
+                }
+            }
+            const double limit = rubric.limits.cpuSeconds;
+            const double suggested = std::max(1.0, std::ceil(5 * slowest));
+            std::ostringstream line;
+            line.precision(3);
+            line << "time limit: cpu_seconds = " << limit << "; the reference's slowest test ('" << slowestTest
+                 << "') used " << slowest << " s of CPU";
+            if (slowest * 2 > limit) {
+                line << ", less than half the limit: set cpu_seconds = " << suggested << " ([limits] in the rubric)";
+                say("FAIL", line.str());
+            } else {
+                line << " (" << (slowest > 0 ? limit / slowest : 0) << " x; 5 x it, at least 1 s, would be "
+                     << suggested << ")";
+                say("ok", line.str());
+            }
+            Limits doubled = rubric.limits;
+            doubled.cpuSeconds *= 2;
+            doubled.wallSeconds *= 2;
+            const auto twice = [&](const std::string& what, const GradeReport& once, const GradeReport& again) {
+                const std::vector<std::string> changes = flipped(once, again);
+                if (!changes.empty())
+                    say("warn",
+                        "time limit: " + what + "'s verdict changes between 1x and 2x the limit: " + changes.front());
+            };
+            if (starter && timedOut(*starter))
+                twice("the starter", *starter, gradeFile(manifest, lab, rubric, lab.starter, o, doubled));
+            for (const auto& [c, report] : timedOutCases)
+                twice("corpus " + c.name, report, gradeCase(manifest, lab, rubric, c, o, doubled));
+        }
+    }
+};
+
+}  // namespace
 
 int verifyLab(const Manifest& manifest, const std::string& dir, const VerifyOptions& o,
               const std::function<void(const VerifyLine&)>& print) {
@@ -169,195 +400,14 @@ int verifyLab(const Manifest& manifest, const std::string& dir, const VerifyOpti
         say("FAIL", std::string("rubric: ") + e.what());
         return failures;
     }
-    std::vector<GradeReport> graded;  // every grading, for the time limit's margin
-
-    // The reference: every point of every test.
-    std::optional<GradeReport> reference;
-    if (lab.solution.empty() || !fs::exists(lab.solution)) {
-        say("FAIL", "reference: the lab has no solution (SOLUTION in its CMakeLists.txt)");
-    } else {
-        reference = gradeFile(manifest, lab, rubric, lab.solution, o);
-        std::vector<std::string> short_;
-        for (const TestResult& t : reference->tests) {
-            if (t.outcome != Outcome::Passed || t.credit < 1) short_.push_back("'" + t.name + "' " + outcomeName(t.outcome) + ": " + t.reason);
-        }
-        if (reference->status != "graded" || !reference->build.ok) {
-            say("FAIL", "reference: " + reference->status + (reference->build.ok ? "" : ", it does not build: " + isolation::firstLines(reference->build.log, 1)));
-        } else if (short_.empty() && reference->score() == reference->maxScore()) {
-            say("ok", "reference: " + scoreOf(*reference) + ", every one of its " + std::to_string(reference->tests.size()) +
-                          " tests in full");
-        } else {
-            std::string list;
-            for (const std::string& s : short_) list += (list.empty() ? "" : "; ") + s;
-            say("FAIL", "reference: " + scoreOf(*reference) + ", short on " + list);
-        }
-        graded.push_back(*reference);
-    }
-
-    // The starter: at most a share.
-    const GradeReport starter = gradeFile(manifest, lab, rubric, lab.starter, o);
-    const double share = starter.maxScore() > 0 ? starter.score() / starter.maxScore() : 0;
-    say(share <= o.starterShare ? "ok" : "FAIL",
-        "starter: " + scoreOf(starter) + (share <= o.starterShare ? ", at most " : ", more than ") +
-            points(100 * o.starterShare) + " % of the points" +
-            (starter.build.ok ? "" : " (it does not build: a starter must compile and fail at its TODOs)"));
-    graded.push_back(starter);
-
-    // The corpus: each case its score and outcomes.
-    std::vector<std::string> cases;
-    std::error_code error;
-    if (fs::is_directory(lab.dir + "/corpus", error)) {
-        for (const auto& entry : fs::directory_iterator(lab.dir + "/corpus")) {
-            if (entry.path().extension() == ".toml") cases.push_back(entry.path().string());
-        }
-    }
-    std::sort(cases.begin(), cases.end());
-    if (cases.empty()) say("warn", "corpus: no cases (corpus/*.toml): add the submissions you expect, with their scores");
-    std::vector<std::pair<CorpusCase, GradeReport>> timedOutCases;
-    for (const std::string& path : cases) {
-        const std::string name = fs::path(path).stem().string();
-        try {
-            const CorpusCase c = loadCorpusCase(lab, rubric, path);
-            const GradeReport report = gradeCase(manifest, lab, rubric, c, o);
-            const std::vector<std::string> mismatches =
-                compareWithCase(c, report.tests, report.score(), report.status, shown(report));
-            std::string list;
-            for (const std::string& m : mismatches) list += (list.empty() ? "" : "; ") + m;
-            say(mismatches.empty() ? "ok" : "FAIL",
-                "corpus " + name + ": " + scoreOf(report) + (mismatches.empty() ? " as expected" : ": " + list));
-            graded.push_back(report);
-            if (timedOut(report)) timedOutCases.emplace_back(c, report);
-        } catch (const std::exception& e) {
-            say("FAIL", "corpus " + name + ": " + e.what());
-        }
-    }
-
-    // The extremes: each names the outcome the lab promises.
-    const std::string extremes = lab.dir + "/study/extremes.toml";
-    if (!fs::exists(extremes)) {
-        say("skip", "extremes: none declared (study/extremes.toml)");
-    } else {
-        try {
-            const toml::table t = toml::parse_file(extremes);
-            int count = 0;
-            std::vector<std::string> unnamed;
-            if (const toml::array* list = t["case"].as_array()) {
-                for (const toml::node& node : *list) {
-                    ++count;
-                    const toml::table* c = node.as_table();
-                    const std::string expect = c ? (*c)["expect"].value_or(std::string()) : "";
-                    if (expect != "accurate" && expect != "rejected" && expect != "trouble") {
-                        unnamed.push_back(c ? (*c)["name"].value_or(std::string("case ") + std::to_string(count))
-                                            : std::to_string(count));
-                    }
-                }
-            }
-            if (unnamed.empty()) {
-                say("ok", "extremes: each of " + std::to_string(count) + " cases names its outcome");
-            } else {
-                say("FAIL", "extremes: " + std::to_string(unnamed.size()) + " cases name no outcome (expect = accurate, "
-                            "rejected or trouble), the first '" + unnamed.front() + "'");
-            }
-        } catch (const toml::parse_error& e) {
-            say("FAIL", "extremes: " + extremes + ": " + std::string(e.description()));
-        }
-    }
-
-    // A trade the rubric grades: its fronts measured.
-    const bool gradesTrade = std::any_of(rubric.tests.begin(), rubric.tests.end(),
-                                         [](const RubricTest& t) { return t.params.count("full_within") > 0; });
-    std::vector<std::string> trades;
-    if (fs::is_directory(lab.dir + "/grading", error)) {
-        for (const auto& entry : fs::directory_iterator(lab.dir + "/grading")) {
-            const std::string name = entry.path().filename().string();
-            if (name.rfind("trade-", 0) == 0 && entry.path().extension() == ".json") trades.push_back(entry.path().string());
-        }
-    }
-    if (!gradesTrade) {
-        say("skip", "trade: the rubric grades no trade (no test with full_within)");
-    } else if (trades.empty()) {
-        say("FAIL", "trade: the rubric grades a trade, but grading/ has no trade-*.json with its fronts (simlab study "
-                    "trade DIR --fronts measures them)");
-    } else {
-        for (const std::string& path : trades) {
-            try {
-                const nlohmann::json j = nlohmann::json::parse(readFile(path));
-                std::size_t scenes = 0, measured = 0;
-                for (const nlohmann::json& scene : j.at("scenes")) {
-                    ++scenes;
-                    if (scene.contains("front") && !scene.at("front").empty()) ++measured;
-                }
-                say(scenes > 0 && measured == scenes ? "ok" : "FAIL",
-                    "trade " + fs::path(path).filename().string() + ": " + std::to_string(measured) + " of " +
-                        std::to_string(scenes) + " scenes have a measured front");
-            } catch (const std::exception& e) {
-                say("FAIL", "trade " + fs::path(path).filename().string() + ": " + e.what());
-            }
-        }
-    }
-
-    // The student's copy: no hidden test, solution or corpus file, by name or by content.
-    {
-        TempDir dir("simlab-verify-");
-        writeStudentLab(lab, dir.path());
-        std::map<std::string, std::string> secret;  // content -> what it is
-        for (const std::string& h : lab.hiddenTests) {
-            if (fs::is_regular_file(h)) secret[readFile(h)] = fs::path(h).lexically_relative(lab.dir).string();
-        }
-        if (!lab.solution.empty() && fs::exists(lab.solution)) secret[readFile(lab.solution)] = "the solution";
-        for (const std::string& c : cases) secret[readFile(c)] = fs::path(c).lexically_relative(lab.dir).string();
-        std::vector<std::string> found;
-        int files = 0;
-        for (auto it = fs::recursive_directory_iterator(dir.path()); it != fs::recursive_directory_iterator(); ++it) {
-            if (!it->is_regular_file()) continue;
-            ++files;
-            const std::string relative = it->path().lexically_relative(dir.path()).string();
-            const auto s = secret.find(readFile(it->path().string()));
-            if (s != secret.end()) found.push_back(relative + " (" + s->second + ")");
-            if (relative.find("/corpus/") != std::string::npos || relative.find("hidden") != std::string::npos) {
-                found.push_back(relative);
-            }
-        }
-        say(found.empty() ? "ok" : "FAIL",
-            found.empty() ? "hidden: the students' copy of the lab (" + std::to_string(files) +
-                                " files) holds no hidden test, solution or corpus case"
-                          : "hidden: the students' copy of the lab holds " + found.front() +
-                                (found.size() > 1 ? " and " + std::to_string(found.size() - 1) + " more" : ""));
-    }
-
-    // The time limit: a margin over the reference's slowest test, and no verdict that a doubled limit changes.
-    if (reference) {
-        double slowest = 0;
-        std::string slowestTest;
-        for (const TestResult& t : reference->tests) {
-            if (t.cpuSeconds > slowest) {
-                slowest = t.cpuSeconds;
-                slowestTest = t.name;
-            }
-        }
-        const double limit = rubric.limits.cpuSeconds;
-        const double suggested = std::max(1.0, std::ceil(5 * slowest));
-        std::ostringstream line;
-        line.precision(3);
-        line << "time limit: cpu_seconds = " << limit << "; the reference's slowest test ('" << slowestTest
-             << "') used " << slowest << " s of CPU";
-        if (slowest * 2 > limit) {
-            line << ", less than half the limit: set cpu_seconds = " << suggested << " ([limits] in the rubric)";
-            say("FAIL", line.str());
-        } else {
-            line << " (" << (slowest > 0 ? limit / slowest : 0) << " x; 5 x it, at least 1 s, would be " << suggested << ")";
-            say("ok", line.str());
-        }
-        Limits doubled = rubric.limits;
-        doubled.cpuSeconds *= 2;
-        doubled.wallSeconds *= 2;
-        const auto twice = [&](const std::string& what, const GradeReport& once, const GradeReport& again) {
-            const std::vector<std::string> changes = flipped(once, again);
-            if (!changes.empty()) say("warn", "time limit: " + what + "'s verdict changes between 1x and 2x the limit: " + changes.front());
-        };
-        if (timedOut(starter)) twice("the starter", starter, gradeFile(manifest, lab, rubric, lab.starter, o, doubled));
-        for (const auto& [c, report] : timedOutCases) twice("corpus " + c.name, report, gradeCase(manifest, lab, rubric, c, o, doubled));
-    }
+    Verifier v{manifest, lab, rubric, o, say, {}, {}, {}, {}};
+    v.checkReference();
+    v.checkStarter();
+    v.checkCorpus();
+    v.checkExtremes();
+    v.checkTrade();
+    v.checkHidden();
+    v.checkTimeLimit();
     return failures;
 }
 

@@ -139,7 +139,8 @@ CorpusCase loadCorpusCase(const Assignment& assignment, const simlab::Rubric& ru
     if (const toml::array* tests = t["tests"].as_array()) {
         for (const toml::node& node : *tests) {
             const auto name = node.value<std::string>();
-            if (!name || !rubric.find(*name)) fail(path, "tests names '" + name.value_or("?") + "', which the rubric has not");
+            if (!name || !rubric.find(*name))
+                fail(path, "tests names '" + name.value_or("?") + "', which the rubric has not");
             c.tests.push_back(*name);
         }
     }
@@ -174,7 +175,8 @@ void writeCorpusCase(const CorpusCase& c, const std::string& folder, const std::
             fs::create_symlink(target, path);
         } else if (file.fifo) {
             fs::remove(path, ignored);
-            if (::mkfifo(path.c_str(), 0644) != 0) throw std::runtime_error("cannot make a named pipe " + path.string());
+            if (::mkfifo(path.c_str(), 0644) != 0)
+                throw std::runtime_error("cannot make a named pipe " + path.string());
         } else if (file.sparse > 0) {
             fs::remove(path, ignored);
             const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -203,10 +205,13 @@ std::vector<std::string> compareWithCase(const CorpusCase& c, const std::vector<
     if (score && std::abs(*score - c.score) > 0.005) {
         mismatches.push_back("score " + points(*score) + ", expected " + points(c.score));
     }
-    if (!c.status.empty() && status != c.status) mismatches.push_back("status '" + status + "', expected '" + c.status + "'");
-    for (const std::vector<std::string>& choice : everyTest ? c.reportContains : std::vector<std::vector<std::string>>{}) {
-        const bool said = std::any_of(choice.begin(), choice.end(),
-                                      [&](const std::string& needle) { return text.find(needle) != std::string::npos; });
+    if (!c.status.empty() && status != c.status)
+        mismatches.push_back("status '" + status + "', expected '" + c.status + "'");
+    for (const std::vector<std::string>& choice :
+         everyTest ? c.reportContains : std::vector<std::vector<std::string>>{}) {
+        const bool said = std::any_of(choice.begin(), choice.end(), [&](const std::string& needle) {
+            return text.find(needle) != std::string::npos;
+        });
         if (said) continue;
         std::string needles;
         for (const std::string& needle : choice) needles += (needles.empty() ? "'" : " or '") + needle + "'";
