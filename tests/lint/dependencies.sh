@@ -41,8 +41,9 @@ for path in files:
                 wrong(path, name, f"{me} may include only {', '.join(below[me]) or 'itself'}")
             if me == "protocol" and (name.lower().startswith("simbody") or (name.startswith("simlab/") and not name.startswith("simlab/protocol/"))):
                 wrong(path, name, "the protocol knows neither Simbody nor the course")
-    elif parts[0] in ("assignments", "starter", "solutions"):
-        lab_grading = parts[0] == "assignments" and len(parts) > 2 and parts[2] == "grading"
+    elif parts[0] in ("assignments", "starter", "solutions", "examples"):
+        # A lab's folder: assignments/<id>/ or examples/<id>/ (a lab of one's own, laid out the same way).
+        lab_grading = parts[0] in ("assignments", "examples") and len(parts) > 2 and parts[2] == "grading"
         for name in names:
             m = re.match(r"simlab/([a-z_]+)/", name)
             if not m or m.group(1) not in modules:
