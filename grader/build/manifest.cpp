@@ -161,7 +161,10 @@ std::string installedManifestPath(const std::string& exe) {
 }
 
 const Assignment& Manifest::find(const std::string& id) const {
-    if (isLabFolder(id)) {
+    // A name the course has not, which names a lab's folder here, is that folder.
+    std::error_code error;
+    const bool known = std::any_of(assignments.begin(), assignments.end(), [&](const Assignment& a) { return a.id == id; });
+    if (isLabFolder(id) || (!known && fs::is_regular_file(fs::path(id) / "CMakeLists.txt", error))) {
         labs.push_back(std::make_unique<Assignment>(buildLab(*this, id)));
         std::vector<std::string> hidden = secretPaths(*this, *labs.back());
         hidden.push_back(labBuildFolder(*this, id));
@@ -171,11 +174,9 @@ const Assignment& Manifest::find(const std::string& id) const {
     for (const Assignment& a : assignments) {
         if (a.id == id) return a;
     }
-    std::string known;
-    for (const std::string& k : ids()) known += (known.empty() ? "" : ", ") + k;
-    std::error_code error;
-    const std::string folder = fs::is_directory(id, error) ? " (the folder " + id + " is a lab of one's own: ./" + id + ")" : "";
-    throw UsageError("unknown assignment '" + id + "'; available: " + known + ", or a lab's folder" + folder);
+    std::string names;
+    for (const std::string& k : ids()) names += (names.empty() ? "" : ", ") + k;
+    throw UsageError("unknown assignment '" + id + "'; available: " + names + ", or a lab's folder");
 }
 
 std::vector<std::string> Manifest::ids() const {

@@ -74,6 +74,21 @@ check "the student bundle carries the lab without its solution, hidden tests or 
     test ! -e bundle/labs/pendulum/solution && test ! -e bundle/labs/pendulum/grading/hidden.cpp &&
     test ! -e bundle/labs/pendulum/corpus && test -f bundle/scripts/setup"
 
+# A new lab from the template, as docs/authors.md starts one: it verifies as written, and a bare name that is no
+# course lab's is its folder.
+run_capture new "$simlab" assignment new spring_lab
+check "assignment new writes the template's lab under the new name" \
+  bash -c "test $(status_of new) -eq 0 && test -f spring_lab/starter/SpringLab.cpp && test -f spring_lab/contract/SpringLab.h &&
+    ! grep -rq -e mylab -e MyLab spring_lab"
+run_capture newverify "$simlab" assignment verify spring_lab
+sed 's/^/    /' newverify.out
+check "and the new lab verifies" bash -c "test $(status_of newverify) -eq 0 && grep -q '^verify: .* 0 fail' newverify.out"
+run_capture bare "$simlab" check spring_lab spring_lab/solution/SpringLab.cpp
+check "simlab check spring_lab grades with the folder of that name" grep -q '^Score: 80/80' bare.out
+run_capture badname "$simlab" assignment new 'Bad-Name'
+check "a name that is no identifier is one line" \
+  bash -c "test $(status_of badname) -eq 2 && test \$(wc -l <badname.err) -eq 1 && test ! -e Bad-Name"
+
 # A wrong expectation: verify names it in one line and exits 1.
 sed -i 's/^score = 35$/score = 40/' labs/pendulum/corpus/half-length.toml
 run_capture broken "$simlab" assignment verify labs/pendulum

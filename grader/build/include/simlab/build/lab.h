@@ -7,8 +7,9 @@
 
 namespace simlab::engine {
 
-/// Whether an assignment named on the command line is a lab's folder rather than one of the course's ids: a path
-/// ("./pendulum", "labs/pendulum", "/srv/labs/pendulum", ".").
+/// Whether an assignment named on the command line is a lab's folder whatever the course's ids are: a path
+/// ("./pendulum", "labs/pendulum", "/srv/labs/pendulum", "."). A bare name the course has not is a folder too, where
+/// one of that name holds a CMakeLists.txt (Manifest::find).
 bool isLabFolder(const std::string& name);
 
 /// The assignment the folder `dir` declares (its CMakeLists.txt calls simlab_add_assignment), built against this
