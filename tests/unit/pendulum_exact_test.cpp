@@ -1,0 +1,75 @@
+// The pendulum's exact swing (examples/pendulum: Jacobi elliptic functions and the complete elliptic integral)
+// against an independent integration of theta'' = -(g/L) sin theta (Boost.Odeint's Runge-Kutta-Fehlberg 7(8) at a
+// tolerance of 1e-14), and against the physics: the small-swing series of the period, the energy, the half swing.
+#include <catch2/catch.hpp>
+#include <array>
+#include <boost/numeric/odeint.hpp>
+#include <cmath>
+
+#include "pendulum/program/exact.h"
+
+namespace {
+
+using State = std::array<double, 2>;  // theta, theta'
+
+State integrateSwing(const pendulum::Scene& scene, double t) {
+    State x = {pendulum::exact::releaseAngle_rad(scene), 0};
+    const double w2 = scene.gravity_mps2 / scene.length_m;
+    auto swing = [&](const State& s, State& dsdt, double) {
+        dsdt[0] = s[1];
+        dsdt[1] = -w2 * std::sin(s[0]);
+    };
+    using namespace boost::numeric::odeint;
+    integrate_adaptive(make_controlled(1e-14, 1e-14, runge_kutta_fehlberg78<State>()), swing, x, 0.0, t, 1e-4);
+    return x;
+}
+
+pendulum::Scene released(double angle_deg, double length_m = 1.0, double gravity_mps2 = 9.81) {
+    pendulum::Scene s;
+    s.releaseAngle_deg = angle_deg;
+    s.length_m = length_m;
+    s.gravity_mps2 = gravity_mps2;
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("the exact swing is the integrated swing, from 10 to 179 degrees", "[pendulum][exact]") {
+    for (const double angle : {10.0, 90.0, 150.0, 179.0}) {
+        for (const double t : {0.37, 1.9, 6.1}) {
+            const pendulum::Scene scene = released(angle, 0.8, 9.81);
+            const pendulum::exact::Angle exact = pendulum::exact::at(scene, t);
+            const State integrated = integrateSwing(scene, t);
+            const double theta0 = pendulum::exact::releaseAngle_rad(scene);
+            INFO("released at " << angle << " deg, t = " << t << " s");
+            // Errors against the release angle and its natural rate: theta passes zero twice a swing.
+            CHECK(std::abs(exact.theta_rad - integrated[0]) < 1e-9 * theta0);
+            CHECK(std::abs(exact.thetaDot_radps - integrated[1]) <
+                  1e-9 * theta0 * pendulum::exact::naturalFrequency_radps(scene));
+        }
+    }
+}
+
+TEST_CASE("the exact period tends to the small swing's, as its series says", "[pendulum][exact]") {
+    // T = 2 pi sqrt(L/g) (1 + theta0^2/16 + 11 theta0^4/3072 + ...): at 1 degree the next term is below 1e-12.
+    const pendulum::Scene scene = released(1.0, 2.0, 9.81);
+    const double theta0 = pendulum::exact::releaseAngle_rad(scene);
+    const double series = 2 * SimTK::Pi * std::sqrt(2.0 / 9.81) *
+                          (1 + theta0 * theta0 / 16 + 11 * std::pow(theta0, 4) / 3072);
+    CHECK(std::abs(pendulum::exact::period_s(scene) / series - 1) < 1e-12);
+    // Near the top the period grows without bound, like log(1 / (pi - theta0)).
+    CHECK(pendulum::exact::period_s(released(179.9)) > pendulum::exact::period_s(released(179)) + 1.0);
+}
+
+TEST_CASE("the exact swing keeps its energy and turns at -theta0 after half a period", "[pendulum][exact]") {
+    const pendulum::Scene scene = released(150);
+    const double scale_J = scene.mass_kg * scene.gravity_mps2 * scene.length_m;
+    for (const double t : {0.0, 0.5, 1.3, 2.9}) {
+        const pendulum::exact::Angle a = pendulum::exact::at(scene, t);
+        CHECK(std::abs(pendulum::exact::energyOf_J(scene, a.theta_rad, a.thetaDot_radps) -
+                       pendulum::exact::mechanicalEnergy_J(scene)) < 1e-12 * scale_J);
+    }
+    const pendulum::exact::Angle half = pendulum::exact::at(scene, pendulum::exact::period_s(scene) / 2);
+    CHECK(std::abs(half.theta_rad + pendulum::exact::releaseAngle_rad(scene)) < 1e-12);
+    CHECK(std::abs(half.thetaDot_radps) < 1e-9);
+}
