@@ -185,7 +185,7 @@ void runExtremes(const ExtremesOptions& o) {
         const bool chosen = o.lab == "all" ? fs::exists(fs::path(a.dir) / "study" / "extremes.toml") : a.id == o.lab;
         if (chosen) labs.push_back(&a);
     }
-    if (labs.empty()) manifest.find(o.lab);  // an unknown lab: its one-line error
+    if (labs.empty()) labs.push_back(&manifest.find(o.lab));  // a lab's folder, or an unknown lab's one-line error
     const fs::path dir = fs::absolute(o.output);
     fs::create_directories(dir);
     std::vector<Extreme> all;
