@@ -1,5 +1,7 @@
 #include "simlab/build/lab.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -99,6 +101,13 @@ Assignment buildLab(const Manifest& manifest, const std::string& dir) {
         createPrivateFolder(folder);
         fs::permissions(folder, fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
     }
+    // One build at a time: the shards of a class, or a cluster's tasks, may start on the lab together.
+    const int lock = ::open((root + "/.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
+    if (lock < 0 || ::flock(lock, LOCK_EX) != 0) throw UsageError("cannot lock " + root + "/.lock");
+    struct Unlock {
+        int fd;
+        ~Unlock() { ::close(fd); }
+    } unlock{lock};
     const std::string project = root + "/project", build = root + "/build", log = root + "/build.log";
     fs::create_directories(project);
     const std::string lists = "# The lab in " + lab.string() + ", built against simlab " + manifest.version +
