@@ -18,6 +18,7 @@
 #include "simlab/common/errors.h"
 #include "simlab/common/files.h"
 #include "simlab/build/manifest.h"
+#include "simlab/course/package.h"
 #include "simlab/isolation/process.h"
 #include "simlab/common/text.h"
 
@@ -96,7 +97,8 @@ std::string onPath(const std::string& name) {
     for (std::string dir; std::getline(dirs, dir, ':');) {
         if (dir.empty()) continue;
         const fs::path candidate = fs::path(dir) / name;
-        if (::access(candidate.c_str(), X_OK) == 0 && fs::is_regular_file(candidate)) return absolute(candidate.string());
+        if (::access(candidate.c_str(), X_OK) == 0 && fs::is_regular_file(candidate))
+            return absolute(candidate.string());
     }
     return "";
 }
@@ -121,8 +123,8 @@ std::string sbatch(const std::string& program, const std::vector<std::string>& a
     r.keepOutput = 1 << 20;
     const isolation::ProcessResult result = isolation::runProcess(r);
     if (!result.exitedCleanly()) {
-        throw std::runtime_error("sbatch refused the job: " +
-                                 engine::printable(isolation::firstLines(result.started ? result.output : result.error, 3)));
+        throw std::runtime_error("sbatch refused the job: " + engine::printable(isolation::firstLines(
+                                                                  result.started ? result.output : result.error, 3)));
     }
     std::string id = result.output.substr(0, result.output.find_first_of(";\n"));
     if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos) {
@@ -145,6 +147,8 @@ void runSlurm(const SlurmOptions& o) {
     const std::string slurmDir = out + "/slurm", logs = slurmDir + "/logs";
     fs::create_directories(logs);
     const std::string labName = assignment ? assignment->id : "all";
+    // A lab of one's own is named to the tasks by its folder, whose path they share.
+    const std::string labArgument = assignment && engine::isOwnLab(manifest, *assignment) ? assignment->dir : labName;
     int tasks = o.tasks;
     if (tasks == 0) {
         if (grading) throw engine::UsageError("--tasks: how many array tasks share the class");
@@ -159,8 +163,8 @@ void runSlurm(const SlurmOptions& o) {
     std::vector<std::string> array, assemble;
     std::string arrayFile, assembleFile, arrayHeader, assembleHeader, result;
     if (grading) {
-        std::vector<std::string> common = {simlab, "grade", labName, absolute(o.submissions), "--out", out, "--jobs",
-                                           std::to_string(o.jobs)};
+        std::vector<std::string> common = {simlab,  "grade", labArgument, absolute(o.submissions),
+                                           "--out", out,     "--jobs",    std::to_string(o.jobs)};
         if (o.timeout > 0) common.insert(common.end(), {"--timeout", number(o.timeout)});
         if (o.memory > 0) common.insert(common.end(), {"--memory", number(o.memory)});
         array = common;
@@ -175,7 +179,7 @@ void runSlurm(const SlurmOptions& o) {
                          " once the array has ended, grading again only what no task finished.\n";
         result = out + "/gradebook.csv";
     } else {
-        std::vector<std::string> common = {simlab, "study", "trade", labName, "--output", out, "--jobs", "1"};
+        std::vector<std::string> common = {simlab, "study", "trade", labArgument, "--output", out, "--jobs", "1"};
         if (o.quick) common.push_back("--quick");
         if (o.cap > 0) common.insert(common.end(), {"--cap", number(o.cap)});
         if (o.maxEvaluations > 0) common.insert(common.end(), {"--max-evaluations", number(o.maxEvaluations)});
@@ -194,12 +198,12 @@ void runSlurm(const SlurmOptions& o) {
         result = out + "/trade.csv";
     }
     const std::string what = grading ? "grade" : "study";
-    engine::writeFileAtomically(arrayFile, script(arrayHeader, "simlab-" + what + "-" + labName, logs,
-                                                  what + "-%A-%a.out", "1-" + std::to_string(tasks),
-                                                  grading ? o.jobs : 1, out, o.sbatch, array));
-    engine::writeFileAtomically(assembleFile, script(assembleHeader, "simlab-assemble-" + labName, logs,
-                                                     "assemble-%j.out", "", grading ? o.jobs : 1, out, o.sbatch,
-                                                     assemble));
+    engine::writeFileAtomically(arrayFile,
+                                script(arrayHeader, "simlab-" + what + "-" + labName, logs, what + "-%A-%a.out",
+                                       "1-" + std::to_string(tasks), grading ? o.jobs : 1, out, o.sbatch, array));
+    engine::writeFileAtomically(assembleFile,
+                                script(assembleHeader, "simlab-assemble-" + labName, logs, "assemble-%j.out", "",
+                                       grading ? o.jobs : 1, out, o.sbatch, assemble));
     fs::permissions(arrayFile, fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
     fs::permissions(assembleFile, fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
     std::cout << "Wrote " << engine::printable(arrayFile) << " (" << tasks << " array tasks) and "
@@ -213,8 +217,9 @@ void runSlurm(const SlurmOptions& o) {
     }
     const std::string program = onPath("sbatch");
     if (program.empty()) {
-        throw engine::UsageError("sbatch is not on the PATH, so this is no Slurm login node: the scripts are written; "
-                                 "submit them where Slurm runs");
+        throw engine::UsageError(
+            "sbatch is not on the PATH, so this is no Slurm login node: the scripts are written; "
+            "submit them where Slurm runs");
     }
     std::vector<std::string> args = o.sbatch;
     args.push_back(arrayFile);
@@ -232,17 +237,19 @@ void runSlurm(const SlurmOptions& o) {
 
 void addSlurm(CLI::App& app) {
     CLI::App* slurm = app.add_subcommand(
-        "slurm", "Grade a class, or measure the trade study, on a Slurm cluster: an sbatch job array of shards and "
-                 "a job that assembles their work after them (the cluster's nodes must share this simlab and the "
-                 "folders at the same paths).");
+        "slurm",
+        "Grade a class, or measure the trade study, on a Slurm cluster: an sbatch job array of shards and "
+        "a job that assembles their work after them (the cluster's nodes must share this simlab and the "
+        "folders at the same paths).");
     slurm->require_subcommand(1);
 
     auto g = std::make_shared<SlurmOptions>();
     g->what = "grade";
     CLI::App* grade = slurm->add_subcommand(
-        "grade", "Write OUT/slurm/grade.sbatch (TASKS array tasks, each simlab grade --shard I/TASKS) and "
-                 "OUT/slurm/assemble.sbatch (simlab grade without --shard, after the array); --submit submits them. "
-                 "Options after -- go to sbatch (--partition=..., --time=..., --mem=...).");
+        "grade",
+        "Write OUT/slurm/grade.sbatch (TASKS array tasks, each simlab grade --shard I/TASKS) and "
+        "OUT/slurm/assemble.sbatch (simlab grade without --shard, after the array); --submit submits them. "
+        "Options after -- go to sbatch (--partition=..., --time=..., --mem=...).");
     grade->add_option("assignment", g->lab, "which assignment")->required();
     grade->add_option("submissions", g->submissions, "folder of student folders")->required();
     grade->add_option("sbatch", g->sbatch, "after --: options for sbatch");
@@ -264,16 +271,19 @@ void addSlurm(CLI::App& app) {
     CLI::App* study = slurm->add_subcommand("study", "The labs' numerics on a cluster.");
     study->require_subcommand(1);
     CLI::App* trade = study->add_subcommand(
-        "trade", "Write OUTPUT/slurm/study.sbatch (one array task per lab and integrator unless --tasks says "
-                 "otherwise, each simlab study trade --shard I/N) and OUTPUT/slurm/assemble.sbatch (--assemble, after "
-                 "the array: trade.csv and the plots); --submit submits them. Options after -- go to sbatch.");
+        "trade",
+        "Write OUTPUT/slurm/study.sbatch (one array task per lab and integrator unless --tasks says "
+        "otherwise, each simlab study trade --shard I/N) and OUTPUT/slurm/assemble.sbatch (--assemble, after "
+        "the array: trade.csv and the plots); --submit submits them. Options after -- go to sbatch.");
     trade->add_option("lab", s->lab, "apple, projectile, book, biosim or all")->required();
     trade->add_option("sbatch", s->sbatch, "after --: options for sbatch");
     trade->add_option("--output,-o", s->out, "folder for the parts, trade.csv and the plots (shared by the nodes)")
         ->capture_default_str();
-    trade->add_option("--tasks", s->tasks, "array tasks (default: one per lab and integrator)")->check(CLI::Range(1, 10000));
+    trade->add_option("--tasks", s->tasks, "array tasks (default: one per lab and integrator)")
+        ->check(CLI::Range(1, 10000));
     trade->add_flag("--quick", s->quick, "as simlab study trade's --quick");
-    trade->add_option("--max-evaluations", s->maxEvaluations, "as simlab study trade's")->check(simlab::between(100.0, 1e9));
+    trade->add_option("--max-evaluations", s->maxEvaluations, "as simlab study trade's")
+        ->check(simlab::between(100.0, 1e9));
     trade->add_option("--cap", s->cap, "as simlab study trade's")->check(simlab::between(0.01, 3600.0));
     trade->add_option("--repeats", s->repeats, "as simlab study trade's")->check(CLI::Range(1, 100));
     trade->add_flag("!--no-plots", s->plots, "trade.csv and the tables only");
