@@ -67,6 +67,8 @@ std::vector<Rule> instructorOnly() {
         {"tests/: the corpus is made from the solutions and holds expected scores",
          [](const std::string& f) { return startsWith(f, "tests/"); }},
         {".ci/ and bench/", [](const std::string& f) { return startsWith(f, ".ci/") || startsWith(f, "bench/"); }},
+        // Labs of one's own, with their solutions, hidden tests and corpora: one is handed out as labs/<name>.
+        {"examples/: labs of one's own, with their solutions", [](const std::string& f) { return startsWith(f, "examples/"); }},
     };
 }
 
@@ -235,8 +237,8 @@ std::vector<std::string> projectFiles(const std::string& sourceDir) {
 }
 
 bool isOwnLab(const Manifest& manifest, const Assignment& assignment) {
-    const fs::path relative = fs::path(assignment.dir).lexically_relative(manifest.sourceDir);
-    return relative.empty() || *relative.begin() == "..";
+    return std::none_of(manifest.assignments.begin(), manifest.assignments.end(),
+                        [&](const Assignment& a) { return a.dir == assignment.dir; });
 }
 
 std::string labPlace(const Assignment& assignment) { return "labs/" + fs::path(assignment.dir).filename().string(); }
@@ -638,6 +640,14 @@ PackageSummary writeInstalledTree(const Manifest& manifest, const std::string& r
         const std::string from = manifest.sourceDir + "/" + file;
         if (!copied.count(from) && !copied.count(fs::path(from).parent_path().string())) {
             copy(from, root + "/share/simlab/source/" + file);
+        }
+        // An example lab's solution, hidden tests and corpus are as secret as the course's (the template's are not:
+        // `simlab assignment new` copies them for every user).
+        const std::string name = fs::path(file).filename().string();
+        if (startsWith(file, "examples/") && !startsWith(file, "examples/template/") &&
+            (file.find("/solution/") != std::string::npos || file.find("/corpus/") != std::string::npos ||
+             startsWith(name, "hidden") || startsWith(name, "trade-hidden"))) {
+            closeToOthers(root + "/share/simlab/source/" + file);
         }
     }
     // What no test's code may read, readable by the installing user alone: in a container without bubblewrap, a

@@ -5,7 +5,7 @@
 
 A secret line is a line (trimmed, 25 characters or more) of an assignment's hidden tests (grading/hidden.cpp,
 grading/trade-hidden.json) or of its solution (solutions/<id>/, but the worked example project, solutions/biosim/,
-which students are given) that no public file of the project holds as well (the starters, the contracts, the
+which students are given), and an example lab's (examples/<lab>/solution/ and grading/hidden*, but the template's) that no public file of the project holds as well (the starters, the contracts, the
 handouts: a comment a starter shares with its solution is no secret). Every file of each PACKAGE (a folder) is read
 as bytes, whatever its name, line by line, and each secret line found is printed with where it was found. Exit 1
 if any was.
@@ -35,12 +35,16 @@ def is_secret(relative):
     parts = relative.split("/")
     if parts[0] == "solutions" and len(parts) > 1 and parts[1] != "biosim":
         return True
+    # An example lab's solution and hidden tests (examples/<lab>/), but the template's, which every author copies.
+    if parts[0] == "examples" and len(parts) > 2 and parts[1] != "template":
+        return parts[2] == "solution" or (parts[2] == "grading" and "hidden" in parts[-1])
     return parts[0] == "assignments" and len(parts) > 2 and "hidden" in parts[-1]
 
 
 def is_instructors(relative):
     # Neither secret nor public: what only instructors get (the corpus holds solutions' lines in its edits).
-    return relative.startswith(("tests/", ".ci/", "bench/"))
+    return relative.startswith(("tests/", ".ci/", "bench/")) or (
+        relative.startswith("examples/") and "/corpus/" in relative)
 
 
 def main():

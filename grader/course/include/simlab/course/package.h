@@ -35,7 +35,7 @@ PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& o
 /// its hidden tests.
 PackageSummary writeStudentLab(const Assignment& lab, const std::string& dir);
 
-/// Whether `assignment` is a lab of one's own: its folder is outside the project's tree (simlab/build/lab.h).
+/// Whether `assignment` is a lab of one's own, built from its folder (simlab/build/lab.h), not one of the course's.
 bool isOwnLab(const Manifest& manifest, const Assignment& assignment);
 /// Where packages carry a lab of one's own: labs/<its folder's name>.
 std::string labPlace(const Assignment& assignment);
