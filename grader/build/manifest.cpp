@@ -48,8 +48,9 @@ std::string userCacheDir(const std::string& prefix, const std::string& version) 
         base = std::string(user->pw_dir) + "/.cache";
     } else {
         // Never a shared folder such as /tmp, where another user could lay out the cache before simlab does.
-        throw UsageError("an installed simlab keeps its cache in $XDG_CACHE_HOME or ~/.cache: set HOME or "
-                         "XDG_CACHE_HOME (this user has no home folder)");
+        throw UsageError(
+            "an installed simlab keeps its cache in $XDG_CACHE_HOME or ~/.cache: set HOME or "
+            "XDG_CACHE_HOME (this user has no home folder)");
     }
     return base + "/simlab/" + sha256Hex(prefix + "\n" + version).substr(0, 16);
 }
@@ -115,8 +116,8 @@ std::vector<Assignment> loadLabManifest(const std::string& path) {
 
 std::vector<std::string> secretPaths(const Manifest& manifest, const Assignment& assignment) {
     std::vector<std::string> secrets = assignment.hiddenTests;
-    // What the build made of them: the judge, its tests' objects and the hidden trade question's text; the programs
-    // built from the solution (the reference lab program, its study).
+    // What the build made of them: the judge, its tests' objects and the hidden trade question's text; what it made
+    // of the solution (its object, the reference lab program, its study).
     std::error_code error;
     const fs::path relative = fs::path(assignment.dir).lexically_relative(manifest.sourceDir);
     // A lab built out of the tree (simlab/build/lab.h) names its build folder; its corpus holds the solution's edits.
@@ -128,6 +129,8 @@ std::vector<std::string> secretPaths(const Manifest& manifest, const Assignment&
           assignment.judge, manifest.sampleClass, assignment.referenceProgramPath, assignment.studyProgramPath,
           built ? (buildDir / "CMakeFiles" / (assignment.id + "_grader_tests.dir")).string() : std::string(),
           built ? (buildDir / "trade").string() : std::string(),
+          built && !assignment.solution.empty() ? (buildDir / (assignment.program + "_reference.o")).string()
+                                                : std::string(),
           assignment.buildDir.empty() ? std::string() : assignment.dir + "/corpus"}) {
         if (!path.empty()) secrets.push_back(path);
     }
@@ -163,8 +166,13 @@ std::string installedManifestPath(const std::string& exe) {
 const Assignment& Manifest::find(const std::string& id) const {
     // A name the course has not, which names a lab's folder here, is that folder.
     std::error_code error;
-    const bool known = std::any_of(assignments.begin(), assignments.end(), [&](const Assignment& a) { return a.id == id; });
+    const bool known =
+        std::any_of(assignments.begin(), assignments.end(), [&](const Assignment& a) { return a.id == id; });
     if (isLabFolder(id) || (!known && fs::is_regular_file(fs::path(id) / "CMakeLists.txt", error))) {
+        const std::string dir = fs::canonical(id, error).string();
+        for (const auto& lab : labs) {
+            if (!error && lab->dir == dir) return *lab;  // built once a run
+        }
         labs.push_back(std::make_unique<Assignment>(buildLab(*this, id)));
         std::vector<std::string> hidden = secretPaths(*this, *labs.back());
         hidden.push_back(labBuildFolder(*this, id));
@@ -195,7 +203,8 @@ Manifest loadManifest() {
 Manifest loadManifest(const std::string& path) {
     std::ifstream in(path);
     if (!in) {
-        throw UsageError("no build manifest at " + path + ": build simlab first (scripts/setup), or set SIMLAB_MANIFEST");
+        throw UsageError("no build manifest at " + path +
+                         ": build simlab first (scripts/setup), or set SIMLAB_MANIFEST");
     }
     Manifest m;
     try {

@@ -90,7 +90,8 @@ std::vector<Assignment> loadLabManifest(const std::string& path);
 
 /// What no test's code may read, for one assignment: its hidden tests' sources, its solution's folder, its judge
 /// (which holds the hidden tests) and its tests' objects, the hidden trade question's text as the build embeds
-/// it, the programs built from the solution (its reference lab program and study), and the course's sample class.
+/// it, what the build made of the solution (its object, its reference lab program and study), and the course's
+/// sample class.
 std::vector<std::string> secretPaths(const Manifest& manifest, const Assignment& assignment);
 
 /// Everything simlab keeps from tests' code: every assignment's secretPaths, the corpus (the solutions' edits), the
