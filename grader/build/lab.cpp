@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -67,6 +68,27 @@ void runStep(const std::vector<std::string>& argv, const std::string& dir, const
     }
 }
 
+// `path` readable by others (a folder: all below it, its folders passable), and each folder from `top` down to it
+// passable.
+void lendToOthers(const std::string& path, const std::string& top) {
+    std::error_code error;
+    const auto lend = [&](const fs::path& p) {
+        const bool folder = fs::is_directory(p, error);
+        fs::permissions(p, folder ? fs::perms::others_read | fs::perms::others_exec : fs::perms::others_read,
+                        fs::perm_options::add, error);
+    };
+    lend(path);
+    if (fs::is_directory(path, error)) {
+        for (auto it = fs::recursive_directory_iterator(path, error);
+             !error && it != fs::recursive_directory_iterator(); it.increment(error)) {
+            lend(it->path());
+        }
+    }
+    for (fs::path up = fs::path(path).parent_path(); up.string().size() > top.size(); up = up.parent_path()) {
+        fs::permissions(up, fs::perms::others_exec, fs::perm_options::add, error);
+    }
+}
+
 }  // namespace
 
 bool isLabFolder(const std::string& name) { return name == "." || name == ".." || name.find('/') != std::string::npos; }
@@ -93,9 +115,9 @@ Assignment buildLab(const Manifest& manifest, const std::string& dir) {
     }
     const std::string root = labBuildFolder(manifest, lab.string());
     // Private from the start, then passable (never listable) by others: without bubblewrap the compiler and the
-    // linker run as throwaway users, who must reach the lab's contract, precompiled header and probe objects. What
-    // no test's code may read (the judge, the hidden tests' objects, the programs of the solution) is closed after
-    // every build.
+    // linker run as throwaway users, who must reach the lab's contract, precompiled header and probe objects, and
+    // those alone are lent to them after every build. The rest (the judge, the hidden tests' objects, what was
+    // made of the solution, the log) is built private.
     fs::create_directories(fs::path(manifest.cacheDir).parent_path());
     for (const std::string& folder : {manifest.cacheDir, manifest.cacheDir + "/labs", root}) {
         createPrivateFolder(folder);
@@ -125,11 +147,19 @@ Assignment buildLab(const Manifest& manifest, const std::string& dir) {
     } catch (const std::exception&) {
     }
     if (before != lists) writeFileAtomically(project + "/CMakeLists.txt", lists);
-    const bool first = !fs::exists(build + "/CMakeCache.txt", error);
+    // The log may quote a hidden test's lines (a compiler's error): its owner's alone from the start.
+    if (const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0600); fd >= 0) ::close(fd);
+    ::chmod(log.c_str(), 0600);
+    // Everything the build writes is its owner's alone (umask 077); what the sandbox's tools must read is lent below.
+    struct Umask {
+        mode_t old;
+        ~Umask() { ::umask(old); }
+    } umask{::umask(077)};
+    // Configured until it has generated a build system (a configure that failed leaves a cache and no Makefile).
+    const bool first = !fs::exists(build + "/Makefile", error) && !fs::exists(build + "/build.ninja", error);
     if (first) {
         std::cerr << "simlab: building the lab in " << printable(lab.string()) << " against simlab " << manifest.version
                   << " (once; about a minute; the log: " << log << ")" << std::endl;
-        fs::remove(log, error);
         runStep({manifest.cmake, "-S", project, "-B", build, "-DCMAKE_BUILD_TYPE=Release"}, root, log,
                 "configuring the lab in " + printable(lab.string()));
     }
@@ -141,10 +171,18 @@ Assignment buildLab(const Manifest& manifest, const std::string& dir) {
         throw UsageError(printable(lab.string()) + " declares " + std::to_string(declared.size()) +
                          " assignments: a lab's folder declares one (simlab_add_assignment)");
     }
-    for (const std::string& secret : secretPaths(manifest, declared.front())) {
-        if (secret.rfind(root + "/", 0) == 0) closeToOthers(secret);
+    // Lent to the compiler's and the linker's throwaway users: the contract, the precompiled header and the probe's
+    // objects, and the folders on the way to them (passable, not listable). Nothing else of the build is theirs.
+    const Assignment& a = declared.front();
+    for (const std::string& secret : secretPaths(manifest, a)) {
+        if (secret.rfind(root + "/", 0) == 0) closeToOthers(secret);  // a build made before it was built private
     }
-    closeToOthers(log);
+    std::vector<std::string> lent = a.probeObjects;
+    lent.push_back(a.contractInclude);
+    if (!a.precompiledHeader.empty()) lent.push_back(fs::path(a.precompiledHeader).parent_path().string());
+    for (const std::string& path : lent) {
+        if (path.rfind(root + "/", 0) == 0) lendToOthers(path, root);
+    }
     return std::move(declared.front());
 }
 
