@@ -54,9 +54,7 @@ PackageSummary copyFiles(const Manifest& manifest, const std::vector<Rule>& rule
         ++summary.files;
     }
     for (std::size_t i = 0; i < rules.size(); ++i) {
-        if (counts[i] > 0)
-            summary.left.push_back(rules[i].description + " (" + std::to_string(counts[i]) +
-                                   (counts[i] == 1 ? " file)" : " files)"));
+        if (counts[i] > 0) summary.left.push_back(rules[i].description + " (" + std::to_string(counts[i]) + (counts[i] == 1 ? " file)" : " files)"));
     }
     return summary;
 }
@@ -70,8 +68,7 @@ std::vector<Rule> instructorOnly() {
          [](const std::string& f) { return startsWith(f, "tests/"); }},
         {".ci/ and bench/", [](const std::string& f) { return startsWith(f, ".ci/") || startsWith(f, "bench/"); }},
         // Labs of one's own, with their solutions, hidden tests and corpora: one is handed out as labs/<name>.
-        {"examples/: labs of one's own, with their solutions",
-         [](const std::string& f) { return startsWith(f, "examples/"); }},
+        {"examples/: labs of one's own, with their solutions", [](const std::string& f) { return startsWith(f, "examples/"); }},
     };
 }
 
@@ -110,10 +107,9 @@ void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSu
     // columns fall apart); a wide one scrolls.
     TempDir styleDir("simlab-handout-style-");
     const std::string style = styleDir.path() + "/style.html";
-    writeFileAtomically(style,
-                        "<style>\nbody { max-width: 48em; }\n"
-                        "pre, pre > code { white-space: pre; overflow-x: auto; line-height: 1.35; }\n"
-                        "pre { background: #f6f6f6; padding: 0.6em 0.8em; }\n</style>\n");
+    writeFileAtomically(style, "<style>\nbody { max-width: 48em; }\n"
+                               "pre, pre > code { white-space: pre; overflow-x: auto; line-height: 1.35; }\n"
+                               "pre { background: #f6f6f6; padding: 0.6em 0.8em; }\n</style>\n");
     int pages = 0, runs = 0;
     for (const Assignment& a : manifest.assignments) {
         const std::string markdown = handouts + "/" + a.id + ".md";
@@ -123,14 +119,8 @@ void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSu
             TempDir scratch("simlab-handout-");
             const std::string plot = "figures/" + a.id + "-reference.svg", replay = a.id + "-replay.html";
             isolation::ProcessRequest r;
-            r.argv = {a.referenceProgramPath,
-                      "--quiet",
-                      "--output",
-                      scratch.path() + "/results.txt",
-                      "--plot",
-                      handouts + "/" + plot,
-                      "--replay",
-                      handouts + "/" + replay};
+            r.argv = {a.referenceProgramPath, "--quiet", "--output", scratch.path() + "/results.txt", "--plot",
+                      handouts + "/" + plot, "--replay", handouts + "/" + replay};
             r.env = isolation::childEnvironment({"LC_ALL=C"});
             r.workDir = scratch.path();
             r.limits.wallSeconds = r.limits.cpuSeconds = 120;
@@ -139,17 +129,11 @@ void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSu
             const isolation::ProcessResult ran = isolation::runProcess(r);
             if (ran.exitedCleanly() && fs::exists(handouts + "/" + plot) && fs::exists(handouts + "/" + replay)) {
                 ++runs;
-                after =
-                    "<section id=\"reference-run\">\n<h2>The reference solution's run</h2>\n<p>What <code>" +
-                    a.program +
-                    "</code> draws with <code>--plot</code> on the reference solution, with its default settings:</p>\n"
-                    "<p><img src=\"" +
-                    plot +
-                    "\" alt=\"the reference run against the exact solution\" "
-                    "style=\"max-width: 100%\"></p>\n<p><a href=\"" +
-                    replay +
-                    "\">Replay the run in 3-D</a> "
-                    "(<code>--replay</code>: a page of its own, which also opens offline).</p>\n</section>\n";
+                after = "<section id=\"reference-run\">\n<h2>The reference solution's run</h2>\n<p>What <code>" + a.program +
+                        "</code> draws with <code>--plot</code> on the reference solution, with its default settings:</p>\n"
+                        "<p><img src=\"" + plot + "\" alt=\"the reference run against the exact solution\" "
+                        "style=\"max-width: 100%\"></p>\n<p><a href=\"" + replay + "\">Replay the run in 3-D</a> "
+                        "(<code>--replay</code>: a page of its own, which also opens offline).</p>\n</section>\n";
             } else {
                 std::error_code ignored;
                 fs::remove(handouts + "/" + plot, ignored);
@@ -168,18 +152,9 @@ void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSu
         // Read as CommonMark, as the handouts are written (and as a forge shows them): a fence's info string may
         // carry words after the language ("console solution"), a heading needs no blank line before it, and no
         // "smart" typography turns an option's "--" into a dash.
-        std::vector<std::string> argv = {pandoc,
-                                         "--from",
-                                         "commonmark_x-smart",
-                                         a.id + ".md",
-                                         "--standalone",
-                                         "--self-contained",
-                                         "--mathml",
-                                         "--include-in-header=" + style,
-                                         "--metadata",
-                                         "pagetitle=" + title,
-                                         "--output",
-                                         a.id + ".html"};
+        std::vector<std::string> argv = {pandoc, "--from", "commonmark_x-smart", a.id + ".md", "--standalone",
+                                         "--self-contained", "--mathml", "--include-in-header=" + style,
+                                         "--metadata", "pagetitle=" + title, "--output", a.id + ".html"};
         const std::string afterFile = handouts + "/." + a.id + "-after.html";
         if (!after.empty()) {
             writeFileAtomically(afterFile, after);
@@ -238,8 +213,9 @@ std::string stableUuid(const std::string& name) {
 std::vector<std::string> projectFiles(const std::string& sourceDir) {
     std::vector<std::string> files;
     if (fs::exists(fs::path(sourceDir) / ".git") && fs::exists("/usr/bin/git")) {
-        std::istringstream list(isolation::runTool(
-            {"/usr/bin/git", "-C", sourceDir, "ls-files", "--cached", "--others", "--exclude-standard"}, sourceDir));
+        std::istringstream list(isolation::runTool({"/usr/bin/git", "-C", sourceDir, "ls-files", "--cached", "--others",
+                                         "--exclude-standard"},
+                                        sourceDir));
         std::string file;
         while (std::getline(list, file)) {
             if (fs::is_regular_file(fs::path(sourceDir) / file)) files.push_back(file);  // not deleted since
@@ -278,8 +254,7 @@ void addLab(const Assignment& lab, const std::string& dir, bool withHidden, Pack
     for (auto it = fs::recursive_directory_iterator(from); it != fs::recursive_directory_iterator(); ++it) {
         const fs::path& p = it->path();
         const std::string name = p.filename().string();
-        const bool hidden =
-            std::find(lab.hiddenTests.begin(), lab.hiddenTests.end(), p.string()) != lab.hiddenTests.end();
+        const bool hidden = std::find(lab.hiddenTests.begin(), lab.hiddenTests.end(), p.string()) != lab.hiddenTests.end();
         if (it->is_directory() && (p == from / "corpus" || p.string() == solution || name.front() == '.' ||
                                    fs::exists(p / "CMakeCache.txt"))) {
             it.disable_recursion_pending();
@@ -313,8 +288,8 @@ PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& o
     }
     std::vector<Rule> rules = instructorOnly();
     rules.push_back({"hidden tests", [hidden](const std::string& f) { return hidden.count(f) > 0; }});
-    rules.push_back(
-        {"README.md: replaced by handouts/README-student.md", [](const std::string& f) { return f == "README.md"; }});
+    rules.push_back({"README.md: replaced by handouts/README-student.md",
+                     [](const std::string& f) { return f == "README.md"; }});
     fs::create_directories(outDir);
     PackageSummary summary = copyFiles(manifest, rules, outDir);
     fs::copy_file(manifest.sourceDir + "/handouts/README-student.md", outDir + "/README.md");
@@ -341,25 +316,21 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
     if (own) {
         addLab(assignment, staging.path(), true, summary);
         named = "\"$root/source/" + labPlace(assignment) + "\"";
-        setup =
-            "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" SIMLAB_TARGETS=\"simlab_kit\" \\\n"
-            "  \"$source_dir/scripts/setup\"\n"
-            "\"$source_dir/build/bin/simlab\" assignment build \"$source_dir/" +
-            labPlace(assignment) + "\"\n";
+        setup = "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" SIMLAB_TARGETS=\"simlab_kit\" \\\n"
+                "  \"$source_dir/scripts/setup\"\n"
+                "\"$source_dir/build/bin/simlab\" assignment build \"$source_dir/" + labPlace(assignment) + "\"\n";
         for (const std::string& hidden : assignment.hiddenTests) {
             setup += "chmod -R go-rwx \"$source_dir/" + labPlace(assignment) + "/" +
                      fs::path(hidden).lexically_relative(assignment.dir).generic_string() + "\"\n";
         }
     } else {
-        setup = "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" SIMLAB_TARGETS=\"simlab " +
-                assignment.id + "_grader\" \\\n  \"$source_dir/scripts/setup\"\n";
+        setup = "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" SIMLAB_TARGETS=\"simlab " + assignment.id +
+                "_grader\" \\\n  \"$source_dir/scripts/setup\"\n";
     }
-    setup +=
-        "# The hidden tests, solutions and judges readable by root alone, should neither bubblewrap nor Landlock run.\n"
-        "\"$source_dir/scripts/lock-course\"\n";
+    setup += "# The hidden tests, solutions and judges readable by root alone, should neither bubblewrap nor Landlock run.\n"
+             "\"$source_dir/scripts/lock-course\"\n";
 
-    writeFileAtomically(
-        staging.path() + "/setup.sh",
+    writeFileAtomically(staging.path() + "/setup.sh",
         "#!/usr/bin/env bash\n"
         "# Gradescope runs this once, as root, to build the autograder image. Choose an Ubuntu 24.04 (or newer)\n"
         "# base image: simlab needs CMake 3.25 and libtomlplusplus-dev.\n"
@@ -378,19 +349,15 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
         "       \"autograder's settings (simlab needs CMake 3.25 and libtomlplusplus-dev)\" >&2\n"
         "  exit 1\n"
         "fi\n"
-        "source_dir=$(cd \"$(dirname \"${BASH_SOURCE[0]}\")\" && pwd)\n" +
-            setup);
-    writeFileAtomically(
-        staging.path() + "/run_autograder",
+        "source_dir=$(cd \"$(dirname \"${BASH_SOURCE[0]}\")\" && pwd)\n" + setup);
+    writeFileAtomically(staging.path() + "/run_autograder",
         "#!/usr/bin/env bash\n"
         "# Gradescope runs this for every submission: it grades /autograder/submission on every test of the\n"
-        "# " +
-            assignment.id +
-            " assignment and writes /autograder/results/results.json.\n"
-            "# AUTOGRADER_ROOT replaces /autograder (for testing).\n"
-            "root=${AUTOGRADER_ROOT:-/autograder}\n"
-            "exec \"$root/source/build/bin/simlab\" autograde " +
-            named + " --submission \"$root/submission\" --results \"$root/results/results.json\"\n");
+        "# " + assignment.id + " assignment and writes /autograder/results/results.json.\n"
+        "# AUTOGRADER_ROOT replaces /autograder (for testing).\n"
+        "root=${AUTOGRADER_ROOT:-/autograder}\n"
+        "exec \"$root/source/build/bin/simlab\" autograde " + named +
+            " --submission \"$root/submission\" --results \"$root/results/results.json\"\n");
     addCatch2(manifest, staging.path(), summary);
     makeExecutable(staging.path() + "/setup.sh");
     makeExecutable(staging.path() + "/run_autograder");
@@ -402,23 +369,21 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
     return summary;
 }
 
+const char* const kPrairieLearnOwnLab =
+    "a PrairieLearn question is made for the course's labs; a lab of one's own goes to Gradescope (package "
+    "gradescope), GitHub Classroom (package github-classroom) or students (package student) for now";
+
 PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignment& assignment,
                                          const std::string& outDir, const PrairieLearnOptions& options) {
-    if (isOwnLab(manifest, assignment)) {
-        throw UsageError(
-            "a PrairieLearn question is made for the course's labs; a lab of one's own goes to Gradescope "
-            "(package gradescope), GitHub Classroom (package github-classroom) or students (package "
-            "student) for now");
-    }
+    if (isOwnLab(manifest, assignment)) throw UsageError(kPrairieLearnOwnLab);
     requireHiddenTests(assignment);
     requireNewFolder(outDir);
     if (options.timeout < 1 || options.timeout > 600) {
         throw UsageError("--timeout must be 1 to 600 seconds (PrairieLearn's limit)");
     }
-    const bool imageName =
-        !options.image.empty() && std::all_of(options.image.begin(), options.image.end(), [](char c) {
-            return std::isalnum(static_cast<unsigned char>(c)) || std::string("._-/:@").find(c) != std::string::npos;
-        });
+    const bool imageName = !options.image.empty() && std::all_of(options.image.begin(), options.image.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || std::string("._-/:@").find(c) != std::string::npos;
+    });
     if (!imageName) throw UsageError("'" + options.image + "' is not a Docker image name (such as course/simlab:2025)");
     fs::create_directories(outDir + "/tests");
     // The grading image's build context: the project as students may have it - no hidden test, no solution but the
@@ -432,27 +397,20 @@ PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignm
                      [hidden](const std::string& f) { return hidden.count(f) > 0; }});
     PackageSummary summary = copyFiles(manifest, rules, outDir + "/image/simlab");
     addCatch2(manifest, outDir + "/image/simlab", summary);
-    writeFileAtomically(
-        outDir + "/image/Dockerfile",
-        "# The grading image of the simlab " + assignment.id +
-            " question: Ubuntu 24.04 with simlab built in\n"
-            "# /simlab (scripts/setup installs the packages and builds; simlab needs CMake 3.25 and\n"
-            "# libtomlplusplus-dev). It holds no hidden test: those are in ../tests/, which PrairieLearn keeps from\n"
-            "# students. Build it here and push it where PrairieLearn pulls images from, under the name that\n"
-            "# ../info.json gives as externalGradingOptions.image; then, once, make the judge of the hidden tests with "
-            "it:\n"
-            "#     docker build -t " +
-            options.image + " . && docker push " + options.image +
-            "\n"
-            "#     docker run --rm -v \"$PWD/../tests:/grade/tests\" " +
-            options.image + " /simlab/scripts/prairielearn-judge " + assignment.id +
-            " /grade/tests\n"
-            "FROM ubuntu:24.04\n"
-            "COPY simlab /simlab\n"
-            "RUN SIMLAB_CMAKE_ARGS=-DBUILD_TESTING=OFF SIMLAB_TARGETS=\"simlab " +
-            assignment.id +
+    writeFileAtomically(outDir + "/image/Dockerfile",
+        "# The grading image of the simlab " + assignment.id + " question: Ubuntu 24.04 with simlab built in\n"
+        "# /simlab (scripts/setup installs the packages and builds; simlab needs CMake 3.25 and\n"
+        "# libtomlplusplus-dev). It holds no hidden test: those are in ../tests/, which PrairieLearn keeps from\n"
+        "# students. Build it here and push it where PrairieLearn pulls images from, under the name that\n"
+        "# ../info.json gives as externalGradingOptions.image; then, once, make the judge of the hidden tests with it:\n"
+        "#     docker build -t " + options.image + " . && docker push " + options.image + "\n"
+        "#     docker run --rm -v \"$PWD/../tests:/grade/tests\" " + options.image +
+            " /simlab/scripts/prairielearn-judge " + assignment.id + " /grade/tests\n"
+        "FROM ubuntu:24.04\n"
+        "COPY simlab /simlab\n"
+        "RUN SIMLAB_CMAKE_ARGS=-DBUILD_TESTING=OFF SIMLAB_TARGETS=\"simlab " + assignment.id +
             "_grader\" /simlab/scripts/setup && \\\n"
-            "    rm -rf /var/lib/apt/lists/*\n");
+        "    rm -rf /var/lib/apt/lists/*\n");
 
     // The hidden tests, for the judge the instructor makes once in the image (scripts/prairielearn-judge), which
     // PrairieLearn copies to /grade/tests with the entry point at grading time.
@@ -469,73 +427,59 @@ PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignm
     const std::string results = "$root/results/results.json";
     const auto notGradable = [&](const std::string& why) {
         return "  echo '{\"gradable\": false, \"score\": 0, \"message\": \"The autograder could not grade this "
-               "submission: " +
-               why + ".\", \"format_errors\": [\"" + why + "\"]}' >\"" + results +
-               "\"\n"
+               "submission: " + why + ".\", \"format_errors\": [\"" + why + "\"]}' >\"" + results + "\"\n"
                "  exit 1\n";
     };
-    writeFileAtomically(
-        outDir + "/tests/run_autograder",
+    writeFileAtomically(outDir + "/tests/run_autograder",
         "#!/usr/bin/env bash\n"
         "# PrairieLearn runs this in the grading container for every submission: it grades /grade/student on every\n"
-        "# test of the " +
-            assignment.id +
-            " assignment, the hidden ones with the judge in this folder, and writes\n"
-            "# /grade/results/results.json.\n"
-            "#   GRADE_ROOT  replaces /grade (for testing)\n"
-            "#   SIMLAB      the simlab command (default: the grading image's)\n"
-            "root=${GRADE_ROOT:-/grade}\n"
-            "simlab=${SIMLAB:-/simlab/build/bin/simlab}\n"
-            "mkdir -p \"$root/results\"\n"
-            "if [[ ! -x $simlab ]]; then\n" +
-            notGradable("simlab is not in the grading image") +
-            "fi\n"
-            "if [[ ! -f $root/tests/judge ]]; then\n" +
+        "# test of the " + assignment.id + " assignment, the hidden ones with the judge in this folder, and writes\n"
+        "# /grade/results/results.json.\n"
+        "#   GRADE_ROOT  replaces /grade (for testing)\n"
+        "#   SIMLAB      the simlab command (default: the grading image's)\n"
+        "root=${GRADE_ROOT:-/grade}\n"
+        "simlab=${SIMLAB:-/simlab/build/bin/simlab}\n"
+        "mkdir -p \"$root/results\"\n"
+        "if [[ ! -x $simlab ]]; then\n" + notGradable("simlab is not in the grading image") + "fi\n"
+        "if [[ ! -f $root/tests/judge ]]; then\n" +
             notGradable("the question has no judge of its hidden tests (tests/judge): make it once with "
-                        "scripts/prairielearn-judge, as image/Dockerfile says") +
-            "fi\n"
-            "# The hidden tests' judge is root's alone, should the container allow neither bubblewrap nor Landlock.\n"
-            "chmod -R go-rwx \"$root/tests\" 2>/dev/null\n"
-            "exec \"$simlab\" autograde " +
-            assignment.id +
-            " --format prairielearn --judge \"$root/tests/judge\" "
-            "--submission \"$root/student\" --results \"" +
-            results + "\"\n");
+                        "scripts/prairielearn-judge, as image/Dockerfile says") + "fi\n"
+        "# The hidden tests' judge is root's alone, should the container allow neither bubblewrap nor Landlock.\n"
+        "chmod -R go-rwx \"$root/tests\" 2>/dev/null\n"
+        "exec \"$simlab\" autograde " + assignment.id + " --format prairielearn --judge \"$root/tests/judge\" "
+        "--submission \"$root/student\" --results \"" + results + "\"\n");
     makeExecutable(outDir + "/tests/run_autograder");
 
-    const nlohmann::json info = {{"uuid", stableUuid(assignment.id)},
-                                 {"title", assignment.title.empty() ? assignment.id : assignment.title},
-                                 {"topic", "simlab"},
-                                 {"tags", {"simlab", assignment.id}},
-                                 {"type", "v3"},
-                                 {"singleVariant", true},
-                                 {"gradingMethod", "External"},
-                                 {"externalGradingOptions",
-                                  {{"enabled", true},
-                                   {"image", options.image},
-                                   {"entrypoint", "/grade/tests/run_autograder"},
-                                   {"timeout", options.timeout}}}};
+    const nlohmann::json info = {
+        {"uuid", stableUuid(assignment.id)},
+        {"title", assignment.title.empty() ? assignment.id : assignment.title},
+        {"topic", "simlab"},
+        {"tags", {"simlab", assignment.id}},
+        {"type", "v3"},
+        {"singleVariant", true},
+        {"gradingMethod", "External"},
+        {"externalGradingOptions",
+         {{"enabled", true},
+          {"image", options.image},
+          {"entrypoint", "/grade/tests/run_autograder"},
+          {"timeout", options.timeout}}}};
     writeFileAtomically(outDir + "/info.json", info.dump(4) + "\n");
 
     const std::string file = writers::htmlText(assignment.source);
-    const std::string input = options.upload ? "  <pl-file-upload file-names=\"" + file + "\"></pl-file-upload>\n"
-                                             : "  <pl-file-editor file-name=\"" + file +
-                                                   "\" ace-mode=\"ace/mode/c_cpp\" source-file-name=\"" + file +
-                                                   "\"></pl-file-editor>\n";
-    writeFileAtomically(
-        outDir + "/question.html",
+    const std::string input =
+        options.upload ? "  <pl-file-upload file-names=\"" + file + "\"></pl-file-upload>\n"
+                       : "  <pl-file-editor file-name=\"" + file + "\" ace-mode=\"ace/mode/c_cpp\" source-file-name=\"" +
+                             file + "\"></pl-file-editor>\n";
+    writeFileAtomically(outDir + "/question.html",
         "<pl-question-panel>\n"
-        "  <p>" +
-            writers::htmlText(assignment.title) + ": complete <code>" + file +
-            "</code> as the handout says, "
-            "then submit it. The autograder builds it against the course's grader and runs every test; each test's "
-            "points and outcome, and the plots of your run, show under your submission.</p>\n" +
-            input +
-            "</pl-question-panel>\n\n"
-            "<pl-submission-panel>\n"
-            "  <pl-external-grader-results></pl-external-grader-results>\n"
-            "  <pl-file-preview></pl-file-preview>\n"
-            "</pl-submission-panel>\n");
+        "  <p>" + writers::htmlText(assignment.title) + ": complete <code>" + file + "</code> as the handout says, "
+        "then submit it. The autograder builds it against the course's grader and runs every test; each test's "
+        "points and outcome, and the plots of your run, show under your submission.</p>\n" + input +
+        "</pl-question-panel>\n\n"
+        "<pl-submission-panel>\n"
+        "  <pl-external-grader-results></pl-external-grader-results>\n"
+        "  <pl-file-preview></pl-file-preview>\n"
+        "</pl-submission-panel>\n");
     if (!options.upload) {
         fs::copy_file(assignment.starter, outDir + "/" + assignment.source);
         ++summary.files;
@@ -547,8 +491,7 @@ PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignm
     return summary;
 }
 
-PackageSummary writeClassroomTemplate(const Manifest& manifest, const Assignment& assignment,
-                                      const std::string& outDir) {
+PackageSummary writeClassroomTemplate(const Manifest& manifest, const Assignment& assignment, const std::string& outDir) {
     const bool own = isOwnLab(manifest, assignment);
     PackageSummary summary = writeStudentBundle(manifest, outDir, own ? &assignment : nullptr);
     // The template is a repository: the carried Catch2 header must be committed with it (GitHub's Ubuntu 24.04
@@ -557,79 +500,68 @@ PackageSummary writeClassroomTemplate(const Manifest& manifest, const Assignment
 
     const std::string file = own ? labPlace(assignment) + "/" + relativeTo(assignment.starter, assignment.dir)
                                  : relativeTo(assignment.starter, manifest.sourceDir);
-    const std::string check = "build/bin/simlab check " + (own ? labPlace(assignment) : assignment.id) + " " + file;
+    const std::string check =
+        "build/bin/simlab check " + (own ? labPlace(assignment) : assignment.id) + " " + file;
     double visible = 0;
     for (const RubricTest& t : loadRubric(assignment.rubric).tests) {
         if (t.visible()) visible += t.points;
     }
     // If simlab could not be built or run, the reporter still gets its two results: nothing earned, every visible
     // point missed, as errors.
-    const std::string failedTest =
-        "{\"name\": \"simlab check\", \"status\": \"error\", \"score\": 0, "
-        "\"message\": \"simlab could not build or run: see the steps above\", \"line_no\": 0}";
+    const std::string failedTest = "{\"name\": \"simlab check\", \"status\": \"error\", \"score\": 0, "
+                                   "\"message\": \"simlab could not build or run: see the steps above\", \"line_no\": 0}";
     const std::string failed = "'{\"version\": 1, \"status\": \"error\", \"max_score\": 0, \"tests\": [" + failedTest +
                                "]}' '{\"version\": 1, \"status\": \"error\", \"max_score\": " + points(visible) +
                                ", \"tests\": [" + failedTest + "]}'";
     fs::create_directories(outDir + "/.github/workflows");
-    writeFileAtomically(
-        outDir + "/.github/workflows/classroom.yml",
-        "# GitHub Classroom's autograding of the " + assignment.id +
-            " lab: on every push, build simlab, run the\n"
-            "# visible tests on " +
-            file +
-            " and report the points to Classroom (the name of the workflow\n"
-            "# and of its job are the ones Classroom looks for). The points are a self-check: this runs in the\n"
-            "# student's repository, which the student can change. Grades come from the instructor's simlab grade.\n"
-            "name: Autograding Tests\n"
-            "on:\n"
-            "  - push\n"
-            "  - workflow_dispatch\n"
-            "permissions:\n"
-            "  checks: write\n"
-            "  actions: read\n"
-            "  contents: read\n"
-            "jobs:\n"
-            "  run-autograding-tests:\n"
-            "    runs-on: ubuntu-24.04\n"
-            "    if: github.actor != 'github-classroom[bot]'\n"
-            "    steps:\n"
-            "      - name: Checkout code\n"
-            "        uses: actions/checkout@v4\n"
-            "      - name: Build simlab\n"
-            "        run: SIMLAB_CMAKE_ARGS=-DBUILD_TESTING=OFF scripts/setup\n"
-            "      - name: Run the visible tests\n"
-            "        id: simlab\n"
-            "        if: always()\n"
-            "        run: |\n"
-            "          if ! " +
-            check +
-            " --format classroom >\"$RUNNER_TEMP/simlab.json\"; then\n"
-            "            printf '%s\\n' " +
-            failed +
-            " >\"$RUNNER_TEMP/simlab.json\"\n"
-            "          fi\n"
-            "          # Two runners, the points earned and the points missed, so that the reporter's table and the\n"
-            "          # points Classroom records agree under partial credit.\n"
-            "          echo \"earned=$(sed -n 1p \"$RUNNER_TEMP/simlab.json\" | base64 -w 0)\" >>\"$GITHUB_OUTPUT\"\n"
-            "          echo \"missed=$(sed -n 2p \"$RUNNER_TEMP/simlab.json\" | base64 -w 0)\" >>\"$GITHUB_OUTPUT\"\n"
-            "      - name: Autograding Reporter\n"
-            "        if: always()\n"
-            "        uses: classroom-resources/autograding-grading-reporter@v1\n"
-            "        env:\n"
-            "          EARNED_RESULTS: \"${{ steps.simlab.outputs.earned }}\"\n"
-            "          MISSED_RESULTS: \"${{ steps.simlab.outputs.missed }}\"\n"
-            "        with:\n"
-            "          runners: earned,missed\n");
+    writeFileAtomically(outDir + "/.github/workflows/classroom.yml",
+        "# GitHub Classroom's autograding of the " + assignment.id + " lab: on every push, build simlab, run the\n"
+        "# visible tests on " + file + " and report the points to Classroom (the name of the workflow\n"
+        "# and of its job are the ones Classroom looks for). The points are a self-check: this runs in the\n"
+        "# student's repository, which the student can change. Grades come from the instructor's simlab grade.\n"
+        "name: Autograding Tests\n"
+        "on:\n"
+        "  - push\n"
+        "  - workflow_dispatch\n"
+        "permissions:\n"
+        "  checks: write\n"
+        "  actions: read\n"
+        "  contents: read\n"
+        "jobs:\n"
+        "  run-autograding-tests:\n"
+        "    runs-on: ubuntu-24.04\n"
+        "    if: github.actor != 'github-classroom[bot]'\n"
+        "    steps:\n"
+        "      - name: Checkout code\n"
+        "        uses: actions/checkout@v4\n"
+        "      - name: Build simlab\n"
+        "        run: SIMLAB_CMAKE_ARGS=-DBUILD_TESTING=OFF scripts/setup\n"
+        "      - name: Run the visible tests\n"
+        "        id: simlab\n"
+        "        if: always()\n"
+        "        run: |\n"
+        "          if ! " + check + " --format classroom >\"$RUNNER_TEMP/simlab.json\"; then\n"
+        "            printf '%s\\n' " + failed + " >\"$RUNNER_TEMP/simlab.json\"\n"
+        "          fi\n"
+        "          # Two runners, the points earned and the points missed, so that the reporter's table and the\n"
+        "          # points Classroom records agree under partial credit.\n"
+        "          echo \"earned=$(sed -n 1p \"$RUNNER_TEMP/simlab.json\" | base64 -w 0)\" >>\"$GITHUB_OUTPUT\"\n"
+        "          echo \"missed=$(sed -n 2p \"$RUNNER_TEMP/simlab.json\" | base64 -w 0)\" >>\"$GITHUB_OUTPUT\"\n"
+        "      - name: Autograding Reporter\n"
+        "        if: always()\n"
+        "        uses: classroom-resources/autograding-grading-reporter@v1\n"
+        "        env:\n"
+        "          EARNED_RESULTS: \"${{ steps.simlab.outputs.earned }}\"\n"
+        "          MISSED_RESULTS: \"${{ steps.simlab.outputs.missed }}\"\n"
+        "        with:\n"
+        "          runners: earned,missed\n");
 
-    writeFileAtomically(
-        outDir + "/README.md",
-        readFile(outDir + "/README.md") +
-            "\n## Your repository checks itself\n\n"
-            "Every push runs `.github/workflows/classroom.yml` (the Actions tab shows it): it builds simlab, runs `" +
-            check +
-            "` on the visible tests, and GitHub Classroom shows the points, the same points as that command "
-            "gives on your machine. They are a self-check, not your grade: your instructor grades the last commit "
-            "before the deadline with every test, the hidden ones too.\n");
+    writeFileAtomically(outDir + "/README.md", readFile(outDir + "/README.md") +
+        "\n## Your repository checks itself\n\n"
+        "Every push runs `.github/workflows/classroom.yml` (the Actions tab shows it): it builds simlab, runs `" +
+        check + "` on the visible tests, and GitHub Classroom shows the points, the same points as that command "
+        "gives on your machine. They are a self-check, not your grade: your instructor grades the last commit "
+        "before the deadline with every test, the hidden ones too.\n");
     summary.files += 1;
     summary.made.push_back(".github/workflows/classroom.yml: on every push, the visible tests of " + assignment.id +
                            " (" + points(visible) + " points), reported to GitHub Classroom");
@@ -688,8 +620,7 @@ PackageSummary writeInstalledTree(const Manifest& manifest, const std::string& r
             if (path.rfind(pchDir + "/", 0) == 0) {
                 // The headers a precompiled header is made from; not the made one, which names them by path.
                 for (const auto& entry : fs::directory_iterator(pchDir)) {
-                    if (entry.path().extension() == ".h")
-                        copy(entry.path(), root + to + "/pch/" + entry.path().filename().string());
+                    if (entry.path().extension() == ".h") copy(entry.path(), root + to + "/pch/" + entry.path().filename().string());
                 }
             } else if (!rest.empty() && from == manifest.sourceDir && fs::is_regular_file(path)) {
                 // A source file comes with its folder (a starter's or solution's other files, a rubric's tests).

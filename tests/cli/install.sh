@@ -1,6 +1,6 @@
 # cmake --install, then the prefix moved: the moved simlab grades a file as the build's simlab does, making its
 # precompiled header where it now is (once), and a project made by it builds with find_package(simlab) and runs;
-# --version and the man page are there; a package command from an installation is one line. In each installed
+# --version and the man page are there; an installation makes packages from the sources it carries. In each installed
 # layout - a prefix, the same moved, one among the system's files (/usr/local) - the isolation's invariants hold:
 # no code of a submission runs with privilege or reads a secret of that installation, with bubblewrap and without.
 # Usage: install.sh BUILD_DIR
@@ -98,7 +98,12 @@ if [[ -w /usr/local ]]; then
   invariants usr-local "$system/lib/simlab/simlab-build.json"
 fi
 
-run_capture package moved/bin/simlab package student -o bundle
-check "a package command from an installation is one line: packages are made from the source tree" \
-  bash -c "test $(status_of package) -eq 2 && test \$(wc -l <package.err) -eq 1 && grep -q 'source tree' package.err"
+# An installation carries the project's sources: it makes packages as a build does, without its secrets.
+run_capture package moved/bin/simlab package gradescope apple -o apple.zip
+unzip -Z1 apple.zip >zipped.txt 2>/dev/null
+check "the installed simlab makes a Gradescope package from the sources it carries" \
+  bash -c "test $(status_of package) -eq 0 && grep -qx scripts/setup zipped.txt && grep -qx CMakeLists.txt zipped.txt &&
+    grep -qx assignments/apple/grading/hidden.cpp zipped.txt"
+check "with no solution, test or example lab in it" \
+  bash -c "! grep -E '^(solutions/[^b]|tests/|examples/)' zipped.txt"
 finish
