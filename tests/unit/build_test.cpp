@@ -35,7 +35,9 @@ TEST_CASE("a cached object is used only for the file it was compiled from", "[bu
     const Builder builder(manifest);
     ::unsetenv("SIMLAB_CACHE");
     const std::string text = readFile(apple.solution);
-    const std::string key = builder.objectKey(apple, text);
+    const std::string key = builder.objectKey(apple, "NewtonsApple.cpp", text);
+    // The same bytes under another name are another object: the name is in its messages and its __FILE__.
+    CHECK(builder.objectKey(apple, "Other.cpp", text) != key);
     writeFileAtomically(cache.path() + "/" + key + ".o", "not an object");
     writeFileAtomically(cache.path() + "/" + key + ".cpp", readFile(apple.starter));
     TempDir work("simlab-build-test-");

@@ -57,9 +57,9 @@ public:
     /// builds the lab program, and with the object check grading makes (simlab runs it, in its sandbox).
     BuildResult buildStudy(const Assignment& assignment, const std::string& name, const std::string& text,
                            const std::string& output) const;
-    /// Key of a source file's object in the cache: its content, the compile command, the contract's headers and
-    /// the precompiled header.
-    std::string objectKey(const Assignment& assignment, const std::string& sourceText) const;
+    /// Key of a source file's object in the cache: its name and content, the compile command, the contract's
+    /// headers and the precompiled header.
+    std::string objectKey(const Assignment& assignment, const std::string& fileName, const std::string& sourceText) const;
     /// Changes whenever what a submission is graded with might: the object key's parts, the link command, the
     /// course's probe objects, the libraries and the judge (by path, size and time stamp).
     std::string graderKey(const Assignment& assignment) const;
