@@ -22,7 +22,7 @@ for k in range(1, 5):
     names += [f"j{k}-test{n}" for n in range(1, 17)] + [f"j{k}-program{n}" for n in range(1, 17)]
 files = ["judge", "rubric.toml", "probe.so", "NewtonsApple.cpp", "NewtonsApple.o", "submission"]
 allowed = lambda rel: rel.split("/")[0].endswith("-server") and rel.endswith("/probe.so")
-first = True
+first, caught = True, False
 while not os.path.exists(stop):
     for root in glob.glob("/tmp/simlab-apple-*"):
         try:
@@ -30,8 +30,6 @@ while not os.path.exists(stop):
                 continue
         except OSError:
             continue
-        if not seen:
-            open(os.path.join(os.path.dirname(ready), "saw"), "w").close()
         seen.add(root)
         for sub in names:
             folder = root + "/" + sub
@@ -52,6 +50,10 @@ while not os.path.exists(stop):
     if first:
         open(ready, "w").close()
         first = False
+    # A grading seen while it lived and gone since (a folder left behind by another run never goes).
+    if not caught and any(not os.path.exists(root) for root in seen):
+        open(os.path.join(os.path.dirname(ready), "saw"), "w").close()
+        caught = True
     time.sleep(0.002)
 gone = [root for root in seen if not os.path.exists(root)]
 print(f"{len(gone)} grading folders seen while they lived")
@@ -64,8 +66,8 @@ for mode in bubblewrap limits-only; do
   settings=()
   [[ $mode == limits-only ]] && settings=(SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1)
   # The reader looks from before the first grading starts until after the last has ended, however slow the
-  # machine: the gradings wait for its first pass, go on (three at least) until it has caught one, and it stops
-  # when told.
+  # machine: the gradings wait for its first pass, go on (three at least) until it has seen one come and go, and
+  # it stops when told.
   mkdir -m 0777 "$mode.flags"
   setpriv --reuid=65532 --regid=65532 --clear-groups /usr/bin/python3 poll.py "$mode.flags/ready" "$mode.flags/stop" \
     >"$mode.poll" 2>&1 &
