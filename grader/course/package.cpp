@@ -213,9 +213,8 @@ std::string stableUuid(const std::string& name) {
 std::vector<std::string> projectFiles(const std::string& sourceDir) {
     std::vector<std::string> files;
     if (fs::exists(fs::path(sourceDir) / ".git") && fs::exists("/usr/bin/git")) {
-        std::istringstream list(isolation::runTool({"/usr/bin/git", "-C", sourceDir, "ls-files", "--cached", "--others",
-                                         "--exclude-standard"},
-                                        sourceDir));
+        // What the repository tracks, nothing else: no build log, editor file or other untracked file is handed out.
+        std::istringstream list(isolation::runTool({"/usr/bin/git", "-C", sourceDir, "ls-files", "--cached"}, sourceDir));
         std::string file;
         while (std::getline(list, file)) {
             if (fs::is_regular_file(fs::path(sourceDir) / file)) files.push_back(file);  // not deleted since
@@ -317,7 +316,7 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
         addLab(assignment, staging.path(), true, summary);
         named = "\"$root/source/" + labPlace(assignment) + "\"";
         setup = "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" SIMLAB_TARGETS=\"simlab_kit\" \\\n"
-                "  \"$source_dir/scripts/setup\"\n"
+                "  \"$source_dir/scripts/setup\" --lean\n"
                 "\"$source_dir/build/bin/simlab\" assignment build \"$source_dir/" + labPlace(assignment) + "\"\n";
         for (const std::string& hidden : assignment.hiddenTests) {
             setup += "chmod -R go-rwx \"$source_dir/" + labPlace(assignment) + "/" +
@@ -325,7 +324,7 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
         }
     } else {
         setup = "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" SIMLAB_TARGETS=\"simlab " + assignment.id +
-                "_grader\" \\\n  \"$source_dir/scripts/setup\"\n";
+                "_grader\" \\\n  \"$source_dir/scripts/setup\" --lean\n";
     }
     setup += "# The hidden tests, solutions and judges readable by root alone, should neither bubblewrap nor Landlock run.\n"
              "\"$source_dir/scripts/lock-course\"\n";
@@ -502,6 +501,7 @@ PackageSummary writeClassroomTemplate(const Manifest& manifest, const Assignment
                                  : relativeTo(assignment.starter, manifest.sourceDir);
     const std::string check =
         "build/bin/simlab check " + (own ? labPlace(assignment) : assignment.id) + " " + file;
+    const std::string targets = own ? "simlab_kit" : "simlab " + assignment.id + "_grader";
     double visible = 0;
     for (const RubricTest& t : loadRubric(assignment.rubric).tests) {
         if (t.visible()) visible += t.points;
@@ -534,8 +534,22 @@ PackageSummary writeClassroomTemplate(const Manifest& manifest, const Assignment
         "    steps:\n"
         "      - name: Checkout code\n"
         "        uses: actions/checkout@v4\n"
-        "      - name: Build simlab\n"
-        "        run: SIMLAB_CMAKE_ARGS=-DBUILD_TESTING=OFF scripts/setup\n"
+        "      # Only what a check of this lab needs: its packages (scripts/install-deps --lean: no plots, pages or\n"
+        "      # test tools), and simlab with this lab's grader, compiled through ccache, whose cache Actions keeps\n"
+        "      # between pushes (the student's file alone compiles anew).\n"
+        "      - name: Install the packages a check needs\n"
+        "        run: |\n"
+        "          scripts/install-deps --lean\n"
+        "          sudo apt-get install -y -qq --no-install-recommends ccache\n"
+        "      - name: Restore the compiler's cache\n"
+        "        uses: actions/cache@v4\n"
+        "        with:\n"
+        "          path: build/ccache\n"
+        "          key: simlab-ccache-${{ runner.os }}-${{ github.sha }}\n"
+        "          restore-keys: simlab-ccache-${{ runner.os }}-\n"
+        "      - name: Build simlab and the lab's grader\n"
+        "        run: SIMLAB_SKIP_APT=1 SIMLAB_CMAKE_ARGS=-DBUILD_TESTING=OFF SIMLAB_TARGETS=\"" + targets +
+        "\" scripts/setup\n"
         "      - name: Run the visible tests\n"
         "        id: simlab\n"
         "        if: always()\n"

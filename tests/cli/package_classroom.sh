@@ -21,6 +21,18 @@ check "no hidden tests, no solutions (but the worked example project's)" bash -c
 check "committed as a repository, it keeps Catch2 2.13's header (Ubuntu 24.04 ships Catch2 3)" bash -c "
   cd template && git init -q && git add -A && git ls-files | grep -qx third_party/catch2/catch.hpp &&
   git ls-files | grep -qx .github/workflows/classroom.yml"
+check "each push installs only what a check needs and builds simlab with the lab's grader alone, through ccache" \
+  python3 - "$workflow" <<'PY'
+import sys, yaml
+steps = yaml.safe_load(open(sys.argv[1]))["jobs"]["run-autograding-tests"]["steps"]
+runs = "\n".join(str(s.get("run", "")) for s in steps)
+assert "scripts/install-deps --lean" in runs and "ccache" in runs, runs
+assert 'SIMLAB_TARGETS="simlab apple_grader"' in runs and "SIMLAB_SKIP_APT=1" in runs, runs
+caches = [s for s in steps if str(s.get("uses", "")).startswith("actions/cache@")]
+assert len(caches) == 1 and caches[0]["with"]["path"] == "build/ccache", caches
+names = [s.get("name") for s in steps]
+assert names.index(caches[0]["name"]) < next(i for i, s in enumerate(steps) if "SIMLAB_TARGETS" in str(s.get("run", "")))
+PY
 check "the README says the points are a self-check, not the grade" grep -q 'They are a self-check, not your grade' template/README.md
 
 # The check step, as the workflow runs it, in the template with build/bin/simlab this build's simlab.

@@ -19,6 +19,17 @@ check "no line of the solution's model" bash -c "! grep -rqF 'model.apple.setOne
 # (The replay pages hold the reference runs' sampled values, among them a speed of -24.794 m/s: not a variant's.)
 check "no hidden variant's values (Jupiter's gravity, the long fall)" \
   bash -c "! grep -rqE '24\.79|50000' --exclude-dir=third_party --exclude='*-replay.html' bundle"
+if git -C "$SOURCE_DIR" rev-parse --git-dir >/dev/null 2>&1; then
+  check "every file in it is one git tracks, or one the packaging made (no build log, no untracked file)" \
+    python3 - "$SOURCE_DIR" bundle <<'PY'
+import os, re, subprocess, sys
+tracked = set(subprocess.run(["git", "-C", sys.argv[1], "ls-files"], capture_output=True, text=True).stdout.split("\n"))
+made = re.compile(r"^(README\.md|third_party/catch2/.*|handouts/[a-z]+(-replay)?\.html|handouts/figures/[a-z]+-reference\.svg)$")
+stray = [os.path.relpath(os.path.join(r, f), sys.argv[2]) for r, _, fs in os.walk(sys.argv[2]) for f in fs]
+stray = [f for f in stray if f not in tracked and not made.match(f)]
+assert not stray, stray
+PY
+fi
 check "the student README replaces the instructors'" grep -q 'Fill in the .SIMLAB_TODO' bundle/README.md
 check "it carries the licence, the third-party notices and Catch2's licence beside its header" \
   bash -c "grep -q 'Apache License' bundle/LICENSE && grep -q 'three.js' bundle/THIRD_PARTY_NOTICES.md && grep -q 'Boost Software License' bundle/third_party/catch2/LICENSE_1_0.txt"

@@ -11,8 +11,8 @@
 
 namespace simlab::engine {
 
-/// The project's files, relative to its top folder: what git tracks plus what it would (untracked, not ignored);
-/// outside a git checkout, every file but build folders and .git.
+/// The project's files, relative to its top folder: what git tracks (a file added but not committed too; nothing
+/// untracked); outside a git checkout, every file but build folders and .git.
 std::vector<std::string> projectFiles(const std::string& sourceDir);
 
 struct PackageSummary {
