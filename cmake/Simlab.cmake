@@ -175,14 +175,14 @@ function(simlab_contract id header)
   set_property(GLOBAL PROPERTY SIMLAB_PCH_DEPENDS_${id} simlab_pch_${id} ${pch})
 endfunction()
 
-# simlab_compile_submission(<object> <source> <id>): compile one student file of assignment <id> (simlab_contract
-# first) with its command.
+# simlab_compile_submission(<object> <source> <id> [<flag>...]): compile one student file of assignment <id>
+# (simlab_contract first) with its command, and the flags after it.
 function(simlab_compile_submission object source id)
   get_property(command GLOBAL PROPERTY SIMLAB_COMPILE_${id})
   get_property(depends GLOBAL PROPERTY SIMLAB_PCH_DEPENDS_${id})
   add_custom_command(
     OUTPUT ${object}
-    COMMAND ${command} -I${SIMLAB_CONTRACT_DIR}/${id} -c ${source} -o ${object} -MD -MF ${object}.d
+    COMMAND ${command} ${ARGN} -I${SIMLAB_CONTRACT_DIR}/${id} -c ${source} -o ${object} -MD -MF ${object}.d
     DEPFILE ${object}.d
     DEPENDS ${source} ${depends}
     COMMENT "Compiling student file ${source}"
@@ -279,9 +279,16 @@ function(simlab_add_assignment id)
   # The lab program, built from the student file in this tree (the starter unless told otherwise) ...
   set(SIMLAB_${id}_SOURCE ${starter} CACHE FILEPATH "Student file the ${A_PROGRAM} program is built from")
   set(object ${CMAKE_CURRENT_BINARY_DIR}/${A_PROGRAM}_student.o)
-  simlab_compile_submission(${object} ${SIMLAB_${id}_SOURCE} ${id})
+  # With line tables and variables for a debugger (VS Code's launch configuration): the graded object is not this one.
+  simlab_compile_submission(${object} ${SIMLAB_${id}_SOURCE} ${id} -g)
   add_executable(${A_PROGRAM} $<TARGET_OBJECTS:${id}_program_main> ${object})
   target_link_libraries(${A_PROGRAM} PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
+  # For editors, the student file as a translation unit of compile_commands.json with the folders it includes from
+  # (clangd and VS Code's C/C++ read it there; the custom command above is not listed). Never built.
+  add_library(${id}_student_file OBJECT EXCLUDE_FROM_ALL ${SIMLAB_${id}_SOURCE})
+  target_include_directories(${id}_student_file PRIVATE ${SIMLAB_CONTRACT_DIR}/${id})
+  target_include_directories(${id}_student_file SYSTEM PRIVATE ${Simbody_INCLUDE_DIR})
+  target_compile_options(${id}_student_file PRIVATE -Wno-error -Wno-unused-parameter -Wno-deprecated-declarations)
   # ... and from the reference solution, where the tree has one (the student bundle does not).
   set(reference_program "")
   if(EXISTS ${solution})

@@ -347,10 +347,14 @@ const SandboxSupport& sandboxSupport() {
             support.mode = "Landlock";
             support.summary = "Landlock: only the system and what the test is lent can be read, no network; " + user +
                               calls;
+            // Why not bubblewrap, in the same line: in a container (Docker's defaults, a dev container, Codespaces)
+            // the namespaces it needs are withheld.
+            if (!bwrap.empty()) support.summary += " (bubblewrap cannot create namespaces here, as in most containers)";
         } else {
             support.mode = "limits only";
             support.summary = "limits only: CPU, memory, processes, output and files capped; " + user + calls;
-            const std::string why = bwrap.empty() ? "bubblewrap is not installed" : "bubblewrap cannot create namespaces here";
+            const std::string why = bwrap.empty() ? "bubblewrap is not installed"
+                                                  : "bubblewrap cannot create namespaces here (as in most containers)";
             support.warning = why + " and this kernel offers no Landlock: student code " +
                               (support.ownUser ? "can read every file other users can"
                                                : "runs as you and can read your files") +
