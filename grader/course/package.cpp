@@ -534,7 +534,7 @@ PackageSummary writeClassroomTemplate(const Manifest& manifest, const Assignment
         "    steps:\n"
         "      - name: Checkout code\n"
         "        uses: actions/checkout@v4\n"
-        "      # Only what a check of this lab needs: its packages (scripts/install-deps --lean: no plots, pages or\n"
+        "      # Only what a check of this lab needs: its packages (scripts/install-deps --lean: no pages, schematics or\n"
         "      # test tools), and simlab with this lab's grader, compiled through ccache, whose cache Actions keeps\n"
         "      # between pushes (the student's file alone compiles anew).\n"
         "      - name: Install the packages a check needs\n"
