@@ -1,6 +1,7 @@
 #include "simlab/build/build.h"
 #include "simlab/common/errors.h"
 
+#include <pwd.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -467,7 +468,7 @@ void ensurePrecompiledHeader(const Manifest& manifest, const Assignment& a) {
     argv.insert(argv.end(), a.precompileFlags.begin(), a.precompileFlags.end());
     argv.insert(argv.end(), {"-I" + a.contractInclude, "-x", "c++-header", a.precompiledHeader});
     // What it was made for: this prefix, the command (a new compiler or flag makes it again) and the headers it is
-    // made from, by content (an installation over this one makes it again).
+    // made from (an installation over this one makes it again).
     const std::string installedDir = manifest.buildDir + "/pch";
     std::string stamp = manifest.prefix + "\n";
     for (const std::string& part : argv) stamp += part + "\n";
@@ -477,7 +478,15 @@ void ensurePrecompiledHeader(const Manifest& manifest, const Assignment& a) {
         if (it->path().extension() == ".h") headers.push_back(it->path().string());
     }
     std::sort(headers.begin(), headers.end());
-    for (const std::string& header : headers) stamp += sha256Hex(readFile(header)) + " " + header + "\n";
+    // By content, and by time and inode too: clang validates a header whose time changed by its content, but then
+    // takes it for another file, so that its #pragma once no longer holds and the student's include of it is a
+    // redefinition. An installation over this one with the same headers touches them all (cli/install).
+    for (const std::string& header : headers) {
+        struct stat st {};
+        if (::stat(header.c_str(), &st) != 0) st = {};
+        stamp += sha256Hex(readFile(header)) + " " + std::to_string(st.st_ino) + " " +
+                 std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec) + " " + header + "\n";
+    }
     if (!fs::exists(output, error) || !fs::exists(output + ".made-for", error) ||
         readFile(output + ".made-for") != stamp) {
         const fs::path dir = fs::path(a.precompiledHeader).parent_path();
@@ -568,6 +577,18 @@ bool Builder::refusedObject(const Assignment& assignment, const std::string& obj
     result.stage = "check";
     for (const std::string& p : problems) result.log += p + "\n";
     return true;
+}
+
+std::string judgeNotYours(const Assignment& assignment) {
+    if (assignment.judge.empty() || ::access(assignment.judge.c_str(), R_OK) == 0 || errno != EACCES) return "";
+    std::string owner = "its owner";
+    struct stat info {};
+    if (::stat(assignment.judge.c_str(), &info) == 0) {
+        if (const passwd* user = ::getpwuid(info.st_uid)) owner = user->pw_name;
+    }
+    return assignment.id + "'s judge (" + printable(assignment.judge) + ") is for " + owner +
+           " alone to read: this simlab's judges are closed to other users (scripts/lock-course); check and grade as " +
+           owner + " (sudo), or with a simlab built as yourself";
 }
 
 std::string sandboxCannotReach(const Manifest& manifest, const Assignment& assignment) {

@@ -47,6 +47,7 @@ void runCheck(const CheckOptions& o) {
     }
     const Rubric rubric = loadRubric(o.rubric.empty() ? assignment.rubric : o.rubric);
     if (const std::string closed = sandboxCannotReach(manifest, assignment); !closed.empty()) throw UsageError(closed);
+    if (const std::string closed = judgeNotYours(assignment); !closed.empty()) throw UsageError(closed);
     // The hidden tests must be out of a test's reach to run, and out of the compiler's whenever they lie among the
     // system's files (an installation in /usr/local), where a sandbox without bubblewrap lets every process read:
     // an #include of one would show its lines in the compiler's messages.

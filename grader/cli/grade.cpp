@@ -150,6 +150,7 @@ const isolation::SandboxSupport& checkedSandbox(const engine::Manifest& manifest
     if (const std::string closed = engine::sandboxCannotReach(manifest, assignment); !closed.empty()) {
         throw engine::UsageError(closed);
     }
+    if (const std::string closed = engine::judgeNotYours(assignment); !closed.empty()) throw engine::UsageError(closed);
     // The class's files and the grades are no sandbox's to see, wherever they lie.
     hideFromSandboxes({root, out});
     // Hidden tests run only where no test's code can read them, nor the class's files.

@@ -397,12 +397,23 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     // The server starts while the judge does.
     std::unique_ptr<isolation::TestServer> probeServer = startProbeServer(w, tag, limits, tests.size());
     std::thread server([&] { serveProbes(socket[0], probes, probeServer.get(), w, tag, limits, progress); });
-    const isolation::ProcessResult judged = runJudge(assignment, tests, w, judgeFiles, tag, limits, socket[1]);
-    ::shutdown(socket[0], SHUT_RDWR);  // ends the server's wait, should the judge have left a copy behind
-    server.join();
-    for (std::thread& t : probes.running) t.join();
-    probeServer.reset();
-    ::close(socket[0]);
+    // Ends the server's wait (should the judge have left a copy behind) and its probes: after the judge, or when
+    // the judge could not be started at all (its error then goes on, never a std::terminate of a running thread).
+    auto endServer = [&] {
+        ::shutdown(socket[0], SHUT_RDWR);
+        server.join();
+        for (std::thread& t : probes.running) t.join();
+        probeServer.reset();
+        ::close(socket[0]);
+    };
+    isolation::ProcessResult judged;
+    try {
+        judged = runJudge(assignment, tests, w, judgeFiles, tag, limits, socket[1]);
+    } catch (...) {
+        endServer();
+        throw;
+    }
+    endServer();
     *graderOutput = judged.output;
 
     bool interrupted = judged.interrupted;

@@ -40,6 +40,25 @@ run_capture again moved/bin/simlab check apple NewtonsApple.cpp
 check "once: the next check compiles against it without making it again" \
   bash -c "grep -q '^Score: ' again.out && ! grep -q 'precompiled header' again.err"
 check "what it keeps between runs is in the user's cache, not in the prefix" test -d "$XDG_CACHE_HOME/simlab"
+# Installed again over itself, the same files: every header is written anew, and the precompiled header is made
+# again (clang would take a header whose time changed for another file, and its #pragma once would not hold).
+run_capture reinstall cmake --install "$build" --prefix "$work/moved"
+run_capture over moved/bin/simlab check apple NewtonsApple.cpp
+check "installed again over itself: the precompiled header is made again and the next check grades as before" \
+  bash -c "grep -q \"making apple's precompiled header\" over.err &&
+    test \"\$(grep '^Score: ' over.out)\" = \"\$(grep '^Score: ' built.out)\""
+# Another user of this installation (a TA, as nobody): a grade, or one line saying why, never an abort.
+if [[ $(id -u) -eq 0 ]] && command -v setpriv >/dev/null; then
+  mkdir -p other && cp NewtonsApple.cpp other/ && chown -R 65534:65534 other
+  run_capture other env HOME="$work/other" XDG_CACHE_HOME="$work/other/cache" \
+    setpriv --reuid=65534 --regid=65534 --clear-groups moved/bin/simlab check apple other/NewtonsApple.cpp
+  sed 's/^/    /' other.err | tail -2
+  check "another user of the installation gets a grade or one line saying why, never an abort" \
+    bash -c "test $(status_of other) -ne 134 && ! grep -q 'terminate called' other.err &&
+      { grep -q '^Score: ' other.out || test \$(grep -c '^simlab: error: ' other.err) -eq 1; }"
+  check "  which, where the judges are closed to them, says whose they are and what to do" \
+    bash -c "grep '^Score: ' other.out || grep -q \"apple's judge .* is for $(id -un) alone to read: .*check and grade as $(id -un)\" other.err"
+fi
 
 # invariants LAYOUT MANIFEST: the isolation's invariants graded by that installation, with bubblewrap and without,
 # its files opened to every user first: the sandbox hides them, not their modes (which the installer closes too).

@@ -34,6 +34,11 @@ struct BuildResult {
 /// where everything is reachable.
 std::string sandboxCannotReach(const Manifest& manifest, const Assignment& assignment);
 
+/// Why this user cannot grade `assignment` at all, in one line, where its judge is closed to them (an installation
+/// whose owner closed its judges, scripts/lock-course, used by another member of the course's staff); empty where
+/// they may read it.
+std::string judgeNotYours(const Assignment& assignment);
+
 /// An installed simlab's precompiled header for `assignment`, made where the manifest places it (manifest.h) the
 /// first time the prefix grades that assignment, and again after the prefix moves (clang's name their headers by
 /// path), saying so on stderr. Nothing for a build tree, whose build makes them. Throws SetupError if the compiler
