@@ -1,0 +1,18 @@
+# The lab programs alone, as on a system without the grader's libraries (the native route the student README gives
+# for macOS and Windows without containers): cmake -DSIMLAB_GRADER=OFF configures, builds a lab program and its
+# reference from the course's sources, and the reference runs to its digits.
+# shellcheck source=../smoke/lib.sh
+source "$(dirname "$0")/../smoke/lib.sh"
+
+shared_objects "$SOURCE_DIR"
+run_capture configure cmake -S "$SOURCE_DIR" -B alone -DSIMLAB_GRADER=OFF -DSIMLAB_CCACHE=OFF ${shared_objects:+"$shared_objects"}
+check "cmake -DSIMLAB_GRADER=OFF configures" test "$(status_of configure)" -eq 0
+[[ $(status_of configure) -eq 0 ]] || tail -n 20 configure.err
+run_capture build cmake --build alone -j 2 --target apple apple-reference
+check "and builds the apple's program and its reference" test -x alone/bin/apple -a -x alone/bin/apple-reference
+[[ -x alone/bin/apple-reference ]] || grep -m 20 -E 'error|Error' build.out build.err
+run_capture starter alone/bin/apple --quiet
+check "the starter's program stops at its first TODO, saying where" grep -q 'not done yet (NewtonsApple.cpp:' starter.err
+run_capture reference alone/bin/apple-reference --quiet
+check "the reference runs and counts its digits" bash -c "test $(status_of reference) -eq 0 && grep -qi 'digits' reference.out"
+finish
