@@ -41,6 +41,8 @@ struct GradeCommandOptions {
     std::string rubric;
     std::string from;
     std::string shard;  // "I/N"
+    std::string course;  // course.toml: the late policy
+    bool intakeOnly = false;
 };
 
 std::string minutesAndSeconds(double seconds) {
@@ -107,7 +109,7 @@ std::pair<int, int> shardOf(const GradeCommandOptions& o) {
 // The class folder to grade. A platform's download is taken in as a class folder beside the gradebook, with a roster
 // of who is who; a folder that looks like one, or that holds loose files, is refused with the option to use.
 std::string classFolder(const GradeCommandOptions& o, const std::string& root, const std::string& out,
-                        const Rubric& rubric) {
+                        const Rubric& rubric, std::vector<engine::IntakeStudent>& taken) {
     using namespace simlab::engine;
     if (o.from.empty()) {
         if (const std::string layout = layoutOf(root); layout == "loose files") {
@@ -125,6 +127,7 @@ std::string classFolder(const GradeCommandOptions& o, const std::string& root, c
     std::vector<std::string> handedIn = {rubric.submission};
     handedIn.insert(handedIn.end(), rubric.extraFiles.begin(), rubric.extraFiles.end());
     const std::vector<IntakeStudent> students = takeIn(o.from, root, out + "/class", handedIn, cap);
+    taken = students;
     // The roster is the instructor's to edit (Canvas ids, sections): one that differs from the download's is kept,
     // and the download's is written beside it.
     const std::string roster = intakeRosterCsv(students), rosterPath = out + "/roster.csv";
@@ -138,6 +141,45 @@ std::string classFolder(const GradeCommandOptions& o, const std::string& root, c
     std::printf("Took in %zu submitter%s of a %s download into %s/class; who is who: %s\n", students.size(),
                 students.size() == 1 ? "" : "s", o.from.c_str(), printable(out).c_str(), printable(written).c_str());
     return out + "/class";
+}
+
+// The course's late policy (course.toml: --course, or beside the rubric), its extensions matched through the
+// roster, and each student's submission time as the platform gave it. A copy is kept beside the grades.
+void latePolicy(const GradeCommandOptions& o, const engine::Assignment& assignment, const std::string& out,
+                const std::vector<engine::IntakeStudent>& taken, engine::ClassOptions& options) {
+    using namespace simlab::engine;
+    const std::string rubricPath = o.rubric.empty() ? assignment.rubric : o.rubric;
+    const std::string path =
+        !o.course.empty() ? o.course : (fs::path(rubricPath).parent_path() / "course.toml").string();
+    if (!o.course.empty() && !fs::is_regular_file(path)) throw UsageError("no course file " + printable(path));
+    std::map<std::string, std::string> aliases = rosterAliases(out + "/roster.csv");
+    for (const IntakeStudent& s : taken) {
+        for (const std::string& alias : {s.id, s.name, s.canvasId, s.sid, s.platformId, s.email}) {
+            if (!alias.empty()) aliases.emplace(alias, s.id);
+        }
+        auto& [when, from] = options.submitted[s.id];
+        if (when.empty() || (!s.submitted.empty() && *parseTime(s.submitted) > *parseTime(when))) {
+            when = s.submitted;
+            from = s.submittedFrom;
+        }
+    }
+    if (taken.empty()) {  // a class taken in earlier (--intake-only): the times its roster keeps
+        for (const auto& [id, when] : rosterTimes(out + "/roster.csv")) options.submitted[id] = {when, "roster.csv"};
+    }
+    options.late = loadLatePolicy(path, assignment.id, aliases);
+    if (!options.late.active) return;
+    const LatePolicy& p = options.late;
+    std::printf("Late policy of %s: due %s, %s %% per %s (at most %s %%)%s%s, %zu extension%s\n",
+                printable(path).c_str(), utcText(p.due).c_str(), points(p.penaltyPercent).c_str(),
+                p.periodHours == 24 ? "day" : "hour", points(p.maxPercent).c_str(),
+                p.graceHours > 0 ? (", " + points(p.graceHours / 24) + " grace day(s)").c_str() : "",
+                p.cutoff ? (", no credit after " + utcText(*p.cutoff)).c_str() : "", p.dueFor.size(),
+                p.dueFor.size() == 1 ? "" : "s");
+    if (!p.unknownStudents.empty()) {
+        std::cerr << "simlab: warning: " << p.unknownStudents.size()
+                  << " extension(s) name no student of the roster (kept under that id): "
+                  << printable(p.unknownStudents.front()) << (p.unknownStudents.size() > 1 ? ", ..." : "") << "\n";
+    }
 }
 
 // The sandbox in use, said to be fit for grading: no test's code may reach the class's files, the grades or the
@@ -185,8 +227,12 @@ void reportClass(const GradeCommandOptions& o, bool sharded, const std::string& 
     for (const std::string& w : result.warnings) std::cerr << "simlab: warning: " << printable(w) << "\n";
 
     std::cout << "\n" << summaryTable(rubric, records);
-    const int graded = static_cast<int>(records.size()) - result.reused;
-    std::cout << "\n" << graded << " graded, " << result.reused << " up to date and kept\n";
+    const int others = static_cast<int>(records.size()) - result.graded - result.reused;
+    std::cout << "\n"
+              << result.graded << " graded, " << result.reused << " up to date and kept"
+              << (o.only.empty() || others <= 0 ? ""
+                                                : ", " + std::to_string(others) + " not asked for (--only) and kept")
+              << "\n";
     if (sharded) {
         std::cout << "Wrote shard " << o.shard << "'s students into " << printable(out)
                   << "/students/<id>; once every shard has finished, the same command without --shard writes the "
@@ -225,7 +271,21 @@ void runGrade(const GradeCommandOptions& o) {
     const Rubric rubric = loadRubric(o.rubric.empty() ? assignment.rubric : o.rubric);
     // A sheet of manual points with a mistake stops simlab before anything changes.
     ManualSheet manual = readManualSheet(out, rubric);
-    const std::string root = classFolder(o, submissions, out, rubric);
+    std::vector<IntakeStudent> taken;
+    if (o.intakeOnly && o.from.empty()) {
+        throw UsageError(
+            "--intake-only takes a platform's download in: add --from gradescope, canvas, moodle or classroom");
+    }
+    const std::string root = classFolder(o, submissions, out, rubric, taken);
+    if (o.intakeOnly) {
+        // A cluster's shards grade the class folder; the download is taken in once, here.
+        std::printf(
+            "Nothing graded (--intake-only). Grade it with: simlab grade %s %s/class -o %s, or share it out "
+            "with simlab slurm grade %s %s/class --out %s\n",
+            assignment.id.c_str(), printable(out).c_str(), printable(out).c_str(), assignment.id.c_str(),
+            printable(out).c_str(), printable(out).c_str());
+        return;
+    }
 
     ClassOptions options;
     options.jobs = o.jobs;
@@ -235,6 +295,7 @@ void runGrade(const GradeCommandOptions& o) {
     options.shard = shard.first;
     options.shards = shard.second;
     options.manual = std::move(manual);
+    if (!shard.second) latePolicy(o, assignment, out, taken, options);
 
     const isolation::SandboxSupport& sandbox = checkedSandbox(manifest, assignment, root, out);
     std::printf("Grading %s (%s) from %s into %s%s: %d jobs, sandbox: %s\n", assignment.id.c_str(),
@@ -289,6 +350,15 @@ void addGrade(CLI::App& app) {
                       "student-repos); taken in as OUT/class, with OUT/roster.csv (names, ids, e-mails, late flags, "
                       "groups) for simlab export canvas")
         ->check(CLI::IsMember(engine::downloadLayouts()));
+    grade->add_flag("--intake-only", options->intakeOnly,
+                    "with --from: take the download in as OUT/class and OUT/roster.csv, and grade nothing (a cluster's "
+                    "shards then grade OUT/class)");
+    grade
+        ->add_option("--course", options->course,
+                     "the course's rules for late work (course.toml: a due date per assignment, the penalty per day "
+                     "or hour, grace days, an extensions file); default: course.toml beside the rubric, if there "
+                     "is one")
+        ->check(CLI::ExistingFile);
     grade->add_option("--shard", options->shard,
                       "I/N: grade share I of N of the class (students I, I + N, ... in name order) into OUT's student "
                       "folders only, side by side with the other shards on a shared OUT; the command without "

@@ -120,8 +120,11 @@ CLI::App* addAssignmentPackage(CLI::App* package, const std::string& name, const
 
 void addPackage(CLI::App& app) {
     CLI::App* package = app.add_subcommand(
-        "package", "Make what you hand out: the student bundle, or an assignment's autograder for Gradescope, "
-                   "PrairieLearn or GitHub Classroom (README.md says which to choose when).");
+        "package",
+        "Make what you hand out: the student bundle, or an assignment's autograder for Gradescope, "
+        "PrairieLearn or GitHub Classroom. Gradescope and PrairieLearn grade each submission on their "
+        "servers, hidden tests included; Classroom's template only self-checks each push, and you grade "
+        "the cloned repositories with simlab grade --from classroom.");
     package->require_subcommand(1);
 
     auto student = std::make_shared<PackageOptions>();
@@ -185,7 +188,7 @@ void addPackage(CLI::App& app) {
     p->add_flag("--upload", prairieLearn->prairieLearn.upload,
                 "students upload their file (pl-file-upload) instead of editing it in the page");
 
-    addAssignmentPackage(
+    CLI::App* classroom = addAssignmentPackage(
         package, "github-classroom",
         "Write the template repository of a GitHub Classroom assignment: the student bundle and a workflow that, on "
         "every push, builds simlab, runs the visible tests and reports their points to Classroom. Those points are "
@@ -194,6 +197,7 @@ void addPackage(CLI::App& app) {
         [](const engine::Manifest& m, const engine::Assignment& a, const PackageOptions& o) {
             return engine::writeClassroomTemplate(m, a, o.output);
         });
+    classroom->alias("classroom");  // as simlab grade --from names the platform
 }
 
 void addAutograde(CLI::App& app) {

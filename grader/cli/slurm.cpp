@@ -4,6 +4,7 @@
 // scripts is absolute: the cluster's nodes must see this simlab, its build and the folders at the same paths (a
 // shared filesystem), as they do on a university cluster's home or project space.
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <unistd.h>
 
 #include <cstdio>
@@ -123,8 +124,12 @@ std::string sbatch(const std::string& program, const std::vector<std::string>& a
     r.keepOutput = 1 << 20;
     const isolation::ProcessResult result = isolation::runProcess(r);
     if (!result.exitedCleanly()) {
-        throw std::runtime_error("sbatch refused the job: " + engine::printable(isolation::firstLines(
-                                                                  result.started ? result.output : result.error, 3)));
+        // Its first lines, on the one line of an error: joined, never a literal "\n".
+        std::string said = isolation::firstLines(result.started ? result.output : result.error, 3);
+        while (!said.empty() && std::isspace(static_cast<unsigned char>(said.back()))) said.pop_back();
+        for (std::size_t at = said.find('\n'); at != std::string::npos; at = said.find('\n', at))
+            said.replace(at, 1, "; ");
+        throw std::runtime_error("sbatch refused the job: " + engine::printable(said));
     }
     std::string id = result.output.substr(0, result.output.find_first_of(";\n"));
     if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos) {

@@ -1,6 +1,8 @@
 // Text from students, made safe for each format simlab writes (see text.h).
 #include "simlab/common/text.h"
 
+#include <cctype>
+
 #include <cstdint>
 #include <cstdio>
 #include <string_view>
@@ -128,11 +130,19 @@ std::string csvCell(const std::string& text) {
 
 std::string markdownText(const std::string& text) {
     std::string out;
-    for (char c : printable(text)) {
+    const std::string shown = printable(text);
+    for (std::size_t i = 0; i < shown.size(); ++i) {
+        const char c = shown[i];
+        // '&' starts a character reference only before a name or '#' ("&copy;", "&#60;"): "a && b" stays as
+        // written, for the student who reads the file as text.
+        const bool reference =
+            i + 1 < shown.size() && (std::isalnum(static_cast<unsigned char>(shown[i + 1])) || shown[i + 1] == '#');
         switch (c) {
             case '<': out += "&lt;"; break;
             case '>': out += "&gt;"; break;
-            case '&': out += "&amp;"; break;
+            case '&':
+                out += reference ? "&amp;" : "&";
+                break;
             case '\\': case '`': case '|': case '*': case '_': case '[': case ']':
                 out += '\\';
                 out += c;

@@ -11,6 +11,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <thread>
+#include <sys/stat.h>
 
 #include "simlab/protocol/attachments.h"
 #include "simlab/common/errors.h"
@@ -318,17 +319,37 @@ ClassPlan planClass(const std::vector<std::string>& ids, const std::string& subm
     return plan;
 }
 
+// When the student handed their file in (the platform's time, else the file's own), and the late policy applied.
+void stampLateness(StudentRecord& r, const std::string& submissionsDir, const ClassOptions& options) {
+    // A student the platform names has its time, or none (their files were written when the download was taken
+    // in: no time of theirs).
+    if (const auto given = options.submitted.find(r.id); given != options.submitted.end()) {
+        r.submitted = given->second.first;
+        r.submittedFrom = given->second.first.empty() ? "" : given->second.second;
+    } else if (struct stat st{};
+               !r.file.empty() && ::lstat((submissionsDir + "/" + r.id + "/" + r.file).c_str(), &st) == 0) {
+        r.submitted = utcText(st.st_mtime);
+        r.submittedFrom = "the file's time";
+    }
+    applyLatePolicy(r, options.late);
+}
+
 // Kept records: results.json written again from each (its scores now, and the points given by hand); the feedback
 // of those re-scored by the rubric's points or graded by hand says so too, and one graded by a simlab that wrote no
 // feedback.html gets one, so that report.html links to a page.
 void refreshKeptRecords(const Assignment& assignment, const Rubric& rubric, const std::string& outDir,
-                        const ManualSheet& sheet, ClassPlan& plan) {
+                        const ManualSheet& sheet, const std::string& submissionsDir, const ClassOptions& options,
+                        ClassPlan& plan) {
     for (auto& [id, r] : plan.records) {
         applyManual(r, sheet, rubric);
+        const std::string before = r.submitted, lateBefore = r.late.line;
+        stampLateness(r, submissionsDir, options);
+        if (r.submitted != before || r.late.line != lateBefore)
+            writeFileDurably(outDir + "/students/" + id + "/record.json", recordJson(r));
         const bool moved = std::count(plan.rescored.begin(), plan.rescored.end(), id) > 0;
         const std::string dir = outDir + "/students/" + id;
         writeFileAtomically(dir + "/results.json", resultsJson(r));
-        if (!moved && rubric.manual.empty()) continue;
+        if (!moved && rubric.manual.empty() && !options.late.active) continue;
         if (moved) {
             writeFileDurably(dir + "/record.json", recordJson(r));
             appendHistory(dir, r, "the rubric's points changed (re-scored from the recorded verdicts)");
@@ -356,6 +377,7 @@ public:
         const Assignment& assignment;
         const Rubric& rubric;
         const std::string& outDir;
+        const std::string& submissionsDir;
         const ClassOptions& options;
         const ManualSheet& sheet;
         std::string basis;
@@ -450,6 +472,7 @@ private:
         fs::create_directories(dir);
         record.basis = c_.basis;
         applyManual(record, c_.sheet, c_.rubric);
+        stampLateness(record, c_.submissionsDir, c_.options);
         writeFileAtomically(dir + "/results.json", resultsJson(record));
         if (report) writeFileAtomically(dir + "/output.txt", testOutputText(*report));
         std::vector<Attachment> attached;
@@ -470,6 +493,7 @@ private:
 
         std::lock_guard<std::mutex> guard(lock_);
         plan_.records[record.id] = record;
+        ++result_.graded;
         publish(false);
         ++progress_.done;
         progress_.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - c_.start).count();
@@ -511,10 +535,11 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     if (!sharded) writeClassSheets(outDir, sheet, ids, rubric, result.warnings);
 
     ClassPlan plan = planClass(ids, submissionsDir, outDir, rubric, limits, base, options);
-    refreshKeptRecords(assignment, rubric, outDir, sheet, plan);
+    refreshKeptRecords(assignment, rubric, outDir, sheet, submissionsDir, options, plan);
     const int students = static_cast<int>(options.only.empty() ? ids.size() : options.only.size());
-    ClassGrading grading({builder, assignment, rubric, outDir, options, sheet, base.hex(), start, students, onProgress},
-                         plan, result);
+    ClassGrading grading(
+        {builder, assignment, rubric, outDir, submissionsDir, options, sheet, base.hex(), start, students, onProgress},
+        plan, result);
     const std::exception_ptr setupFailure = grading.run();
 
     for (const std::string& id : ids) {

@@ -8,11 +8,14 @@
 #include <memory>
 #include <regex>
 #include <set>
+#include <sys/stat.h>
 
 #include "simlab/course/batch.h"
 #include "simlab/common/errors.h"
 #include "simlab/common/files.h"
 #include "simlab/common/text.h"
+#include "simlab/course/policy.h"
+#include "simlab/isolation/process.h"
 
 namespace fs = std::filesystem;
 
@@ -22,6 +25,8 @@ namespace {
 
 const std::regex kCanvasFile(R"(^([^_]+)_(?:(late|LATE)_)?(\d+)_(\d+)_(.+)$)");
 const std::regex kMoodleFolder(R"(^(.+)_(\d+)_assignsubmission_([a-z]+)_$)");
+// Moodle's download "not in folders": each file named after its student and plugin.
+const std::regex kMoodleFile(R"(^(.+)_(\d+)_assignsubmission_([a-z]+)_(.+)$)");
 const std::regex kResubmitted(R"(^(.*)-(\d+)(\.[^.]+)$)");  // Canvas's "NewtonsApple-2.cpp"
 
 // A folder name for an id: letters, digits, '.', '_' and '-' kept; anything else becomes '-'.
@@ -34,6 +39,20 @@ std::string safeId(const std::string& text) {
     }
     while (!id.empty() && (id.front() == '.' || id.front() == '-')) id.erase(0, 1);
     return id.empty() ? "student" : id;
+}
+
+// The modification time of `path` itself (never a link's target), as UTC text; empty when it cannot be read.
+std::string fileTime(const std::string& path) {
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) != 0) return "";
+    return utcText(st.st_mtime);
+}
+
+// The later of two UTC texts (either may be empty).
+std::string later(const std::string& a, const std::string& b) {
+    if (a.empty()) return b;
+    if (b.empty()) return a;
+    return *parseTime(b) > *parseTime(a) ? b : a;
 }
 
 // --- A YAML document (Gradescope's submission_metadata.yml), read with libyaml into a small tree. ---------------
@@ -208,6 +227,10 @@ std::vector<IntakeStudent> canvas(const std::string& folder, const std::string& 
         if (kept.entry.empty() || std::tie(u.submission, u.resubmission) > std::tie(kept.submission, kept.resubmission)) {
             kept = u;
         }
+        // Canvas's zip keeps each file's submission time; the student's time is their latest file's.
+        s.submitted = later(s.submitted, fileTime(folder + "/" + e.name));
+        s.submittedFrom = "Canvas's file time";
+        if (s.canvasFile.empty()) s.canvasFile = e.name.substr(0, e.name.size() - m[5].length() - 1);
     }
     std::vector<IntakeStudent> out;
     for (const std::string& id : order) {
@@ -235,12 +258,14 @@ std::vector<IntakeStudent> gradescope(const std::string& folder, const std::stri
     struct Submission {
         std::string name, id, names;
         std::vector<IntakeStudent> members;
+        std::string created;  // created_at, as UTC text
     };
     std::vector<Submission> submissions;
     std::set<std::string> seen, ownIds;
     for (const auto& [submission, info] : root.entries) {
         if (!seen.insert(submission).second) throw UsageError(printable(metadata) + " names " + printable(submission) + " twice");
-        Submission entry{submission, "", "", {}};
+        Submission entry{submission, "", "", {}, ""};
+        if (const std::optional<std::time_t> at = parseTime(scalarOf(info, "created_at"))) entry.created = utcText(*at);
         const Node* submitters = entryOf(info, "submitters");
         if (submitters && submitters->kind == Node::Kind::Sequence) {
             for (const Node& who : submitters->items) {
@@ -291,6 +316,8 @@ std::vector<IntakeStudent> gradescope(const std::string& folder, const std::stri
         for (IntakeStudent& s : members) {
             s.id = id;
             s.note = first.note;
+            s.submitted = entry.created;
+            if (!s.submitted.empty()) s.submittedFrom = "Gradescope's created_at";
             if (members.size() > 1) s.group = names;
             out.push_back(s);
         }
@@ -298,23 +325,60 @@ std::vector<IntakeStudent> gradescope(const std::string& folder, const std::stri
     return out;
 }
 
+// The newest time of the regular files below `folder`.
+std::string newestFileTime(const std::string& folder) {
+    std::string newest;
+    for (const FolderEntry& e : walkFolder(folder)) {
+        if (e.type == EntryType::Regular) newest = later(newest, fileTime(folder + "/" + e.name));
+    }
+    return newest;
+}
+
 std::vector<IntakeStudent> moodle(const std::string& folder, const std::string& classDir, std::size_t limit) {
     std::map<std::string, IntakeStudent> students;
     std::vector<std::string> order;
     for (const FolderEntry& e : listFolder(folder, /*followFolder=*/true)) {
         std::smatch m;
-        if (e.type != EntryType::Directory || !std::regex_match(e.name, m, kMoodleFolder)) continue;
+        const bool inFolder = e.type == EntryType::Directory && std::regex_match(e.name, m, kMoodleFolder);
+        if (!inFolder && !(e.type == EntryType::Regular && std::regex_match(e.name, m, kMoodleFile))) continue;
         IntakeStudent& s = studentOf(students, order, safeId(m[1].str() + "_" + m[2].str()), m[1]);
         s.platformId = m[2];
         const std::string id = s.id;
         fs::create_directories(classDir + "/" + id);
         // The uploaded files are graded; an online text is the same student's, and is noted.
-        if (m[3] == "file") takeFolder(folder + "/" + e.name, classDir + "/" + id, limit, s);
-        else s.note += (s.note.empty() ? "" : "; ") + std::string("an online text too (not graded)");
+        if (m[3] != "file") {
+            if (s.note.find("online text") == std::string::npos) {
+                s.note += (s.note.empty() ? "" : "; ") + std::string("an online text too (not graded)");
+            }
+            continue;
+        }
+        if (inFolder) {
+            takeFolder(folder + "/" + e.name, classDir + "/" + id, limit, s);
+            s.submitted = later(s.submitted, newestFileTime(folder + "/" + e.name));
+        } else {
+            takeFile(folder, e.name, classDir + "/" + id, m[4].str(), limit, s, /*followFolder=*/true);
+            s.submitted = later(s.submitted, fileTime(folder + "/" + e.name));
+        }
+        if (!s.submitted.empty()) s.submittedFrom = "Moodle's file time";
     }
     std::vector<IntakeStudent> out;
     for (const std::string& id : order) out.push_back(students[id]);
     return out;
+}
+
+// The time of the last commit of the repository `repo` (the student's clock), as UTC text; empty when git cannot
+// tell. The clone is the instructor's own, so its configuration is trusted; git runs as a tool, with no shell.
+std::string commitTime(const std::string& repo) {
+    try {
+        const std::string dir = fs::absolute(repo).string();
+        const std::string out = isolation::runTool({"/usr/bin/git", "-c", "safe.directory=*", "--no-optional-locks",
+                                                    "-C", dir, "log", "-1", "--format=%cI", "HEAD"},
+                                                   dir);
+        const std::optional<std::time_t> t = parseTime(trimmed(out));
+        return t ? utcText(*t) : "";
+    } catch (const std::exception&) {
+        return "";
+    }
 }
 
 std::vector<IntakeStudent> classroom(const std::string& folder, const std::string& classDir,
@@ -328,13 +392,30 @@ std::vector<IntakeStudent> classroom(const std::string& folder, const std::strin
     }
     // The assignment's name is what every repository's name starts with, up to its last '-' (with one repository
     // there is no telling: its whole name is the id).
-    std::string prefix = repos.size() < 2 ? "" : repos.front();
-    for (const std::string& r : repos) {
-        std::size_t n = 0;
-        while (n < prefix.size() && n < r.size() && prefix[n] == r[n]) ++n;
-        prefix.resize(n);
+    // `gh classroom clone student-repos` clones into "<assignment>-submissions": the name itself, when the folder
+    // keeps it (logins that share a start, "uw-alice" and "uw-bob", keep it too).
+    const std::string base = fs::path(folder).lexically_normal().filename().empty()
+                                 ? fs::path(folder).lexically_normal().parent_path().filename().string()
+                                 : fs::path(folder).lexically_normal().filename().string();
+    const std::string suffix = "-submissions";
+    std::string prefix;
+    if (base.size() > suffix.size() && base.compare(base.size() - suffix.size(), suffix.size(), suffix) == 0) {
+        prefix = base.substr(0, base.size() - suffix.size()) + "-";
+        for (const std::string& r : repos) {
+            if (r.compare(0, prefix.size(), prefix) != 0) prefix.clear();
+        }
     }
-    prefix = prefix.substr(0, prefix.rfind('-') + 1);  // npos + 1 is 0: no common name, no prefix
+    if (prefix.empty() && repos.size() >= 2) {
+        prefix = repos.front();
+        for (const std::string& r : repos) {
+            std::size_t n = 0;
+            while (n < prefix.size() && n < r.size() && prefix[n] == r[n]) ++n;
+            prefix.resize(n);
+        }
+        // Up to the last '-' of the common start (an assignment's name may hold one). Logins that share a start
+        // ("uw-alice", "uw-bob") lose it here: the folder's own name, as gh makes it, is the sure way.
+        prefix = prefix.substr(0, prefix.rfind('-') + 1);  // npos + 1 is 0: no common name, no prefix
+    }
     std::vector<IntakeStudent> out;
     for (const std::string& repo : repos) {
         IntakeStudent s;
@@ -356,6 +437,8 @@ std::vector<IntakeStudent> classroom(const std::string& folder, const std::strin
             }
             if (found.shown != found.name) s.note = "found at " + found.shown;
         }
+        s.submitted = commitTime(folder + "/" + repo);
+        if (!s.submitted.empty()) s.submittedFrom = "the last commit's time";
         out.push_back(s);
     }
     return out;
@@ -380,6 +463,7 @@ std::string layoutOf(const std::string& folder) {
         } else {
             files = true;
             canvasFiles = canvasFiles || std::regex_match(e.name, kCanvasFile);
+            moodleFolders = moodleFolders || std::regex_match(e.name, kMoodleFile);
         }
     }
     if (moodleFolders) return "moodle";
@@ -428,11 +512,14 @@ std::vector<IntakeStudent> takeIn(const std::string& layout, const std::string& 
 }
 
 std::string intakeRosterCsv(const std::vector<IntakeStudent>& students) {
-    std::string out = "Student,ID,SIS User ID,SIS Login ID,Section,simlab id,Platform ID,Email,Late,Group,Note\n";
+    std::string out =
+        "Student,ID,SIS User ID,SIS Login ID,Section,simlab id,Platform ID,Email,Late,Submitted,"
+        "Submitted from,Group,Note,Canvas file\n";
     for (const IntakeStudent& s : students) {
         out += csvCell(s.name) + "," + csvCell(s.canvasId) + "," + csvCell(s.sid) + ",,," + csvCell(s.id) + "," +
-               csvCell(s.platformId) + "," + csvCell(s.email) + "," + (s.late ? "late" : "") + "," + csvCell(s.group) +
-               "," + csvCell(s.note) + "\n";
+               csvCell(s.platformId) + "," + csvCell(s.email) + "," + (s.late ? "late" : "") + "," +
+               csvCell(s.submitted) + "," + csvCell(s.submittedFrom) + "," + csvCell(s.group) + "," + csvCell(s.note) +
+               "," + csvCell(s.canvasFile) + "\n";
     }
     return out;
 }

@@ -568,11 +568,15 @@ double GradeReport::maxScore() const {
     return roundScore(total);
 }
 
-double StudentRecord::total() const {
+double StudentRecord::rawTotal() const {
     double sum = score;
     for (const ManualGrade& m : manual) sum += m.points.value_or(0);
     return roundScore(sum);
 }
+
+double StudentRecord::latePoints() const { return roundScore(rawTotal() * late.percent / 100); }
+
+double StudentRecord::total() const { return roundScore(rawTotal() - latePoints()); }
 
 double StudentRecord::maxTotal() const {
     double sum = maxScore;

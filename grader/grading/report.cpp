@@ -198,8 +198,14 @@ nlohmann::json toGradescope(const StudentRecord& r) {
         extra["total_with_manual"] = r.total();
         extra["max_with_manual"] = r.maxTotal();
     }
+    // A late penalty (the course's policy) takes its share of the tests' points too.
+    if (!r.late.line.empty()) {
+        output += "Lateness: " + printable(r.late.line) + "\n";
+        extra["late"] = {{"submitted", r.submitted}, {"hours", r.late.hours}, {"percent", r.late.percent}};
+    }
+    const double score = roundScore(r.score * (1 - r.late.percent / 100));
     // Everything is plain text (never HTML or Markdown a student's bytes could shape), valid UTF-8.
-    return {{"score", r.score},
+    return {{"score", score},
             {"execution_time", static_cast<int>(std::ceil(r.seconds))},
             {"output", output},
             {"output_format", "text"},

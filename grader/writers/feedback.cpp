@@ -16,6 +16,10 @@ Feedback feedbackOf(const Assignment& assignment, const StudentRecord& r, const 
     f.score = points(r.total()) + "/" + points(r.maxTotal());
     if (r.status != "graded") f.status = r.status;
     f.note = r.note;
+    f.late = r.late.line;
+    if (r.late.percent > 0) {
+        f.late += ": " + points(r.latePoints()) + " points off the " + points(r.rawTotal()) + " earned";
+    }
     f.sandbox = r.sandbox;
     if (!r.compiler.empty()) {
         f.compilerTitle = r.status == "did not compile" ? "The compiler's message:"

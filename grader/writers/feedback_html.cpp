@@ -1,4 +1,6 @@
 // feedback.html: what a student reads, as a page of its own.
+#include <algorithm>
+#include <cctype>
 #include <sstream>
 
 #include "common.h"
@@ -15,7 +17,15 @@ using writers::htmlText;
 
 // "14.8 digits": what the test measured.
 std::string figureText(const TestResult& t) {
-    return writers::number(*t.figure) + (t.unit.empty() ? "" : " " + t.unit);
+    // A count of one is singular: "1 degree of freedom", "1 evaluation" (the unit's first word loses its s).
+    std::string unit = t.unit;
+    const std::size_t word = unit.find(' ');
+    const std::string first = unit.substr(0, word);
+    if (*t.figure == 1 && first.size() > 3 && first.back() == 's' &&
+        std::all_of(first.begin(), first.end(), [](unsigned char c) { return std::isalpha(c); })) {
+        unit.erase(first.size() - 1, 1);
+    }
+    return writers::number(*t.figure) + (unit.empty() ? "" : " " + unit);
 }
 
 }  // namespace
@@ -32,6 +42,7 @@ std::string feedbackHtml(const Assignment& assignment, const StudentRecord& reco
     if (!f.status.empty()) out << " <span class=\"badge error\">" << htmlText(f.status) << "</span>";
     out << "</p>\n";
     if (!f.note.empty()) out << "<p>" << htmlText(f.note) << ".</p>\n";
+    if (!f.late.empty()) out << "<p class=\"late\">Lateness: " << htmlText(f.late) << ".</p>\n";
     out << "</header>\n";
 
     if (!f.compilerTitle.empty()) {

@@ -1,5 +1,5 @@
 // gradebook.csv: one row per student, the points of each test and of each item graded by hand (manual.csv); the
-// score is the tests' points and the manual points given so far, the max every point there is.
+// score is the tests' points and the manual points given so far, less a late penalty, the max every point there is.
 #include <algorithm>
 #include <sstream>
 
@@ -11,13 +11,21 @@ namespace simlab::engine {
 
 std::string gradebookCsv(const Rubric& rubric, const std::vector<StudentRecord>& records) {
     std::ostringstream out;
+    // With a late policy (course.toml): the score before it, the points it took, when and how late.
+    const bool late =
+        std::any_of(records.begin(), records.end(), [](const StudentRecord& r) { return !r.late.line.empty(); });
     out << "student,score,max,status";
+    if (late) out << ",raw score,late penalty,submitted,lateness";
     for (const RubricTest& t : rubric.tests) out << "," << csvCell(t.name);
     // Items a person grades: a column each, "pending" until the instructor fills in the points.
     for (const ManualItem& m : rubric.manual) out << "," << csvCell("manual (" + points(m.points) + "): " + m.name);
     out << "\n";
     for (const StudentRecord& r : records) {
         out << csvCell(r.id) << "," << points(r.total()) << "," << points(r.maxTotal()) << "," << csvCell(r.status);
+        if (late) {
+            out << "," << points(r.rawTotal()) << "," << points(r.latePoints()) << "," << csvCell(r.submitted) << ","
+                << csvCell(r.late.line);
+        }
         for (const RubricTest& t : rubric.tests) {
             const auto found = std::find_if(r.tests.begin(), r.tests.end(),
                                             [&](const TestResult& x) { return x.name == t.name; });

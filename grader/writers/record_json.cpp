@@ -16,23 +16,27 @@ std::string recordJson(const StudentRecord& r) {
         if (t.figure) j["figure"] = {{"value", *t.figure}, {"unit", t.unit}};
         tests.push_back(j);
     }
-    const nlohmann::json record = {{"id", r.id},
-                                   {"key", r.key},
-                                   {"basis", r.basis},
-                                   {"status", r.status},
-                                   {"note", r.note},
-                                   {"file", r.file},
-                                   {"score", r.score},
-                                   {"max_score", r.maxScore},
-                                   {"seconds", r.seconds},
-                                   {"compiler", r.compiler},
-                                   {"sandbox", r.sandbox},
-                                   {"assignment", r.assignment},
-                                   {"built", r.built},
-                                   {"build", r.build},
-                                   {"not_run_count", r.notRunCount},
-                                   {"not_run_points", r.notRunPoints},
-                                   {"tests", tests}};
+    const nlohmann::json record = {
+        {"id", r.id},
+        {"key", r.key},
+        {"basis", r.basis},
+        {"status", r.status},
+        {"note", r.note},
+        {"file", r.file},
+        {"score", r.score},
+        {"max_score", r.maxScore},
+        {"seconds", r.seconds},
+        {"compiler", r.compiler},
+        {"sandbox", r.sandbox},
+        {"assignment", r.assignment},
+        {"built", r.built},
+        {"build", r.build},
+        {"not_run_count", r.notRunCount},
+        {"not_run_points", r.notRunPoints},
+        {"submitted", r.submitted},
+        {"submitted_from", r.submittedFrom},
+        {"late", {{"hours", r.late.hours}, {"percent", r.late.percent}, {"line", r.late.line}}},
+        {"tests", tests}};
     return writers::jsonText(record);
 }
 
@@ -57,6 +61,14 @@ std::optional<StudentRecord> readRecordJson(const std::string& text) {
         r.build = j.at("build");
         r.notRunCount = j.at("not_run_count");
         r.notRunPoints = j.at("not_run_points");
+        r.submitted = j.value("submitted", "");
+        r.submittedFrom = j.value("submitted_from", "");
+        if (j.contains("late")) {
+            r.late.hours = j["late"].at("hours");
+            r.late.percent = j["late"].at("percent");
+            r.late.line = j["late"].at("line");
+            if (!(r.late.percent >= 0 && r.late.percent <= 100)) return std::nullopt;
+        }
         for (const nlohmann::json& t : j.at("tests")) {
             TestResult x;
             x.name = t.at("name");

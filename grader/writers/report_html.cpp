@@ -355,6 +355,17 @@ std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, 
                                                                 "points given so far)")
             << ".</p>\n";
     }
+    // The course's late policy (course.toml): who lost points to it; gradebook.csv has each one's figures.
+    const auto late =
+        std::count_if(records.begin(), records.end(), [](const StudentRecord& r) { return r.late.percent > 0; });
+    if (std::any_of(records.begin(), records.end(), [](const StudentRecord& r) { return !r.late.line.empty(); })) {
+        out << "<p>Late work (course.toml): "
+            << (late == 0 ? std::string("nobody lost points to lateness")
+                          : plural(static_cast<std::size_t>(late), "student", "students") +
+                                " lost points to it (the scores here are after it; "
+                                "gradebook.csv has each one's raw score and penalty)")
+            << ".</p>\n";
+    }
     // The sandboxes the students' code ran in (one, unless the class was graded in parts on other machines).
     std::map<std::string, std::size_t> sandboxes;
     for (const StudentRecord& r : records) {

@@ -67,9 +67,9 @@ run_capture gs-graded "$SIMLAB" grade apple gradescope -o gs-grades --from grade
 check "Gradescope: a row per submission, ids from the SIDs, a group's joined" \
   bash -c "test $(status_of gs-graded) -eq 0 && test $(rows gs-grades/gradebook.csv) -eq 2 &&
            test '$(score_of gs-grades 101)' = '100 graded' && test '$(score_of gs-grades 201+202)' = '0 graded'"
-check "the roster names each member, with e-mail and group" \
+check "the roster names each member, with e-mail, Gradescope's created_at and group" \
   bash -c "test $(rows gs-grades/roster.csv) -eq 3 &&
-           grep -q '^Gus Team,,202,,,201+202,,gus@example.edu,,\"Fay Team, Gus Team\",' gs-grades/roster.csv"
+           grep -q '^Gus Team,,202,,,201+202,,gus@example.edu,,2026-11-21T10:00:00Z,Gradescope.s created_at,\"Fay Team, Gus Team\",' gs-grades/roster.csv"
 run_capture gs-canvas "$SIMLAB" export canvas apple --grades gs-grades --roster gs-grades/roster.csv -o gs-canvas.csv
 check "exported to Canvas with that roster, each member gets the group's grade" \
   bash -c "test $(status_of gs-canvas) -eq 0 && test '$(cell gs-canvas.csv 2 5)' = 100 &&
@@ -116,6 +116,33 @@ run_capture moodle-graded "$SIMLAB" grade apple moodle -o moodle-grades --from m
 check "Moodle: one row per student (the online text is not a second one), ids from name and number" \
   bash -c "test $(status_of moodle-graded) -eq 0 && test $(rows moodle-grades/gradebook.csv) -eq 2 &&
            test '$(score_of moodle-grades Ada-Lovelace_123456)' = '100 graded'"
+
+# Moodle's download "not in folders": one file per upload, named after the student; its time is the submission's.
+mkdir moodle-flat
+cp "$reference" "moodle-flat/Ada Lovelace_123456_assignsubmission_file_NewtonsApple.cpp"
+cp "$starter" "moodle-flat/Bob Byte_123457_assignsubmission_file_NewtonsApple.cpp"
+echo "<p>hi</p>" >"moodle-flat/Bob Byte_123457_assignsubmission_onlinetext_onlinetext.html"
+touch -d '2026-11-02 09:30:00 UTC' "moodle-flat/Ada Lovelace_123456_assignsubmission_file_NewtonsApple.cpp"
+run_capture moodle-flat "$SIMLAB" grade apple moodle-flat -o moodle-flat-grades --from moodle -j 2
+check "Moodle not in folders: the same students, ids and scores, and the file's time" \
+  bash -c "test $(status_of moodle-flat) -eq 0 && test $(rows moodle-flat-grades/gradebook.csv) -eq 2 &&
+           test '$(score_of moodle-flat-grades Ada-Lovelace_123456)' = '100 graded' &&
+           test '$(score_of moodle-flat-grades Bob-Byte_123457)' = '0 graded' &&
+           grep -q ',2026-11-02T09:30:00Z,Moodle.s file time,' moodle-flat-grades/roster.csv"
+
+# gh classroom clone's folder, "<assignment>-submissions": logins that share a start keep it, and each student's
+# time is their last commit's.
+for who in uw-alice uw-bob; do
+  repo=lab1-submissions/lab1-$who
+  mkdir -p "$repo" && cp "$reference" "$repo/NewtonsApple.cpp"
+  git -C "$repo" init -q && git -C "$repo" add NewtonsApple.cpp &&
+    GIT_COMMITTER_DATE='2026-11-03T12:00:00+01:00' git -C "$repo" -c user.name=s -c user.email=s@x commit -qm work
+done
+run_capture gh-clone "$SIMLAB" grade apple lab1-submissions -o gh-grades --from classroom -j 2
+check "Classroom: a shared login prefix is kept (the assignment's name is the folder's), the commit's time read" \
+  bash -c "test $(status_of gh-clone) -eq 0 && test '$(score_of gh-grades uw-alice)' = '100 graded' &&
+           test '$(score_of gh-grades uw-bob)' = '100 graded' &&
+           grep -q '^uw-alice,.*,2026-11-03T11:00:00Z,the last commit.s time,' gh-grades/roster.csv"
 
 # GitHub Classroom: a repository per student, the file deep inside.
 for who in ada bob; do

@@ -63,7 +63,7 @@ echo '{"score": 100' >grades/students/starter/results.json
 run_capture only "$SIMLAB" grade apple class --out grades --only reference --junit junit.xml
 check "a kept student's damaged results.json is written again from the record" \
   python3 -c 'import json, sys; sys.exit(json.load(open("grades/students/starter/results.json"))["score"] != 0)'
-check "--only grades just that student" test "$(student_lines only.out | wc -l)" -eq 1
+check "--only grades just that student, and says so" bash -c "test $(student_lines only.out | wc -l) -eq 1 && grep -q '^1 graded, 0 up to date and kept, [0-9]* not asked for (--only) and kept$' only.out"
 check "--only keeps every other row as it was" cmp -s before.csv grades/gradebook.csv
 run_capture unknown "$SIMLAB" grade apple class --out grades --only nobody
 check "--only with an unknown student is an error" grep -q "no student 'nobody'" unknown.err

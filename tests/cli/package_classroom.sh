@@ -9,6 +9,9 @@ points() { python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["scor
 
 run_capture package "$SIMLAB" package github-classroom apple -o template
 check "package github-classroom succeeds" test "$(status_of package)" -eq 0
+run_capture alias "$SIMLAB" package classroom apple -o template-by-alias
+check "package classroom is the same command, as grade --from classroom names the platform" \
+  bash -c "test $(status_of alias) -eq 0 && diff -r template template-by-alias >/dev/null"
 workflow=template/.github/workflows/classroom.yml
 check "the workflow is what Classroom and its reporter read: two runners, the points earned and the points missed" \
   validate workflow "$workflow" simlab

@@ -8,6 +8,18 @@
 # shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
+# An sbatch that refuses in two lines: simlab's error is one line, the two joined (never a literal "\n").
+mkdir -p "$work/fake-bin"
+printf '#!/bin/sh\necho "sbatch: error: Batch job submission failed:" >&2\necho "Invalid partition name specified" >&2\nexit 1\n' \
+  >"$work/fake-bin/sbatch"
+chmod +x "$work/fake-bin/sbatch"
+run_capture refused env PATH="$work/fake-bin:$PATH" "$SIMLAB" slurm grade apple "$BIN_DIR/../sample-class/apple" \
+  --out "$work/refused" --tasks 2 --submit
+check "sbatch's refusal: one line, its lines joined" \
+  bash -c "test $(status_of refused) -ne 0 && test \$(wc -l <'$work/refused.err') -eq 1 &&
+           grep -q 'sbatch refused the job: sbatch: error: Batch job submission failed:; Invalid partition name specified\$' '$work/refused.err' &&
+           ! grep -q '[\\]n' '$work/refused.err'"
+
 if [[ $(id -u) -ne 0 ]]; then echo "skipped: starting slurmd needs root"; exit 77; fi
 for tool in munged slurmctld slurmd sbatch squeue sinfo; do
   if ! command -v "$tool" >/dev/null; then

@@ -100,7 +100,9 @@ TEST_CASE("Markdown text renders as itself and cannot change the document's stru
     CHECK(markdownText("plain words, 3.5") == "plain words, 3.5");
     CHECK(markdownText("a | b") == "a \\| b");
     CHECK(markdownText("<script>alert(1)</script>") == "&lt;script&gt;alert(1)&lt;/script&gt;");
-    CHECK(markdownText("`x` & *y* _z_ [l](u)") == "\\`x\\` &amp; \\*y\\* \\_z\\_ \\[l\\](u)");
+    CHECK(markdownText("`x` & *y* _z_ [l](u)") == "\\`x\\` & \\*y\\* \\_z\\_ \\[l\\](u)");
+    CHECK(markdownText("ok && done") == "ok && done");              // read as text too: no entity where none can start
+    CHECK(markdownText("&copy; &#60;") == "&amp;copy; &amp;#60;");  // what would be a character reference is not
     CHECK(markdownText("a\\|b") == "a\\\\\\|b");  // the student's backslash cannot escape the cell's end
     CHECK(markdownText("one\ntwo") == "one\\\\ntwo");
     CHECK(markdownText("\x1b[2J") == "\\\\x1b\\[2J");

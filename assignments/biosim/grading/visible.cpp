@@ -471,7 +471,8 @@ TEST_CASE("the model has exactly the degrees of freedom claimed", "[biosim][mode
         grading::feedback("buildModel added " + std::to_string(run.addedSubsystems) + " subsystem(s): build bodies in "
                           "model.matter and forces in model.forces");
     }
-    INFO(info.summary() << "; the declaration claims " << d.claims.degreesOfFreedom << " degrees of freedom");
+    INFO(info.summary() << "; the declaration claims " << d.claims.degreesOfFreedom
+                        << (d.claims.degreesOfFreedom == 1 ? " degree" : " degrees") << " of freedom");
     CHECK(run.auxiliaryStates == 0);
     CHECK(run.addedSubsystems == 0);
     CHECK(d.claims.degreesOfFreedom > 0);

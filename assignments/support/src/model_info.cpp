@@ -65,7 +65,8 @@ std::string ModelInfo::summary() const {
         separator = ", ";
     }
     if (constraintEquations > 0) {
-        out << "; " << constraintEquations << " constraint equations";
+        out << "; " << constraintEquations
+            << (constraintEquations == 1 ? " constraint equation" : " constraint equations");
         if (independentConstraints != constraintEquations) out << " (" << independentConstraints << " independent)";
     }
     out << "; " << degreesOfFreedom() << (degreesOfFreedom() == 1 ? " degree" : " degrees") << " of freedom";

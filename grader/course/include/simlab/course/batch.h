@@ -22,12 +22,14 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "simlab/grading/grade.h"
 #include "simlab/course/manual.h"
+#include "simlab/course/policy.h"
 #include "simlab/grading/record.h"
 #include "simlab/writers/writers.h"
 
@@ -80,6 +82,11 @@ struct ClassOptions {
     /// The points given by hand (readManualSheet), read by the caller before anything changes; a shard has no use
     /// for them.
     ManualSheet manual;
+    /// The course's late policy for the assignment (policy.h), and each student's submission time as the platform
+    /// gave it (UTC text, and how it is known; empty: the platform gave none), by id; a student not in it is
+    /// timed by their file's own time.
+    LatePolicy late;
+    std::map<std::string, std::pair<std::string, std::string>> submitted;
 };
 
 /// Grade every student folder of `submissionsDir` into `outDir`. Returns the records of every student in the

@@ -3,12 +3,15 @@
 // taken in as a class folder simlab grades (a folder per student holding the file) and a roster of who is who.
 //
 //   canvas      flat files  lovelaceada_101_9001_NewtonsApple.cpp, with "late" after the name for a late one and
-//               "-N" before the extension for the Nth resubmission; the id is the name and Canvas's user id
+//               "-N" before the extension for the Nth resubmission; the id is the name and Canvas's user id; the
+//               submission time is the file's (a download's zip keeps it)
 //   gradescope  submission_metadata.yml beside submission_<id>/ folders; each submission's submitters (name, sid,
 //               email): one member, or a group whose members share its id
-//   moodle      "Full Name_123456_assignsubmission_file_/" folders (and "..._onlinetext_/", the same student);
-//               the id is the name and Moodle's participant number
-//   classroom   one git repository per student, "<assignment>-<login>/"; the file wherever the repository has it
+//   moodle      "Full Name_123456_assignsubmission_file_/" folders (and "..._onlinetext_/", the same student),
+//               or, downloaded "not in folders", files "Full Name_123456_assignsubmission_file_NewtonsApple.cpp";
+//               the id is the name and Moodle's participant number; the time is the newest file's
+//   classroom   one git repository per student, "<assignment>-<login>/"; the file wherever the repository has it;
+//               the time is the last commit's (the student's clock: Classroom's own deadline is the stronger)
 #pragma once
 
 #include <string>
@@ -25,6 +28,10 @@ struct IntakeStudent {
     std::string platformId;  ///< Moodle's participant number, the GitHub login: no id Canvas knows
     std::string email;
     bool late = false;    ///< the platform marked the submission late
+    std::string submitted;      ///< when it was handed in (UTC, "2026-10-02T23:59:00Z"); empty if unknown
+    std::string submittedFrom;  ///< how simlab knows: "Canvas's file time", "Gradescope's created_at", ...
+    std::string canvasFile;     ///< a Canvas download's name for the submission ("lovelaceada_101_9001"), for
+                                ///< files uploaded back to it (Canvas's Re-Upload Submissions)
     std::string group;    ///< the members' names, for a group submission
     std::string note;     ///< what intake saw: "no NewtonsApple.cpp in the submission", "resubmitted 2 times", ...
 };
@@ -45,7 +52,8 @@ std::vector<IntakeStudent> takeIn(const std::string& layout, const std::string& 
                                   const std::vector<std::string>& handedIn, std::size_t limitBytes);
 
 /// The roster of a download: Canvas's columns (Student, ID, SIS User ID, SIS Login ID, Section), simlab id, then
-/// Platform ID, Email, Late, Group and Note, as CSV (what `simlab export canvas --roster` reads).
+/// Platform ID, Email, Late, Submitted (with Submitted from), Group, Note and Canvas file, as CSV (what
+/// `simlab export canvas` matches Canvas's own gradebook export with, and the late policy reads the times of).
 std::string intakeRosterCsv(const std::vector<IntakeStudent>& students);
 
 }  // namespace simlab::engine

@@ -41,9 +41,23 @@ struct StudentRecord {
     /// The rubric's manual items with the points manual.csv gives them (not in record.json: the sheet is the
     /// instructor's); pending where the sheet gives none.
     std::vector<ManualGrade> manual;
+    /// When the file was handed in (UTC, "2026-10-02T23:59:00Z") and how simlab knows it ("Canvas's download",
+    /// "the file's time"); empty when it is not known.
+    std::string submitted;
+    std::string submittedFrom;
+    /// The course's late policy applied to it (course/policy.h), made again from the policy at every grading run.
+    struct Lateness {
+        double hours = 0;    ///< past the student's due date (after grace)
+        double percent = 0;  ///< of the raw score taken
+        std::string line;    ///< "handed in 26 h late (1 grace day): 20 % taken"; empty without a policy
+    } late;
 
-    /// The tests' points and the manual points given so far.
+    /// The tests' points and the manual points given so far, less the late penalty: the score.
     double total() const;
+    /// The same before the late penalty.
+    double rawTotal() const;
+    /// The points the late penalty takes.
+    double latePoints() const;
     /// Every point there is: the tests' and the manual items'.
     double maxTotal() const;
     /// The points of the manual items still pending.
@@ -62,6 +76,7 @@ struct ClassResult {
     std::vector<Skipped> skipped;
     int graderErrors = 0;                ///< students simlab itself could not grade (recorded; retried next run)
     int reused = 0;                      ///< records kept as they were: up to date with the files and the grader
+    int graded = 0;                      ///< students graded by this run (with --only, those asked for)
     std::vector<std::string> warnings;   ///< one line each, for the instructor (a manual.csv row that counts for nothing)
 };
 
