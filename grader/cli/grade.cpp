@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -233,6 +234,16 @@ void reportClass(const GradeCommandOptions& o, bool sharded, const std::string& 
               << (o.only.empty() || others <= 0 ? ""
                                                 : ", " + std::to_string(others) + " not asked for (--only) and kept")
               << "\n";
+    // Points given by hand to a file the student has since replaced: kept and counted, but to be confirmed.
+    int earlier = 0;
+    for (const StudentRecord& r : records) {
+        earlier += static_cast<int>(
+            std::count_if(r.manual.begin(), r.manual.end(), [](const ManualGrade& m) { return m.earlierFile; }));
+    }
+    if (earlier > 0 && !sharded) {
+        std::cout << earlier << (earlier == 1 ? " manual grade was" : " manual grades were")
+                  << " given to an earlier file: see " << printable(out) << "/report.html\n";
+    }
     if (sharded) {
         std::cout << "Wrote shard " << o.shard << "'s students into " << printable(out)
                   << "/students/<id>; once every shard has finished, the same command without --shard writes the "

@@ -254,7 +254,7 @@ void writeClassSheets(const std::string& outDir, const ManualSheet& sheet, const
 
 // A student to grade now, and why (history.jsonl).
 struct Pending {
-    std::string id, key;
+    std::string id, key, content;
     Gathered gathered;
     std::string why;
 };
@@ -265,6 +265,9 @@ struct ClassPlan {
     std::vector<std::string> rescored;             // kept records whose scores the rubric's points moved
     std::vector<Pending> pending;
     int reused = 0;
+    // By id: what the grade an instructor saw was made from (manual.csv's file column), the grade kept from before
+    // this run, else the one made now.
+    std::map<std::string, std::string> graded;
 };
 
 // The key of a student's grade: the basis and the bytes that will be graded, read once, with care.
@@ -282,6 +285,11 @@ std::string submissionKey(const Hash& base, const Gathered& gathered, const Rubr
     return key.hex();
 }
 
+// What is graded, the grader and the rubric aside: which of a student's files the points given by hand were given to.
+std::string contentOf(const Gathered& gathered, const Rubric& rubric) {
+    return submissionKey(Hash(), gathered, rubric).substr(0, 12);
+}
+
 ClassPlan planClass(const std::vector<std::string>& ids, const std::string& submissionsDir, const std::string& outDir,
                     const Rubric& rubric, const Limits& limits, const Hash& base, const ClassOptions& options) {
     ClassPlan plan;
@@ -290,6 +298,7 @@ ClassPlan planClass(const std::vector<std::string>& ids, const std::string& subm
         const std::string recordPath = outDir + "/students/" + id + "/record.json";
         std::optional<StudentRecord> kept;
         if (fs::exists(recordPath)) kept = readRecordJson(readFile(recordPath));
+        const std::string before = kept ? kept->content : "";
         // A record of tests the rubric does not hold was not written for this rubric: damaged, so graded again.
         if (kept && std::any_of(kept->tests.begin(), kept->tests.end(),
                                 [&](const TestResult& t) { return !rubric.find(t.name); })) {
@@ -298,12 +307,15 @@ ClassPlan planClass(const std::vector<std::string>& ids, const std::string& subm
         if (kept) kept->id = id;
         if (kept && !wanted) {
             plan.records[id] = *kept;
+            plan.graded[id] = before;
             continue;
         }
         if (!wanted) continue;
         Gathered gathered = gatherSubmission(submissionsDir + "/" + id, rubric, limits, false, false);
-        const std::string key = submissionKey(base, gathered, rubric);
+        const std::string key = submissionKey(base, gathered, rubric), content = contentOf(gathered, rubric);
+        plan.graded[id] = before.empty() ? content : before;
         if (kept && options.only.empty() && kept->key == key) {
+            kept->content = content;
             if (rescore(*kept, rubric)) plan.rescored.push_back(id);
             plan.records[id] = *kept;
             ++plan.reused;
@@ -313,7 +325,7 @@ ClassPlan planClass(const std::vector<std::string>& ids, const std::string& subm
                                     : kept->basis != base.hex()    ? "the grader, the rubric's tests or the limits changed"
                                     : !options.only.empty()        ? "asked for (--only)"
                                                                    : "the submission changed";
-            plan.pending.push_back({id, key, std::move(gathered), why});
+            plan.pending.push_back({id, key, content, std::move(gathered), why});
         }
     }
     return plan;
@@ -440,7 +452,9 @@ private:
                 report =
                     notGradedReport(c_.assignment, c_.rubric, p.gathered.status, p.gathered.note, grade.includeHidden);
             }
-            finish(classRecordOf(p.id, p.key, report, p.gathered.found.shown), &report, p.why);
+            StudentRecord graded = classRecordOf(p.id, p.key, report, p.gathered.found.shown);
+            graded.content = p.content;
+            finish(graded, &report, p.why);
         } catch (const Interrupted&) {
             stop_ = true;  // this student has no outcome: the next run grades them
         } catch (const SetupError&) {
@@ -453,6 +467,7 @@ private:
             StudentRecord failed;
             failed.id = p.id;
             failed.key = "retry";
+            failed.content = p.content;
             failed.status = "grader error";
             failed.note = e.what();
             failed.maxScore = c_.rubric.totalPoints();
@@ -530,11 +545,12 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
                                 sharded ? std::to_string(options.shard) + "-of-" + std::to_string(options.shards) : "");
     const Limits limits = options.grade.limits.value_or(rubric.limits);
     const Hash base = gradingBasis(builder, assignment, rubric, limits, options.grade.includeHidden);
-    // What a person graded (manual.csv, read by the caller); a shard leaves the class's own files to the whole run.
-    const ManualSheet sheet = sharded ? ManualSheet{} : options.manual;
-    if (!sharded) writeClassSheets(outDir, sheet, ids, rubric, result.warnings);
-
     ClassPlan plan = planClass(ids, submissionsDir, outDir, rubric, limits, base, options);
+    // What a person graded (manual.csv, read by the caller), each row with points told which file they were given
+    // to; a shard leaves the class's own files to the whole run.
+    ManualSheet sheet = sharded ? ManualSheet{} : options.manual;
+    stampManual(sheet, plan.graded);
+    if (!sharded) writeClassSheets(outDir, sheet, ids, rubric, result.warnings);
     refreshKeptRecords(assignment, rubric, outDir, sheet, submissionsDir, options, plan);
     const int students = static_cast<int>(options.only.empty() ? ids.size() : options.only.size());
     ClassGrading grading(

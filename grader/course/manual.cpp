@@ -1,5 +1,6 @@
 #include "simlab/course/manual.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -26,6 +27,15 @@ bool isDecimal(const std::string& text) {
     return digits > 0 && points <= 1 && text.front() != '.' && text.back() != '.';
 }
 
+// A file cell as simlab writes it: hexadecimal digits (a prefix of a SHA-256).
+bool isFileHash(const std::string& text) {
+    return !text.empty() && text.size() <= 64 && std::all_of(text.begin(), text.end(), [](char c) {
+        return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+    });
+}
+
+const std::vector<std::string> kColumns = {"student", "item", "points", "comment", "file"};
+
 }  // namespace
 
 std::string manualKey(const std::string& cell) { return csvCellValue(trimmed(printable(cell))); }
@@ -42,9 +52,10 @@ ManualSheet readManualCsv(const std::string& text, const std::string& name, cons
     if (rows.empty()) return sheet;
     std::vector<std::string> header;
     for (const std::string& cell : rows[0]) header.push_back(trimmed(cell));
-    const bool withComment = header == std::vector<std::string>{"student", "item", "points", "comment"};
-    if (!withComment && header != std::vector<std::string>{"student", "item", "points"}) {
-        throw UsageError(where + ": the first line must be student,item,points,comment");
+    // An older sheet has no file column, or no comment either.
+    if (header.size() < 3 || header.size() > kColumns.size() ||
+        !std::equal(header.begin(), header.end(), kColumns.begin())) {
+        throw UsageError(where + ": the first line must be student,item,points,comment,file");
     }
     for (std::size_t r = 1; r < rows.size(); ++r) {
         const std::vector<std::string>& row = rows[r];
@@ -53,7 +64,7 @@ ManualSheet readManualCsv(const std::string& text, const std::string& name, cons
         for (const std::string& cell : row) blank = blank && trimmed(cell).empty();
         if (blank) continue;
         if (row.size() < 3 || row.size() > header.size()) {
-            throw UsageError(line + " has " + std::to_string(row.size()) + " cells: student,item,points,comment");
+            throw UsageError(line + " has " + std::to_string(row.size()) + " cells: student,item,points,comment,file");
         }
         for (const std::string& cell : row) {
             if (!isValidUtf8(cell)) throw UsageError(line + " is not UTF-8 text (save the sheet as CSV UTF-8)");
@@ -76,6 +87,11 @@ ManualSheet readManualCsv(const std::string& text, const std::string& name, cons
             entry.points = value;
         }
         if (row.size() > 3) entry.comment = csvCellValue(row[3]);
+        if (row.size() > 4) entry.file = trimmed(row[4]);
+        if (!entry.file.empty() && !isFileHash(entry.file)) {
+            throw UsageError(line + ": the file '" + printable(entry.file) +
+                             "' is not one simlab wrote (clear the cell: simlab fills it in)");
+        }
         const auto key = std::make_pair(student, item);
         if (sheet.entries.count(key)) {
             throw UsageError(line + ": " + printable(student) + " and '" + printable(item) + "' are there twice");
@@ -99,11 +115,11 @@ std::string manualCsv(ManualSheet sheet, const std::vector<std::string>& student
             if (sheet.entries.emplace(key, ManualEntry{}).second) sheet.order.push_back(key);
         }
     }
-    std::string out = "student,item,points,comment\n";
+    std::string out = "student,item,points,comment,file\n";
     for (const auto& key : sheet.order) {
         const ManualEntry& e = sheet.entries.at(key);
         out += csvCell(key.first) + "," + csvCell(key.second) + "," + (e.points ? points(*e.points) : "") + "," +
-               csvCell(e.comment) + "\n";
+               csvCell(e.comment) + "," + e.file + "\n";
     }
     return out;
 }
@@ -120,15 +136,29 @@ std::vector<std::string> strayManualRows(const ManualSheet& sheet, const std::ve
     return stray;
 }
 
+void stampManual(ManualSheet& sheet, const std::map<std::string, std::string>& graded) {
+    std::map<std::string, std::string> byKey;
+    for (const auto& [id, file] : graded) {
+        if (!file.empty()) byKey[manualKey(id)] = file;
+    }
+    for (auto& [key, entry] : sheet.entries) {
+        const auto file = byKey.find(key.first);
+        if (entry.points && entry.file.empty() && file != byKey.end()) entry.file = file->second;
+    }
+}
+
 // The rubric's manual items with the points the sheet gives this student.
 void applyManual(StudentRecord& r, const ManualSheet& sheet, const Rubric& rubric) {
     r.manual.clear();
     for (const ManualItem& m : rubric.manual) {
-        ManualGrade g{m.name, m.points, std::nullopt, ""};
+        ManualGrade g{m.name, m.points, std::nullopt, "", false};
         const auto found = sheet.entries.find({manualKey(r.id), manualKey(m.name)});
         if (found != sheet.entries.end()) {
-            g.points = found->second.points;
-            g.comment = found->second.comment;
+            const ManualEntry& e = found->second;
+            g.points = e.points;
+            g.comment = e.comment;
+            // A record of an older simlab does not say what it graded: nothing to compare.
+            g.earlierFile = e.points && !e.file.empty() && !r.content.empty() && e.file != r.content;
         }
         r.manual.push_back(g);
     }

@@ -54,17 +54,33 @@ std::string notRunLine(int count, double notRunPoints) {
            " points " + (count == 1 ? "is" : "are") + " left for instructor grading.";
 }
 
-/// "Graded by hand, pending: 25 points (the schematic is clear, 10; ...)"; empty without pending items.
+/// "Graded by hand: 12.5/15 points (the schematic is clear, 7.5/10 (the axis is missing); ...)." for the items
+/// given, then "Graded by hand, pending: 10 points (the write-up is sound, 10)." for those still pending; empty
+/// without manual items.
 std::string manualLine(const std::vector<ManualGrade>& manual) {
-    double total = 0;
-    std::string items;
+    double given = 0, givenMax = 0, pendingTotal = 0;
+    std::string givenItems, pendingItems;
     for (const ManualGrade& m : manual) {
-        if (m.points) continue;
-        total += m.maxPoints;
-        items += (items.empty() ? "" : "; ") + m.name + ", " + points(m.maxPoints);
+        if (m.points) {
+            given += *m.points;
+            givenMax += m.maxPoints;
+            givenItems += (givenItems.empty() ? "" : "; ") + m.name + ", " + points(*m.points) + "/" +
+                          points(m.maxPoints) + (m.comment.empty() ? "" : " (" + printable(m.comment) + ")") +
+                          (m.earlierFile ? ", given to an earlier file" : "");
+        } else {
+            pendingTotal += m.maxPoints;
+            pendingItems += (pendingItems.empty() ? "" : "; ") + m.name + ", " + points(m.maxPoints);
+        }
     }
-    if (items.empty()) return "";
-    return "Graded by hand, pending: " + points(total) + " points (" + items + ").";
+    std::string line;
+    if (!givenItems.empty()) {
+        line = "Graded by hand: " + points(given) + "/" + points(givenMax) + " points (" + givenItems + ").";
+    }
+    if (!pendingItems.empty()) {
+        line += (line.empty() ? "" : "\n") + std::string("Graded by hand, pending: ") + points(pendingTotal) +
+                " points (" + pendingItems + ").";
+    }
+    return line;
 }
 
 std::vector<ManualGrade> pending(const std::vector<ManualItem>& items) {
@@ -179,8 +195,11 @@ nlohmann::json toGradescope(const StudentRecord& r) {
     nlohmann::json pendingItems = nlohmann::json::array(), given = nlohmann::json::array();
     for (const ManualGrade& m : r.manual) {
         if (m.points) {
-            given.push_back(
-                {{"name", m.name}, {"score", *m.points}, {"max_score", m.maxPoints}, {"comment", m.comment}});
+            given.push_back({{"name", m.name},
+                             {"score", *m.points},
+                             {"max_score", m.maxPoints},
+                             {"comment", m.comment},
+                             {"earlier_file", m.earlierFile}});
         } else {
             pendingItems.push_back({{"name", m.name}, {"max_score", m.maxPoints}, {"status", "pending"}});
         }

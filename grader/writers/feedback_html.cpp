@@ -109,6 +109,7 @@ std::string feedbackHtml(const Assignment& assignment, const StudentRecord& reco
             out << "<li>" << htmlText(m.name) << ": "
                 << (m.points ? points(*m.points) + "/" + points(m.maxPoints) : "pending (" + points(m.maxPoints) + ")");
             if (!m.comment.empty()) out << " <span class=\"muted\">" << htmlText(m.comment) << "</span>";
+            if (m.earlierFile) out << " <span class=\"badge\">" << writers::kEarlierFile << "</span>";
             out << "</li>\n";
         }
         out << "</ul>\n";

@@ -56,6 +56,7 @@ std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& 
             out << "- " << markdownText(m.name) << ": "
                 << (m.points ? points(*m.points) + "/" + points(m.maxPoints) : "pending (" + points(m.maxPoints) + ")");
             if (!m.comment.empty()) out << " (" << markdownText(m.comment) << ")";
+            if (m.earlierFile) out << " (" << writers::kEarlierFile << ")";
             out << "\n";
         }
         out << "\n";

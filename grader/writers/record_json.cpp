@@ -23,6 +23,7 @@ std::string recordJson(const StudentRecord& r) {
         {"status", r.status},
         {"note", r.note},
         {"file", r.file},
+        {"content", r.content},
         {"score", r.score},
         {"max_score", r.maxScore},
         {"seconds", r.seconds},
@@ -50,6 +51,7 @@ std::optional<StudentRecord> readRecordJson(const std::string& text) {
         r.status = j.at("status");
         r.note = j.at("note");
         r.file = j.at("file");
+        r.content = j.value("content", "");  // none from an older simlab
         r.score = j.at("score");
         r.maxScore = j.at("max_score");
         r.seconds = j.at("seconds");

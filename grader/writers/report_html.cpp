@@ -312,6 +312,25 @@ std::vector<const StudentRecord*> slowest(const std::vector<StudentRecord>& reco
     return rows;
 }
 
+// The manual points given to an earlier file than the one graded (manual.h): kept and counted, to confirm.
+std::string earlierFileSection(const std::vector<StudentRecord>& records) {
+    std::ostringstream rows;
+    for (const StudentRecord& r : records) {
+        for (const ManualGrade& m : r.manual) {
+            if (!m.earlierFile || !m.points) continue;
+            rows << "<tr><td class=\"name\">" << studentLink(r.id) << "</td><td class=\"name\">" << htmlText(m.name)
+                 << "</td><td class=\"num\">" << points(*m.points) << "/" << points(m.maxPoints) << "</td></tr>\n";
+        }
+    }
+    if (rows.str().empty()) return "";
+    return "<section id=\"earlier-file\">\n<h2>Manual points given to an earlier file</h2>\n<p class=\"muted\">The "
+           "student's file changed since these points were given in manual.csv. They still count; to confirm them "
+           "for the file graded now, clear the row's file cell and run simlab grade again."
+           "</p>\n<table>\n<thead><tr><th>student</th><th>item</th><th class=\"num\">points</th></tr></thead>\n"
+           "<tbody>\n" +
+           rows.str() + "</tbody>\n</table>\n</section>\n";
+}
+
 }  // namespace
 
 std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, const ClassResult& result) {
@@ -375,9 +394,10 @@ std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, 
         out << "<p class=\"muted\">Sandbox" << (sandboxes.size() > 1 ? " of " + plural(count, "student", "students") : "")
             << ": " << htmlText(sandbox) << ".</p>\n";
     }
+    const std::string earlier = earlierFileSection(records);
     out << "<nav><a href=\"#scores\">Scores</a><a href=\"#tests\">Tests</a><a href=\"#attention\">Needs a look</a>"
-        << "<a href=\"#slowest\">Slowest</a>" << (result.skipped.empty() ? "" : "<a href=\"#skipped\">Skipped</a>")
-        << "</nav>\n</header>\n";
+        << (earlier.empty() ? "" : "<a href=\"#earlier-file\">Earlier files</a>") << "<a href=\"#slowest\">Slowest</a>"
+        << (result.skipped.empty() ? "" : "<a href=\"#skipped\">Skipped</a>") << "</nav>\n</header>\n";
 
     out << "<section id=\"scores\">\n<h2>Scores</h2>\n";
     if (records.empty()) out << "<p>No students.</p>\n";
@@ -410,7 +430,7 @@ std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, 
         out << "<h3>Lowest scores</h3>\n<p class=\"muted\">Graded, below full marks: the " << kListed
             << " lowest at most.</p>\n" << studentsTable(low, false);
     }
-    out << "</section>\n";
+    out << "</section>\n" << earlier;
 
     out << "<section id=\"slowest\">\n<h2>Slowest</h2>\n";
     const std::vector<const StudentRecord*> slow = slowest(records);

@@ -17,7 +17,7 @@ mkdir -p class/ada class/bob
 cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" class/ada/
 cp "$SOURCE_DIR/starter/apple/NewtonsApple.cpp" class/bob/
 "$SIMLAB" grade apple class -o grades -j 2 --rubric rubric.toml >first.out 2>&1
-printf 'student,item,points,comment\nada,%s,,\nbob,%s,,\n' "$item" "$item" >expected-sheet.csv
+printf 'student,item,points,comment,file\nada,%s,,,\nbob,%s,,,\n' "$item" "$item" >expected-sheet.csv
 check "graded; manual.csv has a pending row per student and item" cmp -s expected-sheet.csv grades/manual.csv
 check "the gradebook says pending, and counts every point there is (120)" \
   bash -c "test '$(cell grades/gradebook.csv 1 2)' = 120 && test '$(cell grades/gradebook.csv 1 17)' = pending"

@@ -312,11 +312,11 @@ TEST_CASE("manual.csv: rows for every student and item, what a person typed kept
     rubric.manual = {{"the schematic", 10, ""}, {"=the paragraph", 5, ""}};
     // Written for a class: a row per student and item, pending.
     const std::string fresh = manualCsv({}, {"ada", "bob"}, rubric);
-    CHECK(fresh == "student,item,points,comment\n"
-                   "ada,the schematic,,\n"
-                   "ada,\"'=the paragraph\",,\n"
-                   "bob,the schematic,,\n"
-                   "bob,\"'=the paragraph\",,\n");
+    CHECK(fresh == "student,item,points,comment,file\n"
+                   "ada,the schematic,,,\n"
+                   "ada,\"'=the paragraph\",,,\n"
+                   "bob,the schematic,,,\n"
+                   "bob,\"'=the paragraph\",,,\n");
     // Filled in, read back; a new student gets rows, a student who left keeps theirs.
     const std::string filled = "student,item,points,comment\n"
                                "ada,the schematic,8,\"no axis, no joint\"\n"
@@ -329,9 +329,9 @@ TEST_CASE("manual.csv: rows for every student and item, what a person typed kept
     CHECK(*sheet.entries.at({"ada", "=the paragraph"}).points == 5);
     CHECK_FALSE(sheet.entries.at({"bob", "the schematic"}).points);
     const std::string merged = manualCsv(sheet, {"ada", "bob", "cy"}, rubric);
-    CHECK_THAT(merged, Catch::Contains("ada,the schematic,8,\"no axis, no joint\"\n"));
-    CHECK_THAT(merged, Catch::Contains("gone,the schematic,3,kept\n"));
-    CHECK_THAT(merged, Catch::Contains("cy,the schematic,,\ncy,\"'=the paragraph\",,\n"));
+    CHECK_THAT(merged, Catch::Contains("ada,the schematic,8,\"no axis, no joint\",\n"));
+    CHECK_THAT(merged, Catch::Contains("gone,the schematic,3,kept,\n"));
+    CHECK_THAT(merged, Catch::Contains("cy,the schematic,,,\ncy,\"'=the paragraph\",,,\n"));
     // A student's grade from the sheet.
     StudentRecord ada;
     ada.id = "ada", ada.score = 50, ada.maxScore = 75;
@@ -353,7 +353,10 @@ TEST_CASE("manual.csv: rows for every student and item, what a person typed kept
         }
         return std::string("(no error)");
     };
-    CHECK_THAT(error("name,item,points\n"), Catch::Contains("the first line must be student,item,points,comment"));
+    CHECK_THAT(error("name,item,points\n"), Catch::Contains("the first line must be student,item,points,comment,file"));
+    CHECK_THAT(error("student,item,points,file\n"), Catch::Contains("the first line must be"));
+    CHECK_THAT(error("student,item,points,comment,file\nada,the schematic,5,,my-guess\n"),
+               Catch::Contains("row 2: the file 'my-guess' is not one simlab wrote"));
     CHECK_THAT(error("student,item,points\nada,the schematic,eight\n"), Catch::Contains("row 2: the points 'eight' are not a decimal number"));
     CHECK_THAT(error("student,item,points\nada,the schematic,11\n"), Catch::Contains("worth 0 to 10"));
     CHECK_THAT(error("student,item,points\nada,the schematic,-1\n"), Catch::Contains("not a decimal number"));
@@ -374,6 +377,40 @@ TEST_CASE("manual.csv: rows for every student and item, what a person typed kept
     CHECK(manualCsv(back, {"bob ", "'=x"}, rubric).size() == written.size() + 1);  // the 4, and no second row
     CHECK(strayManualRows(sheet, {"ada", "bob", "cy"}, rubric) == std::vector<std::string>{"gone / the schematic"});
     CHECK(error("") == "(no error)");
+}
+
+TEST_CASE("manual.csv: points are tied to the file they were given to, and flagged when it changes", "[platforms]") {
+    simlab::Rubric rubric;
+    rubric.manual = {{"the schematic", 10, ""}, {"the paragraph", 5, ""}};
+    ManualSheet sheet = readManualCsv("student,item,points,comment\n"
+                                      "ada,the schematic,8,\n"
+                                      "ada,the paragraph,,\n"
+                                      "bob,the schematic,6,\n",
+                                      "manual.csv", rubric);
+    // Each row with points gets its student's file; a pending row, or a student with none known, gets none.
+    stampManual(sheet, {{"ada", "aaaa11112222"}, {"bob", ""}});
+    CHECK(sheet.entries.at({"ada", "the schematic"}).file == "aaaa11112222");
+    CHECK(sheet.entries.at({"ada", "the paragraph"}).file.empty());
+    CHECK(sheet.entries.at({"bob", "the schematic"}).file.empty());
+    // A cell already filled in is kept.
+    stampManual(sheet, {{"ada", "bbbb33334444"}});
+    CHECK(sheet.entries.at({"ada", "the schematic"}).file == "aaaa11112222");
+    const std::string written = manualCsv(sheet, {"ada", "bob"}, rubric);
+    CHECK_THAT(written, Catch::Contains("ada,the schematic,8,,aaaa11112222\n"));
+    CHECK(readManualCsv(written, "manual.csv", rubric).entries.at({"ada", "the schematic"}).file == "aaaa11112222");
+
+    StudentRecord same, changed, older;
+    same.id = changed.id = older.id = "ada";
+    same.content = "aaaa11112222";
+    changed.content = "bbbb33334444";
+    applyManual(same, sheet, rubric);
+    applyManual(changed, sheet, rubric);
+    applyManual(older, sheet, rubric);  // a record that does not say what it graded
+    CHECK_FALSE(same.manual[0].earlierFile);
+    CHECK(changed.manual[0].earlierFile);
+    CHECK_FALSE(changed.manual[1].earlierFile);  // pending: nothing was given
+    CHECK_FALSE(older.manual[0].earlierFile);
+    CHECK(changed.total() == same.total());  // kept and counted
 }
 
 TEST_CASE("Gradescope: every submission keeps a folder of its own, whatever SIDs the students typed", "[platforms]") {

@@ -45,6 +45,7 @@ TEST_CASE("results.json from a record says the points given by hand and only the
     CHECK(doc["execution_time"] == 3);
     CHECK_THAT(doc["output"].get<std::string>(),
                Catch::Contains("compiled in 1.2 s, linked in 0.5 s\nsandbox: bubblewrap\n"
+                               "Graded by hand: 7/10 points (the schematic is clear, 7/10 (label the knee)).\n"
                                "Graded by hand, pending: 5 points (the paragraph describes the system, 5)."));
     const nlohmann::json& extra = doc["extra_data"];
     CHECK(extra["assignment"] == "apple");
@@ -56,6 +57,22 @@ TEST_CASE("results.json from a record says the points given by hand and only the
     CHECK(extra["total_with_manual"] == 27);
     CHECK(extra["max_with_manual"] == 35);
     CHECK(doc["tests"][0]["extra_data"]["figure"] == 14.8);
+}
+
+TEST_CASE("results.json with every item given says none pending, and flags points given to an earlier file",
+          "[report]") {
+    engine::StudentRecord r = engine::recordOf(classReport());
+    r.manual[0].points = 7.5;
+    r.manual[1].points = 5;
+    r.manual[1].earlierFile = true;
+    const nlohmann::json doc = nlohmann::json::parse(engine::resultsJson(r));
+    const std::string output = doc["output"];
+    CHECK_THAT(output, Catch::Contains("Graded by hand: 12.5/15 points (the schematic is clear, 7.5/10; the paragraph "
+                                       "describes the system, 5/5, given to an earlier file)."));
+    CHECK_THAT(output, !Catch::Contains("pending"));
+    CHECK(doc["extra_data"]["manual_graded"][0]["earlier_file"] == false);
+    CHECK(doc["extra_data"]["manual_graded"][1]["earlier_file"] == true);
+    CHECK(doc["extra_data"]["total_with_manual"] == 32.5);  // counted all the same
 }
 
 TEST_CASE("results.json from a re-scored record has its new points", "[report]") {
@@ -74,6 +91,7 @@ TEST_CASE("record.json keeps what results.json shows, and an older record is rea
     r.key = "k";
     r.notRunCount = 2;
     r.notRunPoints = 15;
+    r.content = "0123456789ab";
     const std::string text = engine::recordJson(r);
     const std::optional<engine::StudentRecord> back = engine::readRecordJson(text);
     REQUIRE(back);
@@ -82,6 +100,7 @@ TEST_CASE("record.json keeps what results.json shows, and an older record is rea
     CHECK(back->build == r.build);
     CHECK(back->notRunCount == 2);
     CHECK(back->notRunPoints == 15);
+    CHECK(back->content == "0123456789ab");
     nlohmann::json older = nlohmann::json::parse(text);
     older.erase("build");
     CHECK_FALSE(engine::readRecordJson(older.dump()));

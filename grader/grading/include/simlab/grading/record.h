@@ -16,6 +16,7 @@ struct ManualGrade {
     double maxPoints = 0;
     std::optional<double> points;  ///< empty: pending
     std::string comment;
+    bool earlierFile = false;  ///< given to an earlier file of the student's than the one graded now (manual.h)
 };
 
 /// A student's grade as kept in record.json and shown in the gradebook.
@@ -27,6 +28,7 @@ struct StudentRecord {
                          ///< forbidden code, did not link, grader error
     std::string note;
     std::string file;    ///< the file graded, relative to the student's folder
+    std::string content;  ///< a short hash of what was graded (the files' bytes): manual.csv's file column
     double score = 0;
     double maxScore = 0;
     double seconds = 0;
