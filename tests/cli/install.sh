@@ -58,6 +58,12 @@ if [[ $(id -u) -eq 0 ]] && command -v setpriv >/dev/null; then
       { grep -q '^Score: ' other.out || test \$(grep -c '^simlab: error: ' other.err) -eq 1; }"
   check "  which, where the judges are closed to them, says whose they are and what to do" \
     bash -c "grep '^Score: ' other.out || grep -q \"apple's judge .* is for $(id -un) alone to read: .*check and grade as $(id -un)\" other.err"
+  mkdir -p other/class/ada && cp NewtonsApple.cpp other/class/ada/ && chown -R 65534:65534 other
+  run_capture other-grade env HOME="$work/other" XDG_CACHE_HOME="$work/other/cache" \
+    setpriv --reuid=65534 --regid=65534 --clear-groups moved/bin/simlab grade apple other/class -o other/grades
+  check "and so does simlab grade: a class graded, or one line saying why" \
+    bash -c "test $(status_of other-grade) -ne 134 && ! grep -q 'terminate called' other-grade.err &&
+      { grep -q '^1 graded' other-grade.out || test \$(grep -c '^simlab: error: ' other-grade.err) -eq 1; }"
 fi
 
 # invariants LAYOUT MANIFEST: the isolation's invariants graded by that installation, with bubblewrap and without,
