@@ -1,4 +1,4 @@
-// simlab similarity: the pairs of a class's submissions far more alike than the class, on a page side by side.
+// simlab similarity: the pairs of a class's submissions that share most of their code, on a page side by side.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -26,6 +26,7 @@ struct SimilarityOptions {
     std::string assignment;
     std::string submissions;
     std::string out;
+    double floor = engine::kSimilarityFloor;
 };
 
 void runSimilarity(const SimilarityOptions& o) {
@@ -54,18 +55,22 @@ void runSimilarity(const SimilarityOptions& o) {
                          std::to_string(files.size()));
     }
     const std::string starter = fs::exists(assignment.starter) ? readFile(assignment.starter) : "";
-    const SimilarityReport report = compareSubmissions(files, starter);
+    const SimilarityReport report = compareSubmissions(files, starter, o.floor);
     const std::string out = o.out.empty() ? "grades/" + assignment.id : o.out;
     fs::create_directories(out);
     writeFileAtomically(out + "/similarity.html", similarityHtml(assignment.title, report, files, starter));
-    std::printf("Compared %zu files in pairs, the starter's lines removed: the median pair shares %.0f %% (spread "
-                "%.0f %%); listed at %.0f %% or more:\n", report.ids.size(), report.median, report.spread,
-                report.threshold);
-    for (const SimilarPair& p : report.flagged) {
-        std::printf("  %5.0f %%  %s  %s\n", p.percent, printable(p.a).c_str(), printable(p.b).c_str());
+    std::printf(
+        "Compared %zu files in pairs, the starter's lines removed: the median pair shares %.0f %% (spread "
+        "%.0f %%); flagged at %.0f %% or more (the floor) or at %.0f %% or more (the class):\n",
+        report.ids.size(), report.median, report.spread, report.floor, report.threshold);
+    for (std::size_t i = 0; i < report.flagged.size(); ++i) {
+        const SimilarPair& p = report.flagged[i];
+        std::printf("  %5.0f %%  %-12s  %s  %s  (similarity.html#pair%zu)\n", p.percent, flaggedBy(p).c_str(),
+                    printable(p.a).c_str(), printable(p.b).c_str(), i);
     }
     if (report.flagged.empty()) std::printf("  no pair\n");
-    std::printf("Wrote %s/similarity.html (each listed pair side by side)\n", printable(out).c_str());
+    std::printf("Wrote %s/similarity.html (each flagged pair side by side, its shared runs marked)\n",
+                printable(out).c_str());
 }
 
 }  // namespace
@@ -73,16 +78,20 @@ void runSimilarity(const SimilarityOptions& o) {
 void addSimilarity(CLI::App& app) {
     auto options = std::make_shared<SimilarityOptions>();
     CLI::App* similarity = app.add_subcommand(
-        "similarity", "Find the pairs of a class's submissions far more alike than the class: every pair compared by "
-                      "sim_c++ (Debian's similarity-tester) once the starter's lines are removed; a pair is listed "
-                      "when one file holds at least 50 % of the other, and more than the class's median pair by three "
-                      "times the class's spread. "
-                      "Writes similarity.html with each listed pair side by side. A lead for a person to read, not "
-                      "a verdict.");
+        "similarity",
+        "Find the pairs of a class's submissions that share most of their code: every pair compared by sim_c++ "
+        "(Debian's similarity-tester) once the starter's lines are removed; a pair is flagged when one file holds "
+        "at least --floor of the other, or at least 50 % and more than the class's median pair by three times the "
+        "class's spread. Writes similarity.html with each flagged pair side by side, its shared runs marked. A lead "
+        "for a person to read, not a verdict.");
     similarity->add_option("assignment", options->assignment, "which assignment")->required();
     similarity->add_option("submissions", options->submissions,
                            "folder of student folders, as simlab grade reads it (default: the bundled sample class)");
     similarity->add_option("--out,-o", options->out, "where similarity.html goes (default: grades/<assignment>)");
+    similarity
+        ->add_option("--floor", options->floor,
+                     "flag every pair at or above this percent, however alike the class is (default: 90)")
+        ->check(CLI::Range(1.0, 100.0));
     similarity->callback([options] { runSimilarity(*options); });
 }
 

@@ -225,6 +225,29 @@ TEST_CASE("Similarity: the starter's lines removed; flagged above the class by t
     CHECK(similarityThreshold(88, 10) == 100);  // a class made from one file: its identical copies still show
 }
 
+TEST_CASE("Similarity: sim_c++'s runs read by file, the lower first; the rule that flagged a pair named",
+          "[platforms]") {
+    const std::string output =
+        "File 0.cpp: 490 tokens, 81 lines\n\n"
+        "2.cpp: line 44-81                      |0.cpp: line 43-80                 [248]\n\n"
+        "0.cpp: line 14-43                      |2.cpp: line 14-42                 [237]\n"
+        "0.cpp: line 1-2 |0.cpp: line 5-6 [30]\n";
+    const auto runs = parseSimRuns(output);
+    REQUIRE(runs.size() == 1);
+    const std::vector<SharedRun>& r = runs.at({0, 2});
+    REQUIRE(r.size() == 2);
+    CHECK((r[0].aFirst == 43 && r[0].aLast == 80 && r[0].bFirst == 44 && r[0].bLast == 81 && r[0].tokens == 248));
+    CHECK((r[1].aFirst == 14 && r[1].aLast == 43 && r[1].bFirst == 14 && r[1].bLast == 42 && r[1].tokens == 237));
+    SimilarPair p;
+    CHECK(flaggedBy(p).empty());
+    p.overFloor = true;
+    CHECK(flaggedBy(p) == "floor");
+    p.overClass = true;
+    CHECK(flaggedBy(p) == "floor, class");
+    p.overFloor = false;
+    CHECK(flaggedBy(p) == "class");
+}
+
 TEST_CASE("CSV: quoted cells, doubled quotes, line breaks inside, CRLF, a byte order mark", "[platforms]") {
     const auto rows = readCsv("\xEF\xBB\xBFStudent,ID\r\n\"Lovelace, Ada\",\"1\"\"2\"\r\n\"two\nlines\",3");
     REQUIRE(rows.size() == 3);

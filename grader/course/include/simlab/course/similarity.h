@@ -3,15 +3,32 @@
 // users know): the share of each file's tokens that lies in runs shared with the other.
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace simlab::engine {
 
+/// The default floor: a pair at or above it is flagged whatever the class. In a scaffolded lab every honest
+/// solution looks alike, so the class-relative threshold can reach 100 % and miss copies. Honest apple solutions
+/// that differ by a few edits each share up to 78 % a pair; their copies, renamed or not, 91 % or more.
+inline constexpr double kSimilarityFloor = 90;
+
+/// A run of tokens both files hold, by the lines of each file as handed in (1-based, both ends included).
+struct SharedRun {
+    int aFirst = 0, aLast = 0;
+    int bFirst = 0, bLast = 0;
+    int tokens = 0;
+};
+
 struct SimilarPair {
     std::string a, b;     ///< student ids, a < b
     double percent = 0;   ///< the larger of the two shares: how much of one file the other holds
+    bool overFloor = false;       ///< at or above the report's floor
+    bool overClass = false;       ///< at or above the class-relative threshold
+    std::vector<SharedRun> runs;  ///< a flagged pair's shared runs, most tokens first
 };
 
 struct SimilarityReport {
@@ -19,9 +36,13 @@ struct SimilarityReport {
     std::vector<SimilarPair> pairs;   ///< every pair sim_c++ found anything in, most alike first
     double median = 0;                ///< of every pair of the class (pairs with nothing shared count as 0)
     double spread = 0;                ///< of every pair: 1.4826 x the median absolute deviation from the median
-    double threshold = 0;             ///< a pair at or above it is flagged (similarityThreshold)
-    std::vector<SimilarPair> flagged; ///< far more alike than the class
+    double threshold = 0;             ///< the class-relative threshold (similarityThreshold)
+    double floor = kSimilarityFloor;  ///< the absolute floor
+    std::vector<SimilarPair> flagged;  ///< at or above the floor or the threshold, with their shared runs
 };
+
+/// Which rule flagged a pair: "floor", "class", "floor, class", or "" when neither did.
+std::string flaggedBy(const SimilarPair& pair);
 
 /// The percent at or above which a pair is flagged: the class's median pair and three times its spread, at least
 /// 50 % and at most 100 % (a class made from one file still shows its identical copies).
@@ -30,11 +51,17 @@ double similarityThreshold(double median, double spread);
 /// `text` without the lines the starter has (compared without the spaces at their ends; blank lines dropped).
 std::string withoutStarter(const std::string& text, const std::string& starter);
 
-/// Compares every pair of `files` (id -> the file's text), the starter's lines removed, with sim_c++ run in the
-/// sandbox (it reads students' bytes). Throws UsageError in one line if sim_c++ is missing or fails.
-SimilarityReport compareSubmissions(const std::map<std::string, std::string>& files, const std::string& starter);
+/// The runs of `sim_c++ -n` output ("3.cpp: line 4-9 |5.cpp: line 2-7 [40]") by file number, the lower first.
+std::map<std::pair<std::size_t, std::size_t>, std::vector<SharedRun>> parseSimRuns(const std::string& output);
 
-/// The page: the flagged pairs, each with both files side by side (the starter's lines dimmed), and the class's
+/// Compares every pair of `files` (id -> the file's text), the starter's lines removed, with sim_c++ run in the
+/// sandbox (it reads students' bytes), and flags a pair at or above `floor` or the class-relative threshold.
+/// Throws UsageError in one line if sim_c++ is missing or fails.
+SimilarityReport compareSubmissions(const std::map<std::string, std::string>& files, const std::string& starter,
+                                    double floor = kSimilarityFloor);
+
+/// The page: the flagged pairs and the rule that flagged each, each pair with both files side by side (its shared
+/// runs highlighted, the starter's lines dimmed), and the class's
 /// spread of pairs; self-contained, as every page of simlab's.
 std::string similarityHtml(const std::string& title, const SimilarityReport& report,
                            const std::map<std::string, std::string>& files, const std::string& starter);
