@@ -124,3 +124,21 @@ TEST_CASE("a question's pool of variants is read, and a student answers on their
     CHECK(plain.variants.empty());
     CHECK(simlab::trade::sceneFor(plain, true, "seed", "ada").name == "question");
 }
+
+TEST_CASE("the apple's and the projectile's pools of students' scenes each differ from the question and have a front",
+          "[trade]") {
+    for (const std::string lab : {"apple", "projectile"}) {
+        const std::string path = SIMLAB_SOURCE_DIR "/assignments/" + lab + "/grading/trade-question.json";
+        const simlab::trade::Question q = simlab::trade::parseQuestion(simlab::engine::readFile(path), path);
+        INFO(lab);
+        CHECK(q.variants.size() >= 4);
+        CHECK(q.variants.size() <= 8);
+        std::set<std::string> scenes = {q.scenes.at(0).scene.dump()};
+        for (const simlab::trade::Scene& s : q.variants) {
+            INFO(s.name);
+            CHECK(scenes.insert(s.scene.dump()).second);
+            REQUIRE_FALSE(s.front.empty());
+            CHECK(s.front.back().digits >= q.digits);  // the question can be answered there
+        }
+    }
+}
