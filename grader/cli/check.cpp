@@ -20,6 +20,7 @@
 #include "simlab/common/text.h"
 #include "simlab/writers/writers.h"
 #include "simlab/rubric/rubric.h"
+#include "simlab/trade_question.h"
 
 namespace simlab::cli {
 
@@ -34,7 +35,29 @@ struct CheckOptions {
     std::string rubric;
     std::vector<std::string> tests;
     int jobs = 0;
+    std::string student;
 };
+
+/// The trade question's scene the check grades on, in words: the student's own where the rubric gives each one
+/// ([variants]), else the question's; empty for a lab without a trade question.
+std::string tradeSceneLine(const engine::Assignment& assignment, const Rubric& rubric, const std::string& student) {
+    const std::string file = assignment.dir + "/grading/trade-question.json";
+    if (assignment.dir.empty() || !std::filesystem::exists(file)) return "";
+    const trade::Question q = trade::parseQuestion(engine::readFile(file), file);
+    const Variants& v = rubric.variants;
+    const trade::Scene& s = trade::sceneFor(q, v.perStudent, v.seed, student);
+    std::string whose = "The trade question's scene";
+    if (v.perStudent && !q.variants.empty()) {
+        whose = student.empty() ? "Each student has a trade scene of their own (check with --student ID to grade on "
+                                  "yours); without an id, the question's scene"
+                                : "Your trade scene (student " + student + ", variant " +
+                                      std::to_string(trade::variantIndex(v.seed, student, q.variants.size()) + 1) +
+                                      " of " + std::to_string(q.variants.size()) + ")";
+    }
+    char time[32];
+    std::snprintf(time, sizeof time, "%g", s.finalTime);
+    return whose + ": " + s.name + ": " + s.scene.dump() + " to " + time + " s";
+}
 
 void runCheck(const CheckOptions& o) {
     using namespace simlab::engine;
@@ -55,7 +78,12 @@ void runCheck(const CheckOptions& o) {
     if (o.all || amongSystemFiles) {
         if (const std::string exposed = secretsExposed(manifest); !exposed.empty()) throw UsageError(exposed);
     }
+    requireStudentId(o.student);
+    if (!o.student.empty() && !rubric.variants.perStudent) {
+        std::cerr << "simlab: --student: this rubric gives every student the same scene ([variants] is off)\n";
+    }
     GradeOptions options;
+    options.student = o.student;
     options.includeHidden = o.all;
     options.onlyTests = o.tests;
     options.judges = o.jobs > 0 ? o.jobs : cores();
@@ -79,6 +107,12 @@ void runCheck(const CheckOptions& o) {
     }
     const SubmissionFiles files = readSubmission(source, rubric, limits);
     const Builder builder(manifest);
+    // Which scene the trade question is graded on, where it is the student's own or they asked (--student).
+    const std::string scene =
+        rubric.variants.perStudent || !o.student.empty() ? tradeSceneLine(assignment, rubric, o.student) : "";
+    if (!scene.empty()) {
+        (o.format == "text" ? std::cout : std::cerr) << printable(scene) << '\n' << std::flush;
+    }
     if (o.format == "text") {
         std::cerr << "Building " << printable(source) << " against the " << assignment.id << " grader...\n";
     }
@@ -154,6 +188,9 @@ void addCheck(CLI::App& app) {
     check->add_option("--jobs", options->jobs,
                       "tests run at once, each still alone in its sandbox (default: the number of cores)")
         ->check(CLI::Range(1, 64));
+    check->add_option("--student", options->student,
+                      "your student id: where the course gives each student their own trade scene, the check grades "
+                      "on yours and says which it is");
     check->callback([options] { runCheck(*options); });
 }
 

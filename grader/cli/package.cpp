@@ -43,7 +43,28 @@ struct AutogradeOptions {
     std::string results;
     std::string format = "gradescope";
     std::string judge;
+    std::string student;
+    std::string metadata;
 };
+
+// The student Gradescope's metadata names (users[0]'s sid, else their email): empty where the file is absent
+// or names nobody. A file that is there but unreadable is an error.
+std::string studentOfMetadata(const AutogradeOptions& o) {
+    const fs::path file =
+        !o.metadata.empty() ? fs::path(o.metadata)
+                            : fs::absolute(o.submission).lexically_normal().parent_path() / "submission_metadata.json";
+    if (o.metadata.empty() && !fs::exists(file)) return "";
+    const nlohmann::json j = nlohmann::json::parse(engine::readFile(file.string()), nullptr, false);
+    if (j.is_discarded()) throw engine::UsageError(engine::printable(file.string()) + " is not JSON");
+    const nlohmann::json users = j.value("users", nlohmann::json::array());
+    if (!users.is_array() || users.empty() || !users[0].is_object()) return "";
+    for (const char* key : {"sid", "email"}) {
+        const nlohmann::json& value = users[0].value(key, nlohmann::json());
+        if (value.is_string() && !value.get<std::string>().empty()) return value.get<std::string>();
+        if (value.is_number_integer()) return value.dump();
+    }
+    return "";
+}
 
 // The platform needs a results.json whatever happens: an error becomes one, with the reason in it.
 void runAutograde(const AutogradeOptions& o) {
@@ -68,6 +89,8 @@ void runAutograde(const AutogradeOptions& o) {
         GradeOptions options;
         options.includeHidden = true;
         options.judges = cores();  // one submission
+        options.student = o.student.empty() ? studentOfMetadata(o) : o.student;
+        requireStudentId(options.student);
         const GradeReport report =
             gradeFolder(Builder(manifest), assignment, rubric, o.submission, /*recursive=*/true, /*followFolder=*/true,
                         options);
@@ -216,6 +239,11 @@ void addAutograde(CLI::App& app) {
     a->add_option("--judge", options->judge,
                   "the assignment's judge, with its hidden tests, made apart from this simlab (a PrairieLearn "
                   "question's tests/judge: scripts/prairielearn-judge)");
+    a->add_option("--student", options->student,
+                  "the student's id, for a rubric that gives each student their own trade scene ([variants]); "
+                  "default: users[0]'s sid, else email, of --metadata");
+    a->add_option("--metadata", options->metadata,
+                  "Gradescope's submission_metadata.json (default: the one beside the submission folder, if any)");
     a->callback([options] { runAutograde(*options); });
 }
 

@@ -57,9 +57,13 @@ void addStudy(CLI::App& app) {
                     "measures an answer: the integrators it allows, each point stopped at the grader's cap on an "
                     "answer and measured from the grader's starts where it keeps the digits asked for; its sweeps "
                     "run on every core, with a progress line every few seconds");
+    trade->add_option("--student", options->student,
+                      "with --question: study your own scene, where the course gives each student one (simlab check "
+                      "--student ID says which)");
     trade->add_flag("--fronts", options->fronts,
-                    "for those who keep the course: measure the front of every scene of the trade question and its "
-                    "hidden variants on the reference solution and write it into grading/trade-*.json");
+                    "for those who keep the course: measure the front of every scene of the trade question, its "
+                    "pool of students' scenes and its hidden variants on the reference solution and write it into "
+                    "grading/trade-*.json");
     trade
         ->add_option("--shard", options->shard,
                      "I/N: measure share I of N of the study's parts (one per lab and integrator) into "

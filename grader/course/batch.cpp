@@ -439,7 +439,8 @@ private:
     }
 
     void gradeOne(const Pending& p) {
-        const GradeOptions& grade = c_.options.grade;
+        GradeOptions grade = c_.options.grade;
+        grade.student = p.id;  // the folder's name: their own trade scene where the rubric gives each one
         try {
             GradeReport report;
             if (p.gathered.files) {

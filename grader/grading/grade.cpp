@@ -216,6 +216,7 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
             t.figure = verdict->figure->value;
             t.unit = verdict->figure->unit;
         }
+        for (const wire::BoardEntry& e : verdict->leaderboard) t.leaderboard.push_back({e.name, e.value, e.order});
     }
     // The judge's account of the test's time (the student's process's, and the judge's own: drawing, say) and of
     // the shared questions it used: hints for sharing the next self-check's tests out, nothing scored.
@@ -232,6 +233,7 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
 // a folder per process.
 struct Workspace {
     std::string root, build, probe, host;
+    std::string student;  ///< GradeOptions::student, for the judge
 };
 
 // A judge's files: the rubric, and the files handed in beside the source (or why each was refused).
@@ -369,6 +371,7 @@ isolation::ProcessResult runJudge(const Assignment& assignment, const std::vecto
     judge.env = {"PATH=/usr/bin:/bin", "HOME=" + w.root + "/" + tag + "judge-home", "TMPDIR=/tmp", "LC_ALL=C",
                  "SIMLAB_RUBRIC=" + judgeFiles + "/rubric.toml", "SIMLAB_SUBMISSION_DIR=" + judgeFiles + "/submission",
                  "SIMLAB_ANSWER_LIMIT=" + std::to_string(static_cast<unsigned long long>(limits.observationMiB) << 20)};
+    if (!w.student.empty()) judge.env.push_back("SIMLAB_STUDENT=" + w.student);
     judge.workDir = w.root + "/" + tag + "judge-home";
     createPrivateFolder(judge.workDir);
     judge.limits = judgeLimits(limits, tests.size());
@@ -673,6 +676,13 @@ std::vector<std::size_t> shareTests(const std::vector<std::string>& tests,
     return judgeOf;
 }
 
+void requireStudentId(const std::string& id) {
+    const bool control = std::any_of(id.begin(), id.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; });
+    if (id.size() > 256 || control) {
+        throw UsageError("a student's id is at most 256 characters with no control characters: " + printable(id));
+    }
+}
+
 GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
                             const SubmissionFiles& files, const GradeOptions& options) {
     const auto start = std::chrono::steady_clock::now();
@@ -708,7 +718,7 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
     // sandbox is lent; work/judgeN: the rubric and the files handed in beside the source, which judge N's sandbox
     // is lent - never a probe's. Each process gets an empty folder of its own as well.
     TempDir work("simlab-" + assignment.id + "-", options.workRoot);
-    Workspace w{work.path(), work.path() + "/build", work.path() + "/probe", builder.probeHost()};
+    Workspace w{work.path(), work.path() + "/build", work.path() + "/probe", builder.probeHost(), options.student};
     // Every folder of the grading is private from the moment it exists: the judge's copy, the rubric and the
     // student's source are never another user's to read, even while they are being written. Each folder below is
     // handed to the sandbox user of the process that works in it, for that run (0700); the probe's is simlab's

@@ -164,8 +164,11 @@ StudentRecord recordOf(const GradeReport& report) {
 nlohmann::json toGradescope(const StudentRecord& r) {
     // The compiler's first lines, as the record keeps them.
     const std::string compiler = printable(r.compiler, true);
-    nlohmann::json tests = nlohmann::json::array();
+    nlohmann::json tests = nlohmann::json::array(), leaderboard = nlohmann::json::array();
     for (const TestResult& t : r.tests) {
+        for (const BoardEntry& e : t.leaderboard) {
+            leaderboard.push_back({{"name", e.name}, {"value", e.value}, {"order", e.order}});
+        }
         std::string output = outcomeName(t.outcome);
         if (!t.reason.empty() && t.outcome != Outcome::DidNotCompile) output += ": " + printable(t.reason);
         for (const std::string& line : t.feedback) output += "\n- " + printable(line);
@@ -224,14 +227,16 @@ nlohmann::json toGradescope(const StudentRecord& r) {
     }
     const double score = roundScore(r.score * (1 - r.late.percent / 100));
     // Everything is plain text (never HTML or Markdown a student's bytes could shape), valid UTF-8.
-    return {{"score", score},
-            {"execution_time", static_cast<int>(std::ceil(r.seconds))},
-            {"output", output},
-            {"output_format", "text"},
-            {"test_output_format", "text"},
-            {"stdout_visibility", "hidden"},
-            {"tests", tests},
-            {"extra_data", extra}};
+    nlohmann::json document = {{"score", score},
+                               {"execution_time", static_cast<int>(std::ceil(r.seconds))},
+                               {"output", output},
+                               {"output_format", "text"},
+                               {"test_output_format", "text"},
+                               {"stdout_visibility", "hidden"},
+                               {"tests", tests},
+                               {"extra_data", extra}};
+    if (!leaderboard.empty()) document["leaderboard"] = leaderboard;
+    return document;
 }
 
 nlohmann::json toGradescope(const GradeReport& report) { return toGradescope(recordOf(report)); }

@@ -82,6 +82,7 @@ struct Running {
     std::optional<double> credit;
     std::vector<std::string> feedback;
     std::vector<wire::Attachment> attachments;
+    std::vector<wire::BoardEntry> leaderboard;
     std::string firstFailure;  // reason taken from the first failed assertion
     bool failureIsException = false;
     bool failureHasInfo = false;
@@ -105,13 +106,37 @@ std::string oneLine(std::string text) {
 
 }  // namespace
 
-double param(const std::string& key) {
+namespace {
+
+const Rubric& rubric() {
     static std::optional<Rubric> rubric;
     if (!rubric) {
         const char* path = std::getenv("SIMLAB_RUBRIC");
         if (!path) throw std::runtime_error("SIMLAB_RUBRIC is not set: run this test through simlab check");
         rubric = loadRubric(path);
     }
+    return *rubric;
+}
+
+}  // namespace
+
+StudentVariant studentVariant() {
+    StudentVariant v;
+    const char* student = std::getenv("SIMLAB_STUDENT");
+    v.student = student ? student : "";
+    v.seed = rubric().variants.seed;
+    v.on = rubric().variants.perStudent && !v.student.empty();
+    return v;
+}
+
+void leaderboard(const std::string& name, double value, const std::string& order) {
+    if (order != "asc" && order != "desc") throw std::invalid_argument("leaderboard: order is asc or desc");
+    if (!std::isfinite(value) || verdict().leaderboard.size() >= wire::kMaxBoardEntries) return;
+    verdict().leaderboard.push_back({name, value, order});
+}
+
+double param(const std::string& key) {
+    const Rubric* rubric = &grading::rubric();
     const RubricTest* test = rubric->find(verdict().test);
     if (!test) throw std::runtime_error("the rubric " + rubric->path + " has no test '" + verdict().test + "'");
     const auto found = test->params.find(key);
@@ -272,6 +297,7 @@ struct Listener : Catch::TestEventListenerBase {
         end.reason = reason;
         end.feedback = v.feedback;
         end.attachments = v.attachments;
+        end.leaderboard = v.leaderboard;
         if (v.figure) end.figure = wire::Figure{std::isfinite(*v.figure) ? *v.figure : 0.0, v.unit};
         if (channel == observe::ChannelFailure::BadReport) end.channel = wire::ChannelFailure::BadReport;
         if (channel == observe::ChannelFailure::ProcessEnded) end.channel = wire::ChannelFailure::ProcessEnded;

@@ -1,6 +1,7 @@
 #include "simlab/rubric/rubric.h"
 
 #include <cstdio>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <toml++/toml.h>
@@ -111,6 +112,26 @@ ManualItem readManual(const std::string& path, const toml::table& table) {
     if (!hasName) fail(path, table, "a [[manual]] item has no name");
     if (!hasPoints) fail(path, table, "manual item '" + item.name + "' has no points");
     return item;
+}
+
+Variants readVariants(const std::string& path, const toml::node& node) {
+    if (!node.is_table()) fail(path, node, "'variants' must be a table: [variants]");
+    Variants v;
+    for (auto&& [key, value] : *node.as_table()) {
+        const std::string k(key.str());
+        if (k == "per_student") {
+            const std::optional<bool> on = value.value_exact<bool>();
+            if (!on) fail(path, value, "'per_student' must be true or false");
+            v.perStudent = *on;
+        } else if (k == "seed") {
+            v.seed = text(path, value, k);
+        } else {
+            fail(path, value, "unknown key '" + k + "' in [variants] (known: per_student, seed)");
+        }
+    }
+    if (v.perStudent && v.seed.empty())
+        fail(path, node, "[variants] per_student needs a seed (any text, the course's)");
+    return v;
 }
 
 }  // namespace
@@ -234,9 +255,13 @@ Rubric loadRubric(const std::string& path) {
                 }
                 rubric.manual.push_back(std::move(item));
             }
+        } else if (k == "variants") {
+            rubric.variants = readVariants(path, node);
         } else {
-            fail(path, node, "unknown key '" + k +
-                                 "' (known: assignment, title, submission, extra_files, [limits], [[test]], [[manual]])");
+            fail(path, node,
+                 "unknown key '" + k +
+                     "' (known: assignment, title, submission, extra_files, [limits], [[test]], [[manual]], "
+                     "[variants])");
         }
     }
     if (rubric.assignment.empty()) throw RubricError(path + ": 'assignment' is missing");

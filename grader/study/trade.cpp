@@ -1,6 +1,7 @@
 // `simlab study trade` and `simlab study minimal`: which labs and programs a study runs, the trade question's
 // scene and its sweeps, the fronts of the question's data files, and each lab's study program at once.
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -33,15 +34,27 @@ simlab::trade::Question tradeQuestionOf(const engine::Assignment& a, const std::
     }
 }
 
+/// The scene of `q` a --question study measures: the student's own (--student) where the rubric gives each one.
+const simlab::trade::Scene& studiedScene(const StudyOptions& o, const engine::Assignment& a,
+                                         const simlab::trade::Question& q) {
+    const Variants v = loadRubric(a.rubric).variants;
+    return simlab::trade::sceneFor(q, v.perStudent, v.seed, o.student);
+}
+
 /// The study program's arguments for scene `s` of `q`: the scene, its final time, the starts and what they move,
 /// and the integrators the question allows.
 std::vector<std::string> sceneArguments(const simlab::trade::Question& q, const simlab::trade::Scene& s) {
     char finalTime[32];
     std::snprintf(finalTime, sizeof finalTime, "%.17g", s.finalTime);
-    std::vector<std::string> argv = {"--scene",      s.scene.dump(),
-                                     "--final-time", finalTime,
-                                     "--name",       s.name == "question" ? q.lab + "-question" : q.lab + ": " + s.name,
-                                     "--starts",     std::to_string(q.starts)};
+    // The study's subject is a plain word: "projectile-a-faster-flatter-throw-33-m-s-at-50-degrees".
+    std::string subject = q.lab + "-";
+    for (const char c : s.name) {
+        const bool plain = std::isalnum(static_cast<unsigned char>(c)) != 0;
+        if (plain || subject.back() != '-') subject += plain ? c : '-';
+    }
+    while (subject.size() > 64 || subject.back() == '-') subject.pop_back();
+    std::vector<std::string> argv = {"--scene", s.scene.dump(), "--final-time", finalTime,
+                                     "--name",  subject,        "--starts",     std::to_string(q.starts)};
     if (!q.nudge.empty()) argv.insert(argv.end(), {"--nudge", q.nudge});
     if (!q.integrators.empty()) {
         std::string names;
@@ -53,14 +66,16 @@ std::vector<std::string> sceneArguments(const simlab::trade::Question& q, const 
 }
 
 /// The most evaluations an answer to `q` may take on its scene, where the grader stops its run and gives it nothing
-/// (trade::cap, with the rubric's beyond and none_past of the visible trade test); 0 where the tree does not say.
-double questionCap(const engine::Assignment& a, const simlab::trade::Question& q, double* beyond, double* nonePast) {
+/// (trade::cap, with the rubric's beyond and none_past of the visible trade test) on scene `s`; 0 where the tree
+/// does not say.
+double questionCap(const engine::Assignment& a, const simlab::trade::Question& q, const simlab::trade::Scene& s,
+                   double* beyond, double* nonePast) {
     const Rubric rubric = loadRubric(a.rubric);
     for (const RubricTest& t : rubric.tests) {
         if (!t.visible() || !t.params.count("beyond") || !t.params.count("none_past")) continue;
         *beyond = t.params.at("beyond");
         *nonePast = t.params.at("none_past");
-        const std::vector<work_precision::Point>& front = q.scenes.at(0).front;
+        const std::vector<work_precision::Point>& front = s.front;
         return front.empty() ? 0 : simlab::trade::cap(front, q.digits, *beyond, *nonePast);
     }
     return 0;
@@ -153,6 +168,7 @@ void writeFronts(const StudyOptions& o, const std::vector<const engine::Assignme
         const engine::Assignment* lab;
         fs::path file;
         json data;
+        std::string list;  ///< "scenes", or "variants": the pool of students' own scenes
         std::size_t scene;
         std::vector<work_precision::Point> points;
         int status = 0;
@@ -163,7 +179,10 @@ void writeFronts(const StudyOptions& o, const std::vector<const engine::Assignme
             const fs::path file = fs::path(a->dir) / "grading" / ("trade-" + kind + ".json");
             if (!fs::exists(file)) continue;
             const json data = json::parse(engine::readFile(file.string()));
-            for (std::size_t i = 0; i < data.at("scenes").size(); ++i) tasks.push_back({a, file, data, i, {}, 0});
+            for (const std::string list : {"scenes", "variants"}) {
+                if (!data.contains(list)) continue;
+                for (std::size_t i = 0; i < data[list].size(); ++i) tasks.push_back({a, file, data, list, i, {}, 0});
+            }
         }
     }
     if (tasks.empty()) throw engine::UsageError("no trade question here to make fronts for");
@@ -171,8 +190,9 @@ void writeFronts(const StudyOptions& o, const std::vector<const engine::Assignme
     forEachAtOnce(tasks.size(), std::min<int>(o.jobs, static_cast<int>(tasks.size())), [&](std::size_t i) {
         Task& t = tasks[i];
         const simlab::trade::Question q = simlab::trade::parseQuestion(t.data.dump(), t.file.string());
+        const simlab::trade::Scene& studied = (t.list == "scenes" ? q.scenes : q.variants).at(t.scene);
         std::vector<std::string> argv = {t.lab->studyProgramPath};
-        const std::vector<std::string> scene = sceneArguments(q, q.scenes.at(t.scene));
+        const std::vector<std::string> scene = sceneArguments(q, studied);
         argv.insert(argv.end(), scene.begin(), scene.end());
         argv.insert(argv.end(), {"--repeats", "1"});
         if (o.quick) argv.push_back("--quick");
@@ -180,8 +200,7 @@ void writeFronts(const StudyOptions& o, const std::vector<const engine::Assignme
         if (o.cap > 0) argv.insert(argv.end(), {"--cap", std::to_string(o.cap)});
         {
             std::lock_guard<std::mutex> guard(told);
-            std::cerr << "fronts: " << t.lab->id << ", " << q.scenes.at(t.scene).name << " ("
-                      << t.file.filename().string() << ")\n";
+            std::cerr << "fronts: " << t.lab->id << ", " << studied.name << " (" << t.file.filename().string() << ")\n";
         }
         t.status = runStudyProgram(argv, false, [&t](const json& j) {
             if (text(j["type"]) != "point" || text(j["status"]) != "ok") return;
@@ -196,7 +215,7 @@ void writeFronts(const StudyOptions& o, const std::vector<const engine::Assignme
             throw std::runtime_error("the study of " + t.lab->id + " stopped with status " + std::to_string(t.status));
         }
         json& data = written.count(t.file.string()) ? written[t.file.string()] : (written[t.file.string()] = t.data);
-        json& scene = data["scenes"][t.scene];
+        json& scene = data[t.list][t.scene];
         const std::vector<work_precision::Point> front = work_precision::frontOf(t.points);
         const double digits = data.at("digits").get<double>();
         if (front.empty() || front.back().digits < digits) {
@@ -243,15 +262,17 @@ std::vector<const engine::Assignment*> studiedLabs(const engine::Manifest& manif
 /// What the trade question asks, and where its study stops each point, told before the study begins.
 void describeQuestion(const StudyOptions& o, const engine::Assignment& a) {
     const simlab::trade::Question q = tradeQuestionOf(a, "question");
+    const simlab::trade::Scene& studied = studiedScene(o, a, q);
     std::cout << "The trade question of " << q.lab << ": " << q.digits << " digits at every step to "
-              << q.scenes.at(0).finalTime << " s of this scene (the rest as the lab's default one)";
+              << studied.finalTime << " s of " << (studied.name == "question" ? "this scene" : "'" + studied.name + "'")
+              << " (the rest as the lab's default one)";
     if (!q.integrators.empty() || q.fixedStepOnly) {
         std::string names;
         for (const std::string& name : q.integrators) names += (names.empty() ? "" : ", ") + name;
         std::cout << ", with " << (names.empty() ? "any integrator" : names)
                   << (q.fixedStepOnly ? " at fixed steps" : "");
     }
-    std::cout << ":\n  " << q.scenes.at(0).scene.dump() << "\n";
+    std::cout << ":\n  " << studied.scene.dump() << "\n";
     if (q.starts > 1) {
         // "/w_B0/0" reads w_B0[0].
         std::string moved;
@@ -266,7 +287,7 @@ void describeQuestion(const StudyOptions& o, const engine::Assignment& a) {
                   << "of " << q.digits << " digits from the first is no answer, measured from that start alone.\n";
     }
     double beyond = 0, nonePast = 0;
-    const double cap = questionCap(a, q, &beyond, &nonePast);
+    const double cap = questionCap(a, q, studied, &beyond, &nonePast);
     const std::string why = number(json(nonePast), "%g") + " times the front's cost at " +
                             number(json(q.digits + beyond), "%g") + " digits";
     if (cap > 0 && o.maxEvaluations > 0 && o.maxEvaluations < cap) {
@@ -323,7 +344,8 @@ void studyQuestion(const StudyOptions& o, const engine::Assignment& a, const std
                    const fs::path& dir, int cores) {
     const simlab::trade::Question q = tradeQuestionOf(a, "question");
     std::vector<std::string> argv = {studentProgram.empty() ? a.studyProgramPath : studentProgram};
-    const std::vector<std::string> scene = sceneArguments(q, q.scenes.at(0));
+    const simlab::trade::Scene& studied = studiedScene(o, a, q);
+    const std::vector<std::string> scene = sceneArguments(q, studied);
     argv.insert(argv.end(), scene.begin(), scene.end());
     char value[32];
     std::snprintf(value, sizeof value, "%.17g", q.digits);
@@ -331,7 +353,7 @@ void studyQuestion(const StudyOptions& o, const engine::Assignment& a, const std
     if (o.quick) argv.push_back("--quick");
     if (o.cap > 0) argv.insert(argv.end(), {"--cap", std::to_string(o.cap)});
     double beyond = 0, nonePast = 0;
-    const double cap = questionCap(a, q, &beyond, &nonePast);
+    const double cap = questionCap(a, q, studied, &beyond, &nonePast);
     const double evaluations = cap > 0 && o.maxEvaluations > 0 ? std::min(cap, o.maxEvaluations)
                                : cap > 0                       ? cap
                                                                : o.maxEvaluations;
@@ -395,6 +417,7 @@ void runTrade(const StudyOptions& o, const CommandLine& command) {
         throw engine::UsageError("biosim has no trade question: each project's is its own");
     }
     if (o.question && o.lab == "all") throw engine::UsageError("--question studies one lab: apple, projectile or book");
+    if (!o.student.empty() && !o.question) throw engine::UsageError("--student goes with --question");
     if (o.fronts && !o.file.empty()) throw engine::UsageError("--fronts measures the reference solution, not --file");
     if (o.question) describeQuestion(o, *labs.front());
     if (!o.shard.empty() || o.assemble) {

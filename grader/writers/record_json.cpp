@@ -14,6 +14,9 @@ std::string recordJson(const StudentRecord& r) {
                             {"max_score", t.maxScore}, {"credit", t.credit}, {"outcome", outcomeName(t.outcome)},
                             {"reason", t.reason},     {"feedback", t.feedback},     {"seconds", t.seconds}};
         if (t.figure) j["figure"] = {{"value", *t.figure}, {"unit", t.unit}};
+        for (const BoardEntry& e : t.leaderboard) {
+            j["leaderboard"].push_back({{"name", e.name}, {"value", e.value}, {"order", e.order}});
+        }
         tests.push_back(j);
     }
     const nlohmann::json record = {
@@ -88,6 +91,9 @@ std::optional<StudentRecord> readRecordJson(const std::string& text) {
             if (t.contains("figure")) {
                 x.figure = t["figure"].at("value").get<double>();
                 x.unit = t["figure"].at("unit");
+            }
+            for (const nlohmann::json& e : t.value("leaderboard", nlohmann::json::array())) {
+                x.leaderboard.push_back({e.at("name"), e.at("value"), e.at("order")});
             }
             // What a grade is made of, as simlab writes it; anything else is a damaged record.
             const bool named = std::none_of(r.tests.begin(), r.tests.end(),

@@ -82,6 +82,17 @@ int main(int argc, char** argv) {
     checkEnum(doc, "", "visibility", kVisibility);
     checkEnum(doc, "", "stdout_visibility", kVisibility);
     expect(doc.contains("tests") && doc["tests"].is_array(), "tests is missing or not an array");
+    // Gradescope's leaderboard: entries of a name, a number and an order (asc or desc).
+    if (doc.contains("leaderboard")) {
+        expect(doc["leaderboard"].is_array(), "leaderboard is not an array");
+        int entry = 0;
+        for (const json& e : doc.value("leaderboard", json::array())) {
+            const std::string where = "leaderboard[" + std::to_string(entry++) + "]";
+            expect(e.is_object() && e.value("name", json()).is_string() && e.value("value", json()).is_number(),
+                   where + " is not a name and a number");
+            checkEnum(e, where, "order", {"asc", "desc"});
+        }
+    }
 
     double sum = 0, max = 0;
     static const std::set<std::string> testKeys = {"score",  "max_score",   "status",     "name",       "name_format",

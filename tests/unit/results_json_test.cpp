@@ -75,6 +75,22 @@ TEST_CASE("results.json with every item given says none pending, and flags point
     CHECK(doc["extra_data"]["total_with_manual"] == 32.5);  // counted all the same
 }
 
+TEST_CASE("results.json has a leaderboard only where a test gave entries, and record.json keeps them", "[report]") {
+    engine::StudentRecord r = engine::recordOf(classReport());
+    CHECK_FALSE(nlohmann::json::parse(engine::resultsJson(r)).contains("leaderboard"));
+    r.tests[0].leaderboard = {{"trade: evaluations", 29, "asc"}, {"trade: digits kept", 12, "desc"}};
+    const nlohmann::json doc = nlohmann::json::parse(engine::resultsJson(r));
+    REQUIRE(doc["leaderboard"].size() == 2);
+    CHECK(doc["leaderboard"][0] == nlohmann::json({{"name", "trade: evaluations"}, {"value", 29}, {"order", "asc"}}));
+    CHECK(doc["leaderboard"][1]["order"] == "desc");
+    r.id = "ada";
+    r.key = "k";
+    const std::optional<engine::StudentRecord> back = engine::readRecordJson(engine::recordJson(r));
+    REQUIRE(back);
+    REQUIRE(back->tests[0].leaderboard.size() == 2);
+    CHECK(back->tests[0].leaderboard[1].value == 12);
+}
+
 TEST_CASE("results.json from a re-scored record has its new points", "[report]") {
     engine::StudentRecord r = engine::recordOf(classReport());
     r.tests[0].maxScore = r.tests[0].score = 30;

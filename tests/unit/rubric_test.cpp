@@ -104,3 +104,18 @@ TEST_CASE("a manual item needs a name and points, and nothing else unknown", "[r
     CHECK(r.totalPoints() == 1);
     CHECK(r.manualPoints() == 5);
 }
+
+TEST_CASE("[variants] turns on each student's own trade scene, with the course's seed", "[rubric]") {
+    using Catch::Contains;
+    const std::string test = "[[test]]\nname = \"x\"\npoints = 1\n";
+    CHECK_FALSE(loadText(kHeader + test).variants.perStudent);
+    const simlab::Rubric r = loadText(kHeader + "[variants]\nper_student = true\nseed = \"fall 2026\"\n" + test);
+    CHECK(r.variants.perStudent);
+    CHECK(r.variants.seed == "fall 2026");
+    CHECK_THROWS_WITH(loadText(kHeader + "[variants]\nper_student = true\n" + test), Contains("needs a seed"));
+    CHECK_THROWS_WITH(loadText(kHeader + "[variants]\nper_student = 1\nseed = \"s\"\n" + test),
+                      Contains("'per_student' must be true or false"));
+    CHECK_THROWS_WITH(loadText(kHeader + "[variants]\nshuffle = true\n" + test),
+                      Contains("unknown key 'shuffle' in [variants]"));
+    CHECK_THROWS_WITH(loadText(kHeader + "variants = 3\n" + test), Contains("'variants' must be a table"));
+}

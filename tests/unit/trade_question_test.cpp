@@ -2,8 +2,10 @@
 // reading of a front (simlab/work_precision.h).
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <set>
 #include <string>
 
+#include "simlab/common/files.h"
 #include "simlab/trade_question.h"
 
 using simlab::work_precision::Point;
@@ -82,4 +84,61 @@ TEST_CASE("a question's data file is read whole, or refused in one line naming i
     CHECK_FALSE(simlab::trade::allows(q, "Verlet", true));
     CHECK_THROWS_WITH(simlab::trade::parseQuestion(R"({"lab": "apple"})", "apple's question"),
                       Catch::Contains("apple's question is damaged"));
+}
+
+TEST_CASE("a student's variant is the FNV-1a hash of the seed and their id: the same everywhere, apart for others",
+          "[trade]") {
+    // FNV-1a's published values, which std::hash does not promise.
+    CHECK(simlab::trade::fnv1a("") == 14695981039346656037ULL);
+    CHECK(simlab::trade::fnv1a("a") == 0xaf63dc4c8601ec8cULL);
+    const std::size_t ada = simlab::trade::variantIndex("fall 2026", "ada", 6);
+    CHECK(ada == simlab::trade::variantIndex("fall 2026", "ada", 6));
+    CHECK(ada == simlab::trade::fnv1a(std::string("fall 2026") + '\0' + "ada") % 6);
+    // Ids spread over the pool: twelve students fall into more than one variant, and another seed deals anew.
+    std::set<std::size_t> seen, reseeded;
+    for (int i = 0; i < 12; ++i) {
+        seen.insert(simlab::trade::variantIndex("fall 2026", "student" + std::to_string(i), 6));
+        reseeded.insert(simlab::trade::variantIndex("spring 2027", "student" + std::to_string(i), 6));
+    }
+    CHECK(seen.size() > 2);
+    CHECK(reseeded.size() > 2);
+    CHECK(simlab::trade::variantIndex("ab", "c", 1000003) != simlab::trade::variantIndex("a", "bc", 1000003));
+}
+
+TEST_CASE("a question's pool of variants is read, and a student answers on theirs only where the course says so",
+          "[trade]") {
+    const simlab::trade::Question q = simlab::trade::parseQuestion(
+        R"({"lab": "apple", "digits": 3, "scenes": [{"name": "question", "scene": {"dropHeight": 100}, "final_time": 2}],
+            "variants": [{"name": "low", "scene": {"dropHeight": 50}, "final_time": 2, "front": [[3, 400]]},
+                         {"name": "high", "scene": {"dropHeight": 200}, "final_time": 2, "front": [[3, 100]]}]})",
+        "a test question");
+    REQUIRE(q.variants.size() == 2);
+    CHECK(q.variants[1].front.at(0).cost == 100);
+    CHECK(simlab::trade::sceneFor(q, false, "seed", "ada").name == "question");
+    CHECK(simlab::trade::sceneFor(q, true, "seed", "").name == "question");
+    const std::size_t k = simlab::trade::variantIndex("seed", "ada", 2);
+    CHECK(simlab::trade::sceneFor(q, true, "seed", "ada").name == q.variants[k].name);
+    // A question without a pool gives everyone its scene.
+    const simlab::trade::Question plain = simlab::trade::parseQuestion(
+        R"({"lab": "apple", "digits": 3, "scenes": [{"name": "question", "scene": {}, "final_time": 2}]})", "plain");
+    CHECK(plain.variants.empty());
+    CHECK(simlab::trade::sceneFor(plain, true, "seed", "ada").name == "question");
+}
+
+TEST_CASE("the apple's and the projectile's pools of students' scenes each differ from the question and have a front",
+          "[trade]") {
+    for (const std::string lab : {"apple", "projectile"}) {
+        const std::string path = SIMLAB_SOURCE_DIR "/assignments/" + lab + "/grading/trade-question.json";
+        const simlab::trade::Question q = simlab::trade::parseQuestion(simlab::engine::readFile(path), path);
+        INFO(lab);
+        CHECK(q.variants.size() >= 4);
+        CHECK(q.variants.size() <= 8);
+        std::set<std::string> scenes = {q.scenes.at(0).scene.dump()};
+        for (const simlab::trade::Scene& s : q.variants) {
+            INFO(s.name);
+            CHECK(scenes.insert(s.scene.dump()).second);
+            REQUIRE_FALSE(s.front.empty());
+            CHECK(s.front.back().digits >= q.digits);  // the question can be answered there
+        }
+    }
 }

@@ -27,6 +27,7 @@ Verdict fullVerdict() {
     v.channel = ChannelFailure::BadReport;
     v.seconds = 1.5;
     v.shared = {{"abc123", 0.5}};
+    v.leaderboard = {{"trade: evaluations", 30, "asc"}, {"trade: digits kept", 12, "desc"}};
     return v;
 }
 
@@ -66,6 +67,10 @@ TEST_CASE("a verdict reads back as it was written", "[wire]") {
     CHECK(back.channel == ChannelFailure::BadReport);
     CHECK(back.seconds == 1.5);
     CHECK(back.shared == v.shared);
+    REQUIRE(back.leaderboard.size() == 2);
+    CHECK(back.leaderboard[0].name == "trade: evaluations");
+    CHECK(back.leaderboard[0].value == 30);
+    CHECK(back.leaderboard[1].order == "desc");
 }
 
 TEST_CASE("a verdict without a figure or a channel failure reads back without them", "[wire]") {
@@ -109,4 +114,10 @@ TEST_CASE("a malformed verdict is refused, naming its field", "[wire]") {
     CHECK(refusal(with(good, "seconds", none)) == "verdict.seconds is missing");
     CHECK(refusal(with(good, "seconds", -1)) == "verdict.seconds is not a finite number >= 0");
     CHECK(refusal(with(good, "shared", {{"abc", "fast"}})) == "verdict.shared.abc is not a number");
+    CHECK(refusal(with(good, "leaderboard", {{{"name", "x"}, {"value", 1}, {"order", "up"}}})) ==
+          "verdict.leaderboard's order is asc or desc");
+    CHECK(refusal(with(good, "leaderboard", {{{"name", "x"}, {"value", nullptr}, {"order", "asc"}}})) ==
+          "verdict.leaderboard.x is not a finite number");
+    // A judge of an older simlab gives no leaderboard: read as none.
+    CHECK(readVerdict(with(good, "leaderboard", none)).leaderboard.empty());
 }

@@ -69,7 +69,7 @@ TEST_CASE("the trade: the fewest explicit Euler steps that keep 3 digits of the 
     // cheapestSettings(), measured on the student's own model as `simlab study trade apple --question` measures a
     // setting - every step's y and vy count - from each of the question's starts, against the front of explicit
     // Euler's fixed steps on the question's fall (not the lab's default one).
-    gradeTrade<Sample, Scene>(tradeQuestion(), tradeQuestion().scenes.at(0), tradeDigits);
+    gradeTrade<Sample, Scene>(tradeQuestion(), studentScene(tradeQuestion()), tradeDigits);
 }
 
 }  // namespace apple::testing

@@ -164,7 +164,7 @@ TEST_CASE("the trade: 8 digits of the question's tumbling spin for the fewest ev
     // cheapestSettings(), measured on the student's own model as `simlab study trade book --question` measures a
     // setting - every step's w_B against Euler's equations in long double - from each of the question's starts,
     // against the front of the question's book and spin about its intermediate axis (not the lab's).
-    gradeTrade<Sample, Scene>(tradeQuestion(), tradeQuestion().scenes.at(0), tradeDigits);
+    gradeTrade<Sample, Scene>(tradeQuestion(), studentScene(tradeQuestion()), tradeDigits);
 }
 
 }  // namespace book::testing

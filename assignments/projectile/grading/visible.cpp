@@ -136,7 +136,7 @@ TEST_CASE("the trade: 10 digits of the question's flight for the fewest evaluati
     // cheapestSettings(), measured on the student's own model as `simlab study trade projectile --question`
     // measures a setting - the integrator stops only where it chooses to (and at the ground hit), and every step
     // counts - from each of the question's starts, against the front of the question's throw (not the lab's).
-    gradeTrade<Sample, Scene>(tradeQuestion(), tradeQuestion().scenes.at(0), tradeDigits);
+    gradeTrade<Sample, Scene>(tradeQuestion(), studentScene(tradeQuestion()), tradeDigits);
 }
 
 }  // namespace projectile::testing

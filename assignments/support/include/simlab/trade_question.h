@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <algorithm>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -37,7 +38,34 @@ struct Question {
     std::string nudge;                     ///< JSON pointer to the number a start moves, e.g. "/dropHeight"
     int starts = 1;                        ///< starts each setting is measured from
     std::vector<Scene> scenes;
+    /// A pool of other scenes with their fronts, for a rubric that gives each student a scene of their own
+    /// (its [variants] table): variantFor picks one from the student's id.
+    std::vector<Scene> variants;
 };
+
+/// FNV-1a (64 bits) of `text`: the same on every machine and build, unlike std::hash.
+inline std::uint64_t fnv1a(const std::string& text) {
+    std::uint64_t h = 14695981039346656037ULL;
+    for (const unsigned char c : text) {
+        h ^= c;
+        h *= 1099511628211ULL;
+    }
+    return h;
+}
+
+/// Which of `count` variants is the student's: the hash of the course's seed and their id. A NUL between them
+/// keeps "ab"+"c" and "a"+"bc" apart.
+inline std::size_t variantIndex(const std::string& seed, const std::string& student, std::size_t count) {
+    if (count == 0) return 0;
+    return static_cast<std::size_t>(fnv1a(seed + std::string(1, '\0') + student) % count);
+}
+
+/// The scene `student` answers the question on: their variant when the course gives each student their own
+/// (`perStudent`, an id and a pool to pick from), else the question's scene.
+inline const Scene& sceneFor(const Question& q, bool perStudent, const std::string& seed, const std::string& student) {
+    if (!perStudent || student.empty() || q.variants.empty()) return q.scenes.at(0);
+    return q.variants.at(variantIndex(seed, student, q.variants.size()));
+}
 
 /// The scene of start `k` (0, 1, ...): the number at `pointer` moved up by k units in its last place.
 inline nlohmann::json nudged(nlohmann::json scene, const std::string& pointer, int k) {
@@ -99,15 +127,18 @@ inline Question parseQuestion(const std::string& text, const std::string& what) 
         q.fixedStepOnly = j.value("fixed_step_only", false);
         q.nudge = j.value("nudge", std::string());
         q.starts = j.value("starts", 1);
-        for (const nlohmann::json& s : j.at("scenes")) {
-            Scene scene;
-            scene.name = s.at("name").get<std::string>();
-            scene.scene = s.at("scene");
-            scene.finalTime = s.at("final_time").get<double>();
-            for (const nlohmann::json& p : s.value("front", nlohmann::json::array())) {
-                scene.front.push_back({p.at(0).get<double>(), p.at(1).get<double>(), 0});
+        for (const char* list : {"scenes", "variants"}) {
+            if (!j.contains(list) && std::string(list) == "variants") continue;
+            for (const nlohmann::json& s : j.at(list)) {
+                Scene scene;
+                scene.name = s.at("name").get<std::string>();
+                scene.scene = s.at("scene");
+                scene.finalTime = s.at("final_time").get<double>();
+                for (const nlohmann::json& p : s.value("front", nlohmann::json::array())) {
+                    scene.front.push_back({p.at(0).get<double>(), p.at(1).get<double>(), 0});
+                }
+                (std::string(list) == "scenes" ? q.scenes : q.variants).push_back(scene);
             }
-            q.scenes.push_back(scene);
         }
     } catch (const nlohmann::json::exception& e) {
         throw std::runtime_error(what + " is damaged: " + e.what());

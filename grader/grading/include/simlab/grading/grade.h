@@ -30,6 +30,13 @@ std::string outcomeName(Outcome outcome);
 /// The outcome of that name; throws std::invalid_argument for another.
 Outcome outcomeNamed(const std::string& name);
 
+/// An entry of Gradescope's leaderboard a test gave: a figure it measured, ranked "asc" (lowest first) or "desc".
+struct BoardEntry {
+    std::string name;
+    double value = 0;
+    std::string order;
+};
+
 struct TestResult {
     std::string name;
     std::string visibility;
@@ -41,6 +48,7 @@ struct TestResult {
     std::vector<std::string> feedback;  ///< further lines for the student
     std::optional<double> figure;       ///< what the test measured, e.g. 14.8
     std::string unit;                   ///< e.g. "digits"
+    std::vector<BoardEntry> leaderboard;  ///< for results.json's leaderboard (the trade question's figures)
     double seconds = 0;                 ///< the test's time in its judge, its student's process included
     double cpuSeconds = 0;              ///< the student's process's CPU time
     /// The judge's shared questions the test used (observe::askShared), by digest: the seconds the answer took
@@ -98,6 +106,9 @@ struct GradeOptions {
     /// The object check before the link (isolation::forbiddenCode). Off only where the corpus proves that the
     /// isolation holds without it (`simlab-corpus invariants`); no command of simlab's turns it off.
     bool checkObject = true;
+    /// The student's id (a class's folder name, autograde's metadata, check --student): with the rubric's
+    /// [variants] per_student, it picks the scene of their trade question. Empty: the question's own scene.
+    std::string student;
 };
 
 /// The judge (0 to judges - 1) each of `tests` runs in, so that the last judge ends as soon as it can: round-robin
@@ -116,6 +127,9 @@ struct SubmissionFiles {
     std::string text;              ///< its bytes
     std::vector<HandedIn> extras;  ///< the rubric's extra files that are there, read or refused
 };
+
+/// Throws UsageError unless `id` is a usable student id: at most 256 bytes, no control characters (empty is fine).
+void requireStudentId(const std::string& id);
 
 /// Grade `files` for `assignment` with `rubric`. Never throws for anything the student's code or files do; throws
 /// UsageError for a test name the rubric does not have, Interrupted if isolation::interruptChildren() cut it short.

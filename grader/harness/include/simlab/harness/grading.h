@@ -52,6 +52,19 @@ void attachPlot(const std::string& name, const Plot& plot);
 /// saying where the file belongs, if they did not.
 std::string submissionFile(const std::string& name);
 
+/// An entry for the platform's leaderboard (Gradescope's): a figure this test measured, ranked lowest first
+/// ("asc") or highest first ("desc").
+void leaderboard(const std::string& name, double value, const std::string& order);
+
+/// What picks the student's own scene of a question: on where the rubric's [variants] has per_student and the engine
+/// names the student (a class's folder, autograde's metadata, check --student).
+struct StudentVariant {
+    bool on = false;
+    std::string seed;
+    std::string student;
+};
+StudentVariant studentVariant();
+
 /// Format a number the way reports show it: 3 significant digits, scientific when small or large.
 std::string show(double value);
 

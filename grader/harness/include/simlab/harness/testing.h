@@ -170,6 +170,8 @@ ChoiceRun<Sample> observeChoice(const Scene& scene, double finalTime, double cap
 struct TradeCredit {
     double credit = 0;   ///< 0 to 1
     double ratio = NAN;  ///< the answer's evaluations over the front's cost where it was read (NaN: not read)
+    double evaluations = NAN;  ///< the answer's, at its worst start, where it kept the digits asked for
+    double digits = NAN;       ///< the fewest it kept at any step, there
     std::string line;    ///< what was measured, in words
 };
 
@@ -229,6 +231,8 @@ TradeCredit tradeCredit(const trade::Question& q, const trade::Scene& s, const T
     const trade::Score score = trade::score(s.front, q.digits, worst, evaluations, beyond, fullWithin, nonePast);
     result.ratio = score.ratio;
     result.credit = score.credit;
+    result.evaluations = evaluations;
+    result.digits = worst;
     line << setting << ": " << grading::show(worst) << " digits" << starts << " for "
          << static_cast<long long>(evaluations) << " evaluations, " << grading::show(score.ratio)
          << " x the front at " << grading::show(score.readAt) << " digits ("
@@ -238,11 +242,27 @@ TradeCredit tradeCredit(const trade::Question& q, const trade::Scene& s, const T
     return result;
 }
 
-/// Points for the trade question on scene `s` of `q` (tradeCredit): the figure is the cost against the front.
+/// The scene of `q` the running student answers on: their own from its pool where the rubric gives each student one
+/// ([variants]), else the question's.
+inline const trade::Scene& studentScene(const trade::Question& q) {
+    const grading::StudentVariant v = grading::studentVariant();
+    return trade::sceneFor(q, v.on, v.seed, v.student);
+}
+
+/// Points for the trade question on scene `s` of `q` (tradeCredit): the figure is the cost against the front. An
+/// answer that keeps the digits asked for goes on the leaderboard: its evaluations, the digits it kept (to a tenth,
+/// counted up to `beyond` past those asked, as the front is read) and its cost against the front.
 template <class Sample, class Scene>
 void gradeTrade(const trade::Question& q, const trade::Scene& s, const TradeDigits<Sample, Scene>& digitsOf) {
-    const TradeCredit c = tradeCredit<Sample, Scene>(q, s, digitsOf);
+    TradeCredit c = tradeCredit<Sample, Scene>(q, s, digitsOf);
+    if (s.name != "question") c.line = "on your scene (" + s.name + "): " + c.line;
     grading::measured(c.ratio, "x the front", c.line);
+    if (std::isfinite(c.evaluations) && std::isfinite(c.ratio)) {
+        const double kept = std::min(c.digits, q.digits + grading::param("beyond"));
+        grading::leaderboard("trade: evaluations", c.evaluations, "asc");
+        grading::leaderboard("trade: digits kept", std::floor(kept * 10) / 10, "desc");
+        grading::leaderboard("trade: x the front", std::round(c.ratio * 100) / 100, "asc");
+    }
     if (c.credit >= 1) return;
     if (c.credit > 0) grading::partialCredit(c.credit);
     FAIL_CHECK(c.line);

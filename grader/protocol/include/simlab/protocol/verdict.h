@@ -32,6 +32,18 @@ struct Figure {
 };
 SIMLAB_WIRE(Figure, value, unit)
 
+/// An entry for Gradescope's leaderboard (results.json's `leaderboard`): a figure the judge measured, and whether
+/// the lower ("asc") or the higher ("desc") value ranks first.
+struct BoardEntry {
+    std::string name;
+    double value = 0;
+    std::string order;
+};
+SIMLAB_WIRE(BoardEntry, name, value, order)
+
+/// The most leaderboard entries one test may give.
+constexpr std::size_t kMaxBoardEntries = 8;
+
 /// How the observation channel failed a test, whatever the test itself concluded.
 enum class ChannelFailure { None, BadReport, ProcessEnded };
 
@@ -44,6 +56,7 @@ struct Verdict {
     std::vector<std::string> feedback;
     std::vector<Attachment> attachments;
     std::optional<Figure> figure;
+    std::vector<BoardEntry> leaderboard;
     ChannelFailure channel = ChannelFailure::None;
     /// How long the test took in the judge, the student's process included, and the shared questions it used
     /// (by digest: the seconds each answer took): hints for sharing tests out, nothing scored.
@@ -86,6 +99,7 @@ inline nlohmann::json endRecord(const Verdict& v) {
                         {"seconds", toJson(v.seconds)},
                         {"shared", toJson(v.shared)}};
     if (v.figure) j["figure"] = toJson(*v.figure);
+    if (!v.leaderboard.empty()) j["leaderboard"] = toJson(v.leaderboard);
     if (v.channel != ChannelFailure::None) j["channel"] = verdict_detail::channelName(v.channel);
     return j;
 }
@@ -119,6 +133,15 @@ inline Verdict readVerdict(const nlohmann::json& record) {
         v.figure.emplace();
         readField(record, "figure", *v.figure, where);
         if (!std::isfinite(v.figure->value)) throw WireError(where + ".figure.value is not a finite number");
+    }
+    if (record.contains("leaderboard")) {
+        readField(record, "leaderboard", v.leaderboard, where);
+        if (v.leaderboard.size() > kMaxBoardEntries) throw WireError(where + ".leaderboard has too many entries");
+        for (const BoardEntry& e : v.leaderboard) {
+            if (e.name.empty() || e.name.size() > 100) throw WireError(where + ".leaderboard: a name is empty or long");
+            if (!std::isfinite(e.value)) throw WireError(where + ".leaderboard." + e.name + " is not a finite number");
+            if (e.order != "asc" && e.order != "desc") throw WireError(where + ".leaderboard's order is asc or desc");
+        }
     }
     if (record.contains("channel")) {
         std::string channel;

@@ -19,6 +19,10 @@
 //     [[manual]]                           # graded by a person: listed as pending, with its points
 //     name = "the schematic is clear"
 //     points = 10
+//
+//     [variants]                           # optional: each student's own trade scene (trade_question.h)
+//     per_student = true
+//     seed = "fall 2026"                   # with the student's id, picks their scene from the pool
 #pragma once
 
 #include <map>
@@ -81,6 +85,13 @@ struct ManualItem {
     std::string description;
 };
 
+/// Whether each student answers the trade question on a scene of their own, picked from its data file's pool by
+/// the hash of `seed` and their id.
+struct Variants {
+    bool perStudent = false;
+    std::string seed;
+};
+
 struct Rubric {
     std::string path;
     std::string assignment;
@@ -90,6 +101,7 @@ struct Rubric {
     Limits limits;
     std::vector<RubricTest> tests;
     std::vector<ManualItem> manual;  ///< graded by hand, beside the tests
+    Variants variants;
 
     /// Points of the tests (what simlab grades).
     double totalPoints() const;

@@ -31,6 +31,7 @@ struct StudyOptions {
     std::string file;       ///< a student file to study instead of the reference solution
     bool question = false;  ///< the trade question's scene (grading/trade-question.json), as the grader measures it
     bool fronts = false;    ///< measure the fronts of the question's data files and write them there
+    std::string student;    ///< with question: this student's own scene, where the rubric gives each one
     std::string shard;      ///< "I/N": measure share I of N of the (lab, integrator) parts into OUTPUT/parts
     bool assemble = false;  ///< trade.csv and the plots from OUTPUT/parts, measuring only the parts missing
 };
