@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -61,6 +62,44 @@ Limits serverLimits(const Limits& probe, std::size_t tests) {
     l.memoryMiB = 2 * probe.memoryMiB + 256;
     l.fileMiB = 2 * probe.fileMiB;
     return l;
+}
+
+// A submission's stalls, shared by its judges. A test whose student process passes the wall-clock net has stalled:
+// sleeping, or blocked on something that never comes. Code every test runs first (building the model, say) would
+// make each test wait the whole net, so once one test of a submission has stalled, every other test - later, or
+// running beside it - is stopped as stalled as soon as neither its student process nor its judge has used CPU time
+// for kIdleSeconds. A judge waits on nothing but the student's process, so when both are idle, nothing but the
+// student's code is waiting, and on nothing the test will give it. A test that computes (a long one, one on a busy
+// machine, one that never reaches the code that stalled) is never stopped by this rule: it keeps the rubric's
+// limits. The grader measures both CPU times; nothing the student's process says counts.
+struct Stalls {
+    std::mutex lock;
+    std::string first;              // the test that stalled first, having waited the whole net
+    std::set<std::string> stopped;  // tests stopped early because of it
+};
+
+constexpr double kIdleSeconds = 1;         // no progress for this long ends a test, once the submission has stalled
+constexpr double kProgressSeconds = 0.02;  // CPU time that counts as progress (the kernel counts in 10 ms ticks)
+
+// The probe's `stalled` check for `test` (ProcessRequest::stalled): its CPU time and its judge's, as the judge's
+// supervisor last saw it (`judgeCpu`).
+std::function<bool(double)> idleWatch(Stalls& stalls, const std::atomic<double>& judgeCpu, const std::string& test) {
+    double base = -1;
+    std::chrono::steady_clock::time_point since;
+    return [&stalls, &judgeCpu, test, base, since](double cpu) mutable {
+        const double both = cpu + judgeCpu.load();
+        const auto now = std::chrono::steady_clock::now();
+        if (both >= base + kProgressSeconds) {
+            base = both;
+            since = now;
+            return false;
+        }
+        if (now - since < std::chrono::duration<double>(kIdleSeconds)) return false;
+        std::lock_guard<std::mutex> guard(stalls.lock);
+        if (stalls.first.empty() || stalls.first == test) return false;
+        stalls.stopped.insert(test);
+        return true;
+    };
 }
 
 // What the probe said about itself on its event channel. Student code shares that process and can write there
@@ -136,8 +175,9 @@ std::string crashReason(const isolation::ProcessResult& probe, const ProbeEvents
     return reason;
 }
 
-TestResult interpret(const RubricTest& test, const isolation::ProcessResult& probe, const isolation::ProcessResult& judge,
-                     const Limits& limits) {
+// `stalledFirst` names the test whose stall had this one stopped early (see Stalls), if it was.
+TestResult interpret(const RubricTest& test, const isolation::ProcessResult& probe,
+                     const isolation::ProcessResult& judge, const Limits& limits, const std::string& stalledFirst) {
     TestResult t;
     t.name = test.name;
     t.visibility = test.visibility;
@@ -163,25 +203,31 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
                    ") before this test: a fault in simlab, not in the submission";
     } else if (probe.memoryLimit) {
         t.outcome = Outcome::OutOfMemory;
-        t.reason = "killed for memory: its processes together held more than " + std::to_string(limits.memoryMiB) +
-                   " MiB";
+        t.reason = "its processes together held more than " + std::to_string(limits.memoryMiB) + " MiB";
     } else if (events.memory && (probe.exitCode == 137 || probe.signal != 0)) {
         t.outcome = Outcome::OutOfMemory;
-        t.reason = "killed for memory: it needed more than " + std::to_string(limits.memoryMiB) + " MiB";
+        t.reason = "it needed more than " + std::to_string(limits.memoryMiB) + " MiB";
     } else if (probe.outputLimit) {
         t.outcome = Outcome::OutputTruncated;
-        t.reason = "output truncated: it printed more than " + std::to_string(limits.outputKiB) + " KiB, and was stopped";
+        t.reason = "it printed more than " + std::to_string(limits.outputKiB) + " KiB, and was stopped";
     } else if (probe.diskLimit) {
         t.outcome = Outcome::OutputTruncated;
-        t.reason = "output truncated: its files together took more than " + std::to_string(3 * limits.fileMiB) +
+        t.reason = "its files together took more than " + std::to_string(3 * limits.fileMiB) +
                    " MiB, the space a test has, and it was stopped";
     } else if (probe.cpuTimeout) {
         t.outcome = Outcome::TimedOut;
-        t.reason = "timed out after " + seconds(std::ceil(limits.cpuSeconds)) + " of CPU time";
+        t.reason = "no end within " + seconds(std::ceil(limits.cpuSeconds)) + " of CPU time";
+    } else if (probe.wallTimeout && !stalledFirst.empty()) {
+        t.outcome = Outcome::Stalled;
+        t.reason = "no progress for " + seconds(kIdleSeconds) + ": \"" + stalledFirst +
+                   "\" had already waited the full " + seconds(limits.wallSeconds) +
+                   " of wall-clock time, which a submission is given once";
     } else if (probe.wallTimeout) {
         char text[160];
-        std::snprintf(text, sizeof text, "stalled: no end after %g s of wall-clock time, having used %.1f s of CPU "
-                      "time (sleeping, or waiting for something?)", limits.wallSeconds, probe.cpuSeconds);
+        std::snprintf(text, sizeof text,
+                      "no end after %g s of wall-clock time, having used %.1f s of CPU "
+                      "time (sleeping, or waiting for something?)",
+                      limits.wallSeconds, probe.cpuSeconds);
         t.outcome = Outcome::Stalled;
         t.reason = text;
     } else if (probe.signal != 0) {
@@ -205,7 +251,7 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
                    std::to_string(probe.exitCode) + ") before it answered";
     } else if (verdict->channel == wire::ChannelFailure::BadReport) {
         t.outcome = Outcome::BadReport;
-        t.reason = "bad report: " + verdict->reason;
+        t.reason = verdict->reason;
     } else {
         t.outcome = verdict->passed ? Outcome::Passed : Outcome::Failed;
         credit = verdict->passed ? 1.0 : verdict->credit;
@@ -313,12 +359,14 @@ struct ProbeRuns {
     std::map<std::string, isolation::ProcessResult> results;
     std::vector<std::thread> running;
     int started = 0;
+    std::atomic<double> judgeCpu{0};  // the judge's CPU time so far, for idleWatch
 };
 
 // Answers the judge on `socket` until it is done: each message is "probe <test>"; each reply carries the judge's
 // ends of two new pipes, whose other ends are the new probe's descriptors 4 (requests) and 5 (answers).
-void serveProbes(int socket, ProbeRuns& runs, isolation::TestServer* server, const Workspace& w, const std::string& tag,
-                 const Limits& limits, const std::function<void(const std::string&)>& progress) {
+void serveProbes(int socket, ProbeRuns& runs, Stalls& stalls, isolation::TestServer* server, const Workspace& w,
+                 const std::string& tag, const Limits& limits,
+                 const std::function<void(const std::string&)>& progress) {
     char message[1024];
     for (;;) {
         const ssize_t n = ::recv(socket, message, sizeof message, 0);
@@ -339,8 +387,13 @@ void serveProbes(int socket, ProbeRuns& runs, isolation::TestServer* server, con
         probe.passFds = {{4, requests[0]}, {5, answers[1]}};
         probe.isolate = true;
         probe.scratchWorkDir = true;
-        runs.running.emplace_back([&runs, server, &w, &tag, probe, test, number = ++runs.started] {
+        probe.stalled = idleWatch(stalls, runs.judgeCpu, test);
+        runs.running.emplace_back([&runs, &stalls, server, &w, &tag, probe, test, number = ++runs.started] {
             isolation::ProcessResult result = runProbe(probe, server, w, tag, number);
+            if (result.wallTimeout) {
+                std::lock_guard<std::mutex> guard(stalls.lock);
+                if (stalls.first.empty()) stalls.first = test;
+            }
             std::lock_guard<std::mutex> guard(runs.lock);
             runs.results[test] = std::move(result);
         });
@@ -359,7 +412,7 @@ void serveProbes(int socket, ProbeRuns& runs, isolation::TestServer* server, con
 // Landlock, must be) unreadable to every other user.
 isolation::ProcessResult runJudge(const Assignment& assignment, const std::vector<const RubricTest*>& tests,
                                   const Workspace& w, const std::string& judgeFiles, const std::string& tag,
-                                  const Limits& limits, int probes) {
+                                  const Limits& limits, int probes, std::atomic<double>& cpu) {
     const std::string judgeProgram = judgeFiles + "/judge";
     writeFileAtomically(judgeProgram, readFile(assignment.judge));
     fs::permissions(judgeProgram, fs::perms::owner_all);
@@ -381,6 +434,10 @@ isolation::ProcessResult runJudge(const Assignment& assignment, const std::vecto
     judge.readOnlyPaths = {judgeProgram, judgeFiles};
     judge.handOver = {judgeFiles};  // its user's alone: no probe can read the judge, the rubric or the files
     judge.scratchWorkDir = true;
+    judge.stalled = [&cpu](double used) {
+        cpu = used;
+        return false;
+    };
     return isolation::runProcess(judge);
 }
 
@@ -390,7 +447,7 @@ isolation::ProcessResult runJudge(const Assignment& assignment, const std::vecto
 // from those of judges running beside it.
 std::vector<TestResult> runTests(const Assignment& assignment, const std::vector<const RubricTest*>& tests,
                                  const Workspace& w, const std::string& judgeFiles, const std::string& tag,
-                                 const Limits& limits, std::string* graderOutput,
+                                 const Limits& limits, Stalls& stalls, std::string* graderOutput,
                                  const std::function<void(const std::string&)>& progress) {
     int socket[2];
     if (::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, socket) != 0) {
@@ -399,7 +456,7 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     ProbeRuns probes;
     // The server starts while the judge does.
     std::unique_ptr<isolation::TestServer> probeServer = startProbeServer(w, tag, limits, tests.size());
-    std::thread server([&] { serveProbes(socket[0], probes, probeServer.get(), w, tag, limits, progress); });
+    std::thread server([&] { serveProbes(socket[0], probes, stalls, probeServer.get(), w, tag, limits, progress); });
     // Ends the server's wait (should the judge have left a copy behind) and its probes: after the judge, or when
     // the judge could not be started at all (its error then goes on, never a std::terminate of a running thread).
     auto endServer = [&] {
@@ -411,7 +468,7 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     };
     isolation::ProcessResult judged;
     try {
-        judged = runJudge(assignment, tests, w, judgeFiles, tag, limits, socket[1]);
+        judged = runJudge(assignment, tests, w, judgeFiles, tag, limits, socket[1], probes.judgeCpu);
     } catch (...) {
         endServer();
         throw;
@@ -428,7 +485,12 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
         probe.started = true;
         probe.exitCode = 0;
         if (const auto found = probes.results.find(test->name); found != probes.results.end()) probe = found->second;
-        results.push_back(interpret(*test, probe, judged, limits));
+        std::string stalledFirst;
+        {
+            std::lock_guard<std::mutex> guard(stalls.lock);
+            if (stalls.stopped.count(test->name)) stalledFirst = stalls.first;
+        }
+        results.push_back(interpret(*test, probe, judged, limits, stalledFirst));
     }
     return results;
 }
@@ -457,6 +519,7 @@ std::vector<TestResult> runJudges(const Assignment& assignment, const Rubric& ru
     std::vector<std::string> outputs(judges);
     std::vector<std::exception_ptr> failures(judges);
     std::mutex told;
+    Stalls stalls;
     auto progress = [&](const std::string& test) {
         if (!options.progress) return;
         std::lock_guard<std::mutex> guard(told);
@@ -466,7 +529,7 @@ std::vector<TestResult> runJudges(const Assignment& assignment, const Rubric& ru
         try {
             const std::string dir = w.root + "/judge" + std::to_string(k + 1);
             writeJudgeFiles(dir, rubric, files);
-            results[k] = runTests(assignment, shares[k], w, dir, "j" + std::to_string(k + 1) + "-", limits,
+            results[k] = runTests(assignment, shares[k], w, dir, "j" + std::to_string(k + 1) + "-", limits, stalls,
                                   &outputs[k], progress);
         } catch (...) {
             failures[k] = std::current_exception();

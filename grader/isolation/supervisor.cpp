@@ -172,6 +172,10 @@ void supervise(const ProcessRequest& r, Watched& w, Clock::time_point start, Pro
             nextCheck = Clock::now() + std::chrono::milliseconds(100);
             if (w.ownPeak) ownPeakKiB = std::max(ownPeakKiB, w.ownPeak());
             if (overLimits(w.usage(), r.limits, treeCpu, peakResidentKiB, result)) killAll();
+            if (!killed && r.stalled && r.stalled(treeCpu)) {
+                result.wallTimeout = true;
+                killAll();
+            }
             const std::uintmax_t diskCap = 3 * (static_cast<std::uintmax_t>(r.limits.fileMiB) << 20);
             if (!killed && !w.folder.empty() && folderBytes(w.folder, diskCap) > diskCap) {
                 result.diskLimit = true;

@@ -54,6 +54,9 @@ struct ProcessRequest {
     bool serveTests = false;        ///< with isolate, where testServers(): a probe's host serving a submission's
                                     ///< tests; it keeps CAP_SETUID, CAP_SETGID and CAP_SETPCAP alone, to start each
                                     ///< test's probe as a user of its own with none (see TestServer)
+    std::function<bool(double)> stalled;  ///< called as the run's processes are added up (every 100 ms) with their
+                                          ///< CPU time so far: true ends the run as at the wall-clock net
+                                          ///< (wallTimeout). The caller's judgement, never the child's
 };
 
 struct ProcessResult {
