@@ -2,10 +2,12 @@
 // simlab autograde: what Gradescope's run_autograder and PrairieLearn's entry point run.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <functional>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #include "commands.h"
@@ -14,6 +16,7 @@
 #include "simlab/common/files.h"
 #include "simlab/build/manifest.h"
 #include "simlab/course/package.h"
+#include "simlab/course/policy.h"
 #include "simlab/grading/report.h"
 #include "simlab/common/text.h"
 #include "simlab/writers/writers.h"
@@ -45,17 +48,68 @@ struct AutogradeOptions {
     std::string judge;
     std::string student;
     std::string metadata;
+    std::string course;
 };
 
-// The student Gradescope's metadata names (users[0]'s sid, else their email): empty where the file is absent
-// or names nobody. A file that is there but unreadable is an error.
-std::string studentOfMetadata(const AutogradeOptions& o) {
+// Gradescope's submission_metadata.json (--metadata, else beside the submission folder); null where there is none.
+// A file that is there but unreadable is an error.
+nlohmann::json metadataOf(const AutogradeOptions& o) {
     const fs::path file =
         !o.metadata.empty() ? fs::path(o.metadata)
                             : fs::absolute(o.submission).lexically_normal().parent_path() / "submission_metadata.json";
-    if (o.metadata.empty() && !fs::exists(file)) return "";
+    if (o.metadata.empty() && !fs::exists(file)) return nullptr;
     const nlohmann::json j = nlohmann::json::parse(engine::readFile(file.string()), nullptr, false);
-    if (j.is_discarded()) throw engine::UsageError(engine::printable(file.string()) + " is not JSON");
+    if (j.is_discarded() || !j.is_object()) throw engine::UsageError(engine::printable(file.string()) + " is not JSON");
+    return j;
+}
+
+// A date-time text of the metadata at `path` ("assignment", "due_date"), as UTC seconds; empty where absent.
+std::optional<std::time_t> metadataTime(const nlohmann::json& j, const std::vector<std::string>& path) {
+    const nlohmann::json* at = &j;
+    for (const std::string& key : path) {
+        if (at->is_array() && key.size() == 1 && std::isdigit(static_cast<unsigned char>(key[0]))) {
+            const std::size_t index = static_cast<std::size_t>(key[0] - '0');
+            if (index >= at->size()) return std::nullopt;
+            at = &(*at)[index];
+        } else if (at->is_object() && at->contains(key)) {
+            at = &(*at)[key];
+        } else {
+            return std::nullopt;
+        }
+    }
+    return at->is_string() ? engine::parseTime(at->get<std::string>()) : std::nullopt;
+}
+
+// The course's late policy (--course, else course.toml beside the rubric) applied to the record from Gradescope's
+// metadata: created_at is when it was handed in; the due date is course.toml's for the assignment, else the
+// student's own in the metadata (an extension given in Gradescope included), else the assignment's, with its late
+// due date as the cutoff.
+void applyAutogradeLate(const AutogradeOptions& o, const engine::Assignment& assignment, const nlohmann::json& metadata,
+                        engine::StudentRecord& r) {
+    using namespace simlab::engine;
+    const std::string path =
+        !o.course.empty() ? o.course : (fs::path(assignment.rubric).parent_path() / "course.toml").string();
+    if (!o.course.empty() && !fs::is_regular_file(path)) throw UsageError("no course file " + printable(path));
+    if (!fs::is_regular_file(path) || metadata.is_null()) return;
+    LatePolicy policy = loadLatePolicy(path, assignment.id, {});
+    if (!policy.active) {
+        const std::optional<std::time_t> own = metadataTime(metadata, {"users", "0", "assignment", "due_date"});
+        const std::optional<std::time_t> due = own ? own : metadataTime(metadata, {"assignment", "due_date"});
+        if (!due) return;
+        policy.due = *due;
+        policy.cutoff = metadataTime(metadata, {"assignment", "late_due_date"});
+        policy.active = true;
+    }
+    if (const std::optional<std::time_t> at = metadataTime(metadata, {"created_at"})) {
+        r.submitted = utcText(*at);
+        r.submittedFrom = "Gradescope's created_at";
+    }
+    applyLatePolicy(r, policy);
+}
+
+// The student Gradescope's metadata names (users[0]'s sid, else their email): empty where it names nobody.
+std::string studentOfMetadata(const nlohmann::json& j) {
+    if (j.is_null()) return "";
     const nlohmann::json users = j.value("users", nlohmann::json::array());
     if (!users.is_array() || users.empty() || !users[0].is_object()) return "";
     for (const char* key : {"sid", "email"}) {
@@ -89,12 +143,21 @@ void runAutograde(const AutogradeOptions& o) {
         GradeOptions options;
         options.includeHidden = true;
         options.judges = cores();  // one submission
-        options.student = o.student.empty() ? studentOfMetadata(o) : o.student;
+        const nlohmann::json metadata = metadataOf(o);
+        options.student = o.student.empty() ? studentOfMetadata(metadata) : o.student;
         requireStudentId(options.student);
         const GradeReport report =
             gradeFolder(Builder(manifest), assignment, rubric, o.submission, /*recursive=*/true, /*followFolder=*/true,
                         options);
-        writeFileAtomically(o.results, o.format == "prairielearn" ? prairieLearnJson(report) : resultsJson(report));
+        if (o.format == "prairielearn") {
+            writeFileAtomically(o.results, prairieLearnJson(report));
+        } else {
+            StudentRecord record = recordOf(report);
+            record.id = options.student;
+            applyAutogradeLate(o, assignment, metadata, record);
+            writeFileAtomically(o.results, resultsJson(record));
+            if (!record.late.line.empty()) std::cout << "Lateness: " << printable(record.late.line) << "\n";
+        }
         std::cout << renderText(report);
     } catch (const std::exception& e) {
         if (o.format == "prairielearn") {
@@ -244,6 +307,10 @@ void addAutograde(CLI::App& app) {
                   "default: users[0]'s sid, else email, of --metadata");
     a->add_option("--metadata", options->metadata,
                   "Gradescope's submission_metadata.json (default: the one beside the submission folder, if any)");
+    a->add_option("--course", options->course,
+                  "the course's rules for late work (default: course.toml beside the rubric, if there is one), "
+                  "applied from Gradescope's created_at; the due date is course.toml's, else the metadata's")
+        ->check(CLI::ExistingFile);
     a->callback([options] { runAutograde(*options); });
 }
 

@@ -111,6 +111,26 @@ check "a roster that matches nobody graded is refused in one line, nothing writt
   bash -c "test $(status_of nomatch) -eq 2 && test \$(wc -l <nomatch.err) -eq 1 &&
            grep -q 'no student of other-course.csv matches one of the 6 graded' nomatch.err && ! test -e nomatch.csv"
 
+# Gradescope's autograder: created_at against course.toml's rules, the due date from the metadata (the student's
+# own, an extension given in Gradescope, before the assignment's).
+mkdir -p gs/submission gs/results
+cp "$reference" gs/submission/
+printf '[late]\npenalty_percent = 10\nper = "day"\n' >rules.toml
+meta() {  # meta OWN_DUE: the metadata, handed in 26 h after the assignment's due date
+  printf '{"created_at": "2026-10-04T01:59:00.365935-07:00", "assignment": {"due_date": "2026-10-02T23:59:00.000000-07:00", "late_due_date": null}, "users": [{"sid": "s7", "email": "g@x.edu", "assignment": {"due_date": "%s"}}]}' "$1" \
+    >gs/submission_metadata.json
+}
+meta "2026-10-02T23:59:00.000000-07:00"
+run_capture auto "$SIMLAB" autograde apple --submission gs/submission --results gs/results/results.json --course rules.toml
+check "autograde: 26 h past Gradescope's due date, two days at 10 %: 80, and it says so" \
+  python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); sys.exit(not (d["score"] == 80 and d["extra_data"]["late"]["percent"] == 20 and "Lateness: handed in 26 h late" in d["output"]))' \
+  gs/results/results.json
+meta "2026-10-04T23:59:00.000000-07:00"
+run_capture auto-extended "$SIMLAB" autograde apple --submission gs/submission --results gs/results/results.json --course rules.toml
+check "autograde: the student's own due date in the metadata (an extension) puts it on time" \
+  python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); sys.exit(not (d["score"] == 100 and d["extra_data"]["late"]["percent"] == 0))' \
+  gs/results/results.json
+
 # Bad policies: one line, nothing graded.
 bad() {  # bad NAME TOML WHAT
   mkdir -p "bad-$1" && printf '%b' "$2" >"bad-$1/course.toml"
