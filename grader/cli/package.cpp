@@ -58,7 +58,7 @@ nlohmann::json metadataOf(const AutogradeOptions& o) {
         !o.metadata.empty() ? fs::path(o.metadata)
                             : fs::absolute(o.submission).lexically_normal().parent_path() / "submission_metadata.json";
     if (o.metadata.empty() && !fs::exists(file)) return nullptr;
-    const nlohmann::json j = nlohmann::json::parse(engine::readFile(file.string()), nullptr, false);
+    nlohmann::json j = nlohmann::json::parse(engine::readFile(file.string()), nullptr, false);
     if (j.is_discarded() || !j.is_object()) throw engine::UsageError(engine::printable(file.string()) + " is not JSON");
     return j;
 }
