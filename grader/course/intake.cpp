@@ -204,6 +204,7 @@ std::vector<IntakeStudent> canvas(const std::string& folder, const std::string& 
         std::string entry, original;
         long long submission = 0;
         int resubmission = 0;
+        std::string prefix;  // the entry's name before the file's own: "lovelaceada_101_9001"
     };
     std::map<std::string, IntakeStudent> students;
     std::map<std::string, std::map<std::string, Upload>> uploads;  // by id, by original name: the latest
@@ -216,7 +217,7 @@ std::vector<IntakeStudent> canvas(const std::string& folder, const std::string& 
         s.late = s.late || m[2].matched;
         const std::string id = s.id;
         if (m[3].length() > 15 || m[4].length() > 15) continue;  // no id Canvas makes
-        Upload u{e.name, m[5], std::stoll(m[4].str()), 0};
+        Upload u{e.name, m[5], std::stoll(m[4].str()), 0, e.name.substr(0, e.name.size() - m[5].length() - 1)};
         std::smatch r;
         const std::string named = u.original;  // the match refers into it
         if (std::regex_match(named, r, kResubmitted) && r[2].length() < 6) {
@@ -230,13 +231,18 @@ std::vector<IntakeStudent> canvas(const std::string& folder, const std::string& 
         // Canvas's zip keeps each file's submission time; the student's time is their latest file's.
         s.submitted = later(s.submitted, fileTime(folder + "/" + e.name));
         s.submittedFrom = "Canvas's file time";
-        if (s.canvasFile.empty()) s.canvasFile = e.name.substr(0, e.name.size() - m[5].length() - 1);
     }
     std::vector<IntakeStudent> out;
     for (const std::string& id : order) {
         IntakeStudent& s = students[id];
         fs::create_directories(classDir + "/" + id);
+        long long newest = -1;
         for (const auto& [original, u] : uploads[id]) {
+            // Canvas's Re-Upload Submissions matches a comment to an attachment of the submission: the latest.
+            if (u.submission > newest) {
+                newest = u.submission;
+                s.canvasFile = u.prefix;
+            }
             takeFile(folder, u.entry, classDir + "/" + id, original, limit, s, /*followFolder=*/true);
             if (u.resubmission > 0) s.note += (s.note.empty() ? "" : "; ") + original + ": resubmission " + std::to_string(u.resubmission);
         }

@@ -35,6 +35,8 @@ check "a student who handed in no C++ file is a missing file, not a silent row" 
 check "the roster has Canvas's ID and the late flag" \
   bash -c "grep -q '^babbagecharles,102,,,,babbagecharles_102,,,late,' canvas-grades/roster.csv &&
            grep -q '^lovelaceada,101,,,,lovelaceada_101,,,,' canvas-grades/roster.csv"
+check "and Canvas's name for the latest submission, which a comment re-uploaded to it must carry" \
+  grep -q '^babbagecharles,.*,babbagecharles_late_102_9003$' canvas-grades/roster.csv
 
 # Gradescope: submission_metadata.yml beside submission_<id>/ folders; a group of two.
 mkdir -p gradescope/submission_901 gradescope/submission_902
