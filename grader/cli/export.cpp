@@ -53,18 +53,16 @@ std::string listed(const std::vector<std::string>& ids) {
 int matchThroughIntake(std::vector<engine::RosterEntry>& roster, const std::string& intakePath,
                        const std::set<std::string>& graded) {
     using namespace simlab::engine;
-    if (!fs::is_regular_file(intakePath)) return 0;
-    std::vector<RosterEntry> intake;
-    try {
-        intake = readRoster(readFile(intakePath), intakePath);
-    } catch (const UsageError&) {
-        return 0;  // the instructor's edit of it: the roster given is matched as it is
-    }
     std::map<std::string, std::string> byCanvasId, bySis;
-    for (const RosterEntry& e : intake) {
-        if (e.folder.empty()) continue;
-        if (!e.canvasId.empty()) byCanvasId.emplace(e.canvasId, e.folder);
-        if (!e.sisUserId.empty()) bySis.emplace(e.sisUserId, e.folder);
+    try {
+        for (const auto& [folder, id] : rosterColumn(intakePath, "ID")) {
+            if (!id.empty()) byCanvasId.emplace(id, folder);
+        }
+        for (const auto& [folder, sis] : rosterColumn(intakePath, "SIS User ID")) {
+            if (!sis.empty()) bySis.emplace(sis, folder);
+        }
+    } catch (const UsageError&) {
+        return 0;  // the instructor's edit of it, unreadable: the roster given is matched as it is
     }
     int matched = 0;
     for (RosterEntry& e : roster) {
