@@ -591,19 +591,31 @@ std::string judgeNotYours(const Assignment& assignment) {
            owner + " (sudo), or with a simlab built as yourself";
 }
 
+std::vector<std::string> lentToTools(const Manifest& manifest, const Assignment& assignment) {
+    std::vector<std::string> lent = includeFolders(assignment.compile);
+    lent.push_back(assignment.contractInclude);
+    lent.insert(lent.end(), assignment.probeObjects.begin(), assignment.probeObjects.end());
+    lent.insert(lent.end(), manifest.probeLibraries.begin(), manifest.probeLibraries.end());
+    for (const std::string& flag : manifest.probeLink) {
+        const std::size_t file = flag.find("--version-script=");
+        if (file != std::string::npos) lent.push_back(flag.substr(file + 17));
+    }
+    lent.push_back(manifest.probeHost);
+    lent.erase(std::remove_if(lent.begin(), lent.end(),
+                              [](const std::string& p) { return p.empty() || isolation::visibleInSandboxes(p); }),
+               lent.end());
+    return lent;
+}
+
 std::string sandboxCannotReach(const Manifest& manifest, const Assignment& assignment) {
     const isolation::SandboxSupport& sandbox = isolation::sandboxSupport();
     // bubblewrap run as root lends each path whatever folder it lies below; as any other user, tools run as it.
     if (!sandbox.ownUser || (sandbox.bubblewrap && sandbox.rootBubblewrap)) return "";
-    std::vector<std::string> needed = includeFolders(assignment.compile);
-    needed.push_back(assignment.contractInclude);
-    needed.insert(needed.end(), assignment.probeObjects.begin(), assignment.probeObjects.end());
-    needed.insert(needed.end(), manifest.probeLibraries.begin(), manifest.probeLibraries.end());
-    needed.push_back(manifest.probeHost);
+    std::vector<std::string> needed = lentToTools(manifest, assignment);
     needed.erase(std::remove_if(needed.begin(), needed.end(),
                                 [](const std::string& p) {
                                     std::error_code error;
-                                    return p.empty() || p.rfind("/usr/", 0) == 0 || !fs::exists(p, error);
+                                    return p.rfind("/usr/", 0) == 0 || !fs::exists(p, error);
                                 }),
                  needed.end());
     const std::vector<std::string> readable = isolation::readableInSandbox(needed, needed);

@@ -194,10 +194,10 @@ const isolation::SandboxSupport& checkedSandbox(const engine::Manifest& manifest
         throw engine::UsageError(closed);
     }
     if (const std::string closed = engine::judgeNotYours(assignment); !closed.empty()) throw engine::UsageError(closed);
-    // The class's files and the grades are no sandbox's to see, wherever they lie.
-    hideFromSandboxes({root, out});
+    // The class's files and the grades are simlab's places: no sandbox's to see, wherever they lie.
+    addPlaces({root, out});
     // Hidden tests run only where no test's code can read them, nor the class's files.
-    if (const std::string exposed = engine::secretsExposed(manifest, {root, out}); !exposed.empty()) {
+    if (const std::string exposed = engine::placesExposed(manifest); !exposed.empty()) {
         throw engine::UsageError(exposed);
     }
     return sandbox;
@@ -272,6 +272,7 @@ void reportClass(const GradeCommandOptions& o, bool sharded, const std::string& 
 void runGrade(const GradeCommandOptions& o) {
     using namespace simlab::engine;
     const Manifest manifest = loadManifest();
+    sayLeftovers(sweepLeftovers());
     const Assignment& assignment = manifest.find(o.assignment);
     if (!assignment.hiddenTestsBuilt) {
         throw UsageError("grading needs the hidden tests, which this copy of simlab does not have");

@@ -59,11 +59,22 @@ PackageSummary copyFiles(const Manifest& manifest, const std::vector<Rule>& rule
     return summary;
 }
 
-std::vector<Rule> instructorOnly() {
+std::vector<Rule> instructorOnly(const Manifest& manifest) {
+    // A worked example's solution (simlab_add_assignment's WORKED_EXAMPLE) is given to students; every other
+    // solution is no student's (secretPaths, `simlab list --secrets`).
+    std::vector<std::string> shipped;
+    std::string kept;
+    for (const Assignment& a : manifest.assignments) {
+        if (!a.solutionShipped || a.solution.empty()) continue;
+        shipped.push_back(relativeTo(fs::path(a.solution).parent_path().string(), manifest.sourceDir) + "/");
+        kept += (kept.empty() ? "" : ", ") + shipped.back();
+    }
     return {
-        // The project's reference solution is its worked example, the baby boot, which students are given.
-        {"solutions/ (but the worked example project, solutions/biosim/)",
-         [](const std::string& f) { return startsWith(f, "solutions/") && !startsWith(f, "solutions/biosim/"); }},
+        {"solutions/" + (kept.empty() ? std::string() : " (but the worked examples, " + kept + ")"),
+         [shipped](const std::string& f) {
+             return startsWith(f, "solutions/") &&
+                    std::none_of(shipped.begin(), shipped.end(), [&](const std::string& s) { return startsWith(f, s); });
+         }},
         {"tests/: the corpus is made from the solutions and holds expected scores",
          [](const std::string& f) { return startsWith(f, "tests/"); }},
         {".ci/ and bench/", [](const std::string& f) { return startsWith(f, ".ci/") || startsWith(f, "bench/"); }},
@@ -285,7 +296,7 @@ PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& o
     for (const Assignment& a : manifest.assignments) {
         for (const std::string& h : a.hiddenTests) hidden.insert(relativeTo(h, manifest.sourceDir));
     }
-    std::vector<Rule> rules = instructorOnly();
+    std::vector<Rule> rules = instructorOnly(manifest);
     rules.push_back({"hidden tests", [hidden](const std::string& f) { return hidden.count(f) > 0; }});
     rules.push_back({"README.md: replaced by handouts/README-student.md",
                      [](const std::string& f) { return f == "README.md"; }});
@@ -307,7 +318,7 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
         throw UsageError("cannot write '" + zip + "': no directory " + target.parent_path().string());
     }
     TempDir staging("simlab-gradescope-");
-    PackageSummary summary = copyFiles(manifest, instructorOnly(), staging.path());
+    PackageSummary summary = copyFiles(manifest, instructorOnly(manifest), staging.path());
     // simlab and this assignment's grader alone: the other labs, their programs and the studies are not built. A lab
     // of one's own is built against simlab once simlab is, its hidden tests then closed as the course's are.
     const bool own = isOwnLab(manifest, assignment);
@@ -391,7 +402,7 @@ PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignm
     for (const Assignment& a : manifest.assignments) {
         for (const std::string& h : a.hiddenTests) hidden.insert(relativeTo(h, manifest.sourceDir));
     }
-    std::vector<Rule> rules = instructorOnly();
+    std::vector<Rule> rules = instructorOnly(manifest);
     rules.push_back({"hidden tests: in the question's tests/hidden/, which PrairieLearn keeps from students",
                      [hidden](const std::string& f) { return hidden.count(f) > 0; }});
     PackageSummary summary = copyFiles(manifest, rules, outDir + "/image/simlab");

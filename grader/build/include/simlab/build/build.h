@@ -27,6 +27,12 @@ struct BuildResult {
     std::string binary;
 };
 
+/// What a grading's sandboxed processes are lent of simlab's places (isolation/reach.h) beside their own folders:
+/// the contract's headers and the precompiled header (the compiler), the course's objects and the probe's export
+/// list (the linker), the probe's host. The rest of the places is none of theirs; the audit of limits only and
+/// `simlab lock` keep these open to throwaway users and nothing else.
+std::vector<std::string> lentToTools(const Manifest& manifest, const Assignment& assignment);
+
 /// Where the sandbox's users could not reach what a build lends them (the contract's headers, the precompiled
 /// header, the course's objects and libraries) - as root without bubblewrap each tool runs as a throwaway user,
 /// which must be able to pass through every folder above them: one line naming the closed folder and the fix
