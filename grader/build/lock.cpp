@@ -107,16 +107,18 @@ LockSummary lockPlaces(const Manifest& manifest, const std::vector<std::string>&
         }
     }
     // Each place once: one inside another is walked with it.
-    for (std::string& place : places) place = normal(place);
-    std::sort(places.begin(), places.end());
-    places.erase(std::unique(places.begin(), places.end()), places.end());
-    places.erase(std::remove_if(places.begin(), places.end(),
-                                [&](const std::string& p) {
-                                    return p.empty() || std::any_of(places.begin(), places.end(), [&](const std::string& q) {
-                                               return q != p && isOrUnder(p, q);
-                                           });
-                                }),
-                 places.end());
+    std::vector<std::string> named;
+    for (const std::string& place : places) {
+        if (!place.empty()) named.push_back(normal(place));
+    }
+    std::sort(named.begin(), named.end());
+    named.erase(std::unique(named.begin(), named.end()), named.end());
+    places.clear();
+    for (const std::string& p : named) {
+        if (std::none_of(named.begin(), named.end(), [&](const std::string& q) { return q != p && isOrUnder(p, q); })) {
+            places.push_back(p);
+        }
+    }
     const std::vector<std::string> lent = lentOfPlaces(manifest);
     auto isLent = [&](const std::string& p) {
         return std::any_of(lent.begin(), lent.end(), [&](const std::string& l) { return isOrUnder(p, l); });

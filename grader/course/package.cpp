@@ -318,10 +318,29 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
         throw UsageError("cannot write '" + zip + "': no directory " + target.parent_path().string());
     }
     TempDir staging("simlab-gradescope-");
-    PackageSummary summary = copyFiles(manifest, instructorOnly(manifest), staging.path());
-    // simlab and this assignment's grader alone: the other labs, their programs and the studies are not built. A lab
-    // of one's own is built against simlab once simlab is, its hidden tests then closed as the course's are.
+    // simlab and this assignment alone: the course's other labs (their hidden tests and trade files) are neither
+    // carried nor built, and a lab of one's own carries none of the course's. It is built against simlab once
+    // simlab is, its hidden tests then closed as the course's are.
     const bool own = isOwnLab(manifest, assignment);
+    std::vector<Rule> rules = instructorOnly(manifest);
+    std::vector<std::string> others;
+    std::string left;
+    for (const Assignment& a : manifest.assignments) {
+        if (!own && a.id == assignment.id) continue;
+        const std::string dir = relativeTo(a.dir, manifest.sourceDir) + "/";
+        const std::string starter = relativeTo(fs::path(a.starter).parent_path().string(), manifest.sourceDir) + "/";
+        others.push_back(dir);
+        if (starter.rfind("starter/", 0) == 0) others.push_back(starter);
+        left += (left.empty() ? "" : ", ") + a.id;
+    }
+    if (!others.empty()) {
+        rules.push_back({std::string(own ? "the course's labs" : "the course's other labs") + " (" + left + ")",
+                         [others](const std::string& f) {
+                             return std::any_of(others.begin(), others.end(),
+                                                [&](const std::string& o) { return startsWith(f, o); });
+                         }});
+    }
+    PackageSummary summary = copyFiles(manifest, rules, staging.path());
     std::string named = assignment.id, setup;
     if (own) {
         addLab(assignment, staging.path(), true, summary);

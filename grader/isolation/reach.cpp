@@ -224,7 +224,7 @@ Exposure exposedPlaces(const std::vector<std::string>& lent) {
     for (std::size_t i = 0; i < files.size(); ++i) {
         if (!opened[i]) continue;
         ++exposure.readableCount;
-        if (exposure.readable.size() < 1000) exposure.readable.push_back(files[i]);
+        exposure.readable.push_back(files[i]);
     }
     return exposure;
 }

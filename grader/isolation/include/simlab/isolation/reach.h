@@ -55,8 +55,8 @@ bool withinReach(const std::string& path, const std::vector<std::string>& lent, 
 /// apart by their modes alone (limits only): every regular file under every place, opened as a user never used
 /// before, with no group and no capability (as root), or as the calling user (not as root).
 struct Exposure {
-    std::vector<std::string> readable;  ///< files that opened, not lent (the first 1000), in the order walked
-    std::size_t readableCount = 0;      ///< all of them
+    std::vector<std::string> readable;  ///< files that opened, not lent, by name
+    std::size_t readableCount = 0;      ///< how many
     std::size_t tried = 0;              ///< the files tried
     bool bounded = false;               ///< the places hold more than the walk's bound (500,000 entries): the
                                         ///< rest were not tried, and the places count as exposed
