@@ -147,7 +147,6 @@ std::vector<std::string> courseFiles(const Manifest& manifest, const Assignment&
 }  // namespace
 
 Builder::Builder(const Manifest& manifest) : manifest_(manifest), cacheDir_(manifest.cacheDir + "/objects") {
-    if (const char* dir = std::getenv("SIMLAB_CACHE"); dir && *dir) cacheDir_ = dir;
     std::error_code ignored;
     fs::create_directories(cacheDir_, ignored);
     // Every student's source and object is kept here: simlab's alone (the linker gets a copy of the one it needs).
@@ -286,7 +285,7 @@ const isolation::CourseSymbols& Builder::courseSymbols(const Assignment& assignm
     std::lock_guard<std::mutex> guard(lock);
     if (const auto found = known.find(key); found != known.end()) return found->second;
     isolation::CourseSymbols& symbols = known[key];
-    // Kept with the build (not with the objects, which $SIMLAB_CACHE may move): it depends on the build alone.
+    // Kept in the cache beside the objects' folder, by the build's key: it depends on the build alone.
     const std::string cached = manifest_.cacheDir + "/course-symbols-" + key + ".txt";
     std::error_code ignored;
     fs::create_directories(manifest_.cacheDir, ignored);

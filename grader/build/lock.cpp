@@ -96,6 +96,7 @@ LockSummary lockPlaces(const Manifest& manifest, const std::vector<std::string>&
     for (const Assignment& a : manifest.assignments) places.push_back(a.dir);
     LockSummary summary;
     std::error_code error;
+    const std::size_t course = places.size();
     for (const std::string& path : more) {
         if (!fs::exists(path, error)) throw UsageError("no folder " + printable(path) + " to close");
         summary.places.push_back(path);
@@ -106,18 +107,18 @@ LockSummary lockPlaces(const Manifest& manifest, const std::vector<std::string>&
             if (fs::exists(build, error)) places.push_back(build);
         }
     }
-    // Each place once: one inside another is walked with it.
+    const std::size_t extra = places.size() - course;
+    // Each place once (one inside another is walked with it), those named first: a folder that cannot be closed is
+    // said of the folder the user named before anything of the course's.
     std::vector<std::string> named;
     for (const std::string& place : places) {
         if (!place.empty()) named.push_back(normal(place));
     }
-    std::sort(named.begin(), named.end());
-    named.erase(std::unique(named.begin(), named.end()), named.end());
+    std::rotate(named.begin(), named.end() - static_cast<std::ptrdiff_t>(std::min(named.size(), extra)), named.end());
     places.clear();
     for (const std::string& p : named) {
-        if (std::none_of(named.begin(), named.end(), [&](const std::string& q) { return q != p && isOrUnder(p, q); })) {
-            places.push_back(p);
-        }
+        const bool inside = std::any_of(named.begin(), named.end(), [&](const std::string& q) { return q != p && isOrUnder(p, q); });
+        if (!inside && std::find(places.begin(), places.end(), p) == places.end()) places.push_back(p);
     }
     const std::vector<std::string> lent = lentOfPlaces(manifest);
     auto isLent = [&](const std::string& p) {

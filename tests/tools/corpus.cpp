@@ -466,14 +466,31 @@ std::string reachLiteral(const Manifest& manifest) {
     const SandboxSupport& sandbox = sandboxSupport();
     const bool modesAlone = !sandbox.bubblewrap && !sandbox.landlock;
     std::vector<std::string> lines;
-    std::error_code error;
-    for (auto it = fs::directory_iterator("/", error); !error && it != fs::directory_iterator(); it.increment(error)) {
-        if (it->is_directory(error) && !it->is_symlink(error)) lines.push_back("S" + it->path().string());
+    // Where to start: the folders two levels down from / and around each place (the folders on the way to it, it,
+    // and what is in it), by the names root sees - a sandbox may let a test enter a folder it may not list (Landlock
+    // grants /usr's entries one by one where a place lies among them).
+    std::set<std::string> starts;
+    const auto folders = [](const std::string& dir) {
+        std::vector<std::string> found;
+        std::error_code error;
+        for (auto it = fs::directory_iterator(dir, error); !error && it != fs::directory_iterator(); it.increment(error)) {
+            if (it->is_directory(error) && !it->is_symlink(error)) found.push_back(it->path().string());
+        }
+        return found;
+    };
+    for (const std::string& top : folders("/")) {
+        if (top == "/proc" || top == "/sys") continue;
+        starts.insert(top);
+        for (const std::string& below : folders(top)) starts.insert(below);
     }
     const char* tmp = std::getenv("TMPDIR");
     const std::string temporary = tmp && *tmp ? tmp : "/tmp";
-    lines.push_back("S" + temporary);
-    for (const std::string& place : places()) lines.push_back("S" + place);
+    starts.insert(temporary);
+    for (const std::string& place : places()) {
+        for (fs::path up = place; up.has_relative_path(); up = up.parent_path()) starts.insert(up.string());
+        for (const std::string& below : folders(place)) starts.insert(below);
+    }
+    for (const std::string& start : starts) lines.push_back("S" + start);
     for (const auto* list : {&systemFolders(), &systemFiles(), &systemDevices()}) {
         for (const std::string& path : *list) lines.push_back("A" + path);
     }

@@ -53,7 +53,7 @@ void ensurePrecompiledHeader(const Manifest& manifest, const Assignment& assignm
 
 class Builder {
 public:
-    /// Objects are cached in <cache>/objects (Manifest::cacheDir), or in $SIMLAB_CACHE.
+    /// Objects are cached in <cache>/objects (Manifest::cacheDir: $SIMLAB_CACHE, or the build's or user's cache).
     explicit Builder(const Manifest& manifest);
 
     /// Compile the student's file (`name`, its bytes `text`) in `workDir` in the sandbox, check the object (unless
@@ -81,7 +81,7 @@ public:
     std::string gradingKey(const Assignment& assignment) const;
     /// The course's symbols for `assignment`'s probe, found once (and kept in the cache).
     const isolation::CourseSymbols& courseSymbols(const Assignment& assignment) const;
-    /// The folder of the object cache (SIMLAB_CACHE, or the build's cache/).
+    /// The folder of the object cache (<cache>/objects).
     const std::string& cacheDir() const { return cacheDir_; }
     /// simlab-probe-host, the program every probe of this build runs in.
     const std::string& probeHost() const { return manifest_.probeHost; }
