@@ -186,6 +186,13 @@ int main(int argc, char** argv) {
     const long mib = wrote.rfind("wrote ", 0) == 0 ? std::atol(wrote.c_str() + 6) : -1;
     check("files past the space a test has: refused (a full folder) or stopped, never 1 GiB",
           disk.diskLimit || (mib >= 0 && mib <= 48), wrote + (disk.diskLimit ? ", stopped" : ""));
+    // The same in /tmp: bubblewrap's is a memory file system of its own, Landlock lets nothing be written there,
+    // and with limits only what the test's user writes in the machine's shared temporary folders counts as its own.
+    const ProcessResult tmpDisk = runTry(program, {"disk:16:/tmp"}, lent);
+    const std::string wroteTmp = resultsOf(tmpDisk.output)["disk"];
+    const long tmpMib = wroteTmp.rfind("wrote ", 0) == 0 ? std::atol(wroteTmp.c_str() + 6) : -1;
+    check("files past the space a test has, in /tmp: refused or stopped, never 1 GiB",
+          tmpDisk.diskLimit || (tmpMib >= 0 && tmpMib <= 48), wroteTmp + (tmpDisk.diskLimit ? ", stopped" : ""));
 
     // A call of the x32 ABI, which a filter for x86-64 alone would miss: the process is ended or the call refused.
     const ProcessResult x32 = runTry(program, {"x32"}, lent);
