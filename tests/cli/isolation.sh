@@ -113,6 +113,18 @@ if [[ -z $build_closed && $(id -u) -eq 0 ]]; then
       bash -c "test $(status_of lock-theirs) -eq 2 && test \$(grep -c . lock-theirs.err) -eq 1 &&
         grep -q 'cannot close $work/theirs/pendulum/handout.md to other users (it is root.s' lock-theirs.err"
   fi
+  # And one on a read-only file system (a bind mount of it, in a mount namespace of this test's own).
+  if unshare --mount true 2>/dev/null; then
+    mkdir -p "$work/readonly" && cp -r "$SOURCE_DIR/examples/pendulum" "$work/readonly/"
+    run_capture lock-readonly env SIMLAB_CACHE="$work/cache" unshare --mount bash -c \
+      "mount --bind '$work/readonly' '$work/readonly' && mount -o remount,bind,ro '$work/readonly' &&
+       exec '$SIMLAB' lock '$work/readonly/pendulum'"
+    check "simlab lock of a lab on a read-only file system: one line naming a file of it, exit 2" \
+      bash -c "test $(status_of lock-readonly) -eq 2 && test \$(grep -c . lock-readonly.err) -eq 1 &&
+        grep -q 'cannot close $work/readonly/pendulum.* to other users (it is on a read-only file system' lock-readonly.err"
+  else
+    echo "skipped: a read-only file system for simlab lock (no mount namespace here)"
+  fi
 fi
 
 # Not as root: a student's self-check, as the user who started simlab (nobody here), with its own cache.
