@@ -103,8 +103,9 @@ void onRefusedCall(int, siginfo_t* info, void* context) {
     ::_exit(128 + SIGSYS);
 }
 
-// The probe: the students' filter, then the submission's shared object, then its entry point. Never returns.
-[[noreturn]] void runProbe(const char* probe) {
+// The probe: the students' filter, then the submission's shared object, then its entry point. Never returns. A
+// test's own copy (`ownCopy`) goes once it is loaded: the folder's space is the test's.
+[[noreturn]] void runProbe(const char* probe, bool ownCopy) {
     struct sigaction refused {};
     refused.sa_sigaction = onRefusedCall;
     refused.sa_flags = SA_SIGINFO;
@@ -114,6 +115,7 @@ void onRefusedCall(int, siginfo_t* info, void* context) {
     if (!program.empty() && !filter::install(program)) cannot("simlab: cannot load the probe's system-call filter");
     void* loaded = ::dlopen(probe, RTLD_NOW | RTLD_LOCAL);
     if (!loaded) cannot("simlab: cannot load the probe", ::dlerror());
+    if (ownCopy) ::unlink(probe);
     using Entry = int (*)();
     const auto entry = reinterpret_cast<Entry>(::dlsym(loaded, "simlab_probe_entry"));
     if (!entry) cannot("simlab: the probe has no entry point");
@@ -325,5 +327,5 @@ int main(int argc, char** argv) {
         // Run alone, the host is already the test's user: it never loads a student's code with privilege.
         cannot("simlab: a probe runs as a user of its own, never as root or with a capability");
     }
-    runProbe(probe);
+    runProbe(probe, serve);
 }
