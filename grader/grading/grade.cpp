@@ -62,7 +62,9 @@ Limits serverLimits(const Limits& probe, std::size_t tests) {
     l.wallSeconds = (probe.wallSeconds + 5) * static_cast<double>(tests) + 60;
     l.cpuSeconds = (probe.cpuSeconds + 3) * static_cast<double>(tests) + 60;
     l.memoryMiB = 2 * probe.memoryMiB + 256;
-    l.fileMiB = 2 * probe.fileMiB;
+    // The tests' folders share the server's space (bubblewrap's memory folder): each of those running at once may
+    // take what a test may (three times its file-size limit), and each test's folder goes when it ends.
+    l.fileMiB = probe.fileMiB * (1 + 3 * std::min<std::size_t>(tests, 4));
     return l;
 }
 

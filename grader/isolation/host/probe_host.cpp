@@ -20,6 +20,7 @@
 // kernel (waitpid), never from the probe.
 #include <dlfcn.h>
 #include <fcntl.h>
+#include <ftw.h>
 #include <poll.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
@@ -200,6 +201,22 @@ void becomeTest(const host::StartTest& test, const int (&fds)[5], pid_t server, 
     ::setenv("TMPDIR", here, 1);
 }
 
+// A test's folder, once its probe has ended, removed as the test's own user (the file system's user: setfsuid) -
+// the server holds no capability over files, so nothing a test's process might swap into it while it goes (a
+// link, say) lets this remove more than that user may - and no link followed: the folders the tests share are
+// the space of those still running.
+int removeEntry(const char* path, const struct stat*, int type, struct FTW*) {
+    if (type == FTW_DP) (void)::rmdir(path);
+    else (void)::unlink(path);
+    return 0;  // what cannot go stays; the walk goes on
+}
+void removeFolder(const char* folder, uid_t uid) {
+    if (uid == 0 || !folder[0] || std::strchr(folder, '/') || folder[0] == '.') return;
+    ::syscall(SYS_setfsuid, uid);
+    ::nftw(folder, removeEntry, 16, FTW_DEPTH | FTW_PHYS | FTW_MOUNT);
+    ::syscall(SYS_setfsuid, 0);
+}
+
 // Serves the engine on kServerFd: a test's probe forked for each request, its start and its end told on the
 // test's own socket. Returns only in a test's child, ready to load the probe; the server itself leaves when the
 // engine closes its end.
@@ -210,6 +227,8 @@ void serveTests(int probe) {
     struct Running {
         pid_t pid;
         int pidfd, notify;
+        uid_t uid;
+        char folder[sizeof(StartTest::folder) + 1];
     };
     std::vector<Running> running;
     auto tell = [](int fd, TestEvent event) { (void)!::send(fd, &event, sizeof event, MSG_NOSIGNAL); };
@@ -238,6 +257,7 @@ void serveTests(int probe) {
             tell(running[i].notify, endedEvent(running[i].pid, status, usage));
             ::close(running[i].notify);
             ::close(running[i].pidfd);
+            removeFolder(running[i].folder, running[i].uid);
             running.erase(running.begin() + static_cast<std::ptrdiff_t>(i));
         }
         if (!(watched[0].revents & (POLLIN | POLLHUP | POLLERR))) continue;
@@ -280,9 +300,14 @@ void serveTests(int probe) {
             struct rusage usage {};
             ::wait4(pid, &status, 0, &usage);
             tell(fds[0], endedEvent(pid, status, usage));
+            char folder[sizeof test.folder + 1] = {};
+            std::memcpy(folder, test.folder, sizeof test.folder);
+            removeFolder(folder, test.uid);
         }
         if (pid > 0 && pidfd >= 0) {
-            running.push_back({pid, pidfd, fds[0]});
+            Running r{pid, pidfd, fds[0], test.uid, {}};
+            std::memcpy(r.folder, test.folder, sizeof test.folder);
+            running.push_back(r);
         } else {
             ::close(fds[0]);
         }
