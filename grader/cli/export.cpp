@@ -100,7 +100,7 @@ int writeCanvasComments(const std::string& zip, const std::string& grades,
             continue;
         }
         if (!done.insert(name->second).second) continue;
-        writeFileAtomically(staging.path() + "/" + name->second + "_simlab-feedback.html", readFile(page));
+        writeOutputAtomically(staging.path() + "/" + name->second + "_simlab-feedback.html", readFile(page));
         ++written;
     }
     const fs::path target = fs::absolute(zip);
@@ -161,7 +161,7 @@ void runCanvas(const CanvasOptions& o) {
     if (!o.canvasId.empty()) column += " (" + o.canvasId + ")";
 
     const CanvasExport made = canvasCsv(column, possible, roster, records);
-    writeFileAtomically(o.output, made.csv);
+    writeOutputAtomically(o.output, made.csv);
     std::cout << "Wrote " << printable(o.output) << ": " << printable(column) << ", " << made.scored << " of "
               << roster.size() << " students on the roster scored (out of " << points(possible) << ")"
               << (throughIntake > 0 ? ", " + std::to_string(throughIntake) + " matched by Canvas's ID or SIS User ID"

@@ -58,7 +58,7 @@ void runSimilarity(const SimilarityOptions& o) {
     const SimilarityReport report = compareSubmissions(files, starter, o.floor);
     const std::string out = o.out.empty() ? "grades/" + assignment.id : o.out;
     fs::create_directories(out);
-    writeFileAtomically(out + "/similarity.html", similarityHtml(assignment.title, report, files, starter));
+    writeOutputAtomically(out + "/similarity.html", similarityHtml(assignment.title, report, files, starter));
     std::printf(
         "Compared %zu files in pairs, the starter's lines removed: the median pair shares %.0f %% (spread "
         "%.0f %%); flagged at %.0f %% or more (the floor) or at %.0f %% or more (the class):\n",

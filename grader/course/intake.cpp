@@ -159,7 +159,7 @@ void takeFile(const std::string& folder, const std::string& name, const std::str
         return;
     }
     fs::create_directories(toDir);
-    if (!fs::exists(toDir + "/" + asName)) writeFileAtomically(toDir + "/" + asName, h.text);
+    if (!fs::exists(toDir + "/" + asName)) writeOutputAtomically(toDir + "/" + asName, h.text);
 }
 
 // Every regular file below `folder` (a submission as the platform keeps it), each under its own name.
@@ -503,7 +503,7 @@ std::vector<IntakeStudent> takeIn(const std::string& layout, const std::string& 
     }
     fs::remove_all(classDir, ignored);
     fs::create_directories(classDir);
-    writeFileAtomically(mark, "a class simlab took in from " + printable(folder) + "\n");
+    writeOutputAtomically(mark, "a class simlab took in from " + printable(folder) + "\n");
     std::vector<IntakeStudent> students;
     if (layout == "canvas") students = canvas(folder, classDir, limitBytes);
     else if (layout == "gradescope") students = gradescope(folder, classDir, limitBytes);
