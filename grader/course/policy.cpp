@@ -445,7 +445,7 @@ std::vector<std::string> checkHandIns(HandIns& handIns, const LatePolicy& p) {
         unvouched.push_back(id);
         times.insert(h.time);
         sources.insert(h.from);
-        if (h.flaggedLate) flagged.push_back(id);
+        if (h.flaggedLate.value_or(false)) flagged.push_back(id);
     }
     // Every file of one time: the download's (Canvas's zip at times gives none) or a copy's. They say nothing of
     // anyone's hand-in, and are dropped.

@@ -402,7 +402,7 @@ SimilarityReport compareSubmissions(const std::map<std::string, std::string>& fi
 }
 
 std::string similarityHtml(const std::string& title, const SimilarityReport& report,
-                           const std::map<std::string, std::string>& files, const std::string& starter) {
+                           const std::map<std::string, std::string>& files) {
     using writers::htmlText;
     char figure[64];
     std::ostringstream out;

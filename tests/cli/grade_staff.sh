@@ -44,8 +44,8 @@ run_capture ta-again as_ta bash -c "echo >>grades/apple/manual.csv"
 check "  as the TA finds it" test "$(status_of ta-again)" -eq 0
 
 # The judges closed to others, as scripts/lock-course leaves them: a manifest whose judge the TA may not read.
-mkdir -m 0700 judges
-python3 - "$BIN_DIR/../simlab-build.json" judges <<'PY'
+mkdir -m 0711 judges
+python3 - "$BIN_DIR/../simlab-build.json" "$work/judges" <<'PY'
 import json, shutil, sys
 manifest = json.load(open(sys.argv[1]))
 for a in manifest["assignments"]:
@@ -53,7 +53,7 @@ for a in manifest["assignments"]:
         a["judge"] = shutil.copy(a["judge"], sys.argv[2] + "/apple-judge")
 json.dump(manifest, open("closed.json", "w"))
 PY
-chmod 0644 closed.json
+chmod 0644 closed.json && chmod 0700 judges/apple-judge
 mkdir canvas && cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" canvas/lovelaceada_101_9001_NewtonsApple.cpp
 mkdir -p shared && chgrp $staff shared && chmod 2775 shared
 run_capture ta-grade as_ta env SIMLAB_MANIFEST="$work/closed.json" "$SIMLAB" grade apple canvas -o shared/apple --from canvas
