@@ -5,7 +5,8 @@
 # ID, a Moodle file whose name holds another's number: the victim keeps their extension, the thief gets none. A
 # copied Canvas download (every time the copy's): the disagreement said, nobody charged on the copy's times, the
 # times given with --submitted charge as Canvas says. Bad input (an extensions file or times file with a student
-# twice, an unknown one, a time that is not one) is one line naming the row, and the grades already there stay.
+# twice, an unknown one, a time that is not one) is one line naming the row, and the grades already there stay. A
+# second run on a folder another holds stops before it takes anything in; a new object cache made by two at once.
 # shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 # gb GRADES ID COLUMN: a cell of the student's gradebook row, by the column's name
@@ -149,4 +150,20 @@ bad times-twice 'student,days\n' 'student,submitted\n101,2026-10-03T09:00:00Z\nl
   'times.csv, row 3: lovelaceada_101 has row 2 too'
 bad times-unknown 'student,days\n' 'student,submitted\nnobody,2026-10-03T09:00:00Z\n' "times.csv, row 2: 'nobody' is no student"
 bad times-time 'student,days\n' 'student,submitted\n101,yesterday\n' "times.csv, row 2: 'yesterday' is not a date-time"
+
+# Another simlab holds the folder: the second stops at its lock before it takes the download in.
+mkdir held
+exec 8>held/.simlab-lock && flock -n 8
+grade held canvas canvas
+exec 8>&-
+check "a second run stops at the lock before it writes: no class taken in, no roster" \
+  bash -c "test $(status_of held) -eq 2 && grep -q 'another simlab is writing into held' held.err &&
+           test \"\$(ls -A held)\" = .simlab-lock"
+
+# A new object cache, three folders deep, made by two simlabs at once: both grade.
+cp "$reference" NewtonsApple.cpp
+for n in 1 2; do SIMLAB_CACHE=$work/fresh/cache/objects "$SIMLAB" check apple NewtonsApple.cpp >"cache-$n.out" 2>&1 & done
+wait
+check "a new object cache made by two simlabs at once: both grade" \
+  bash -c "grep -q '^Score: ' cache-1.out && grep -q '^Score: ' cache-2.out"
 finish
