@@ -151,6 +151,26 @@ bad times-twice 'student,days\n' 'student,submitted\n101,2026-10-03T09:00:00Z\nl
 bad times-unknown 'student,days\n' 'student,submitted\nnobody,2026-10-03T09:00:00Z\n' "times.csv, row 2: 'nobody' is no student"
 bad times-time 'student,days\n' 'student,submitted\n101,yesterday\n' "times.csv, row 2: 'yesterday' is not a date-time"
 
+# A roster.csv whose time is not one (an edit), read by a class taken in earlier; a Canvas roster that gives one ID
+# to two rows: one line naming the row, nothing changed.
+cp canvas-grades/gradebook.csv canvas-before.csv
+python3 - canvas-grades/roster.csv <<'PY'
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1])))
+rows[1][rows[0].index("Submitted")] = "garbage"
+csv.writer(open(sys.argv[1], "w", newline="")).writerows(rows)
+PY
+run_capture roster-time "$SIMLAB" grade apple canvas-grades/class -o canvas-grades --rubric course/rubric.toml
+check "a roster.csv time that is not one: one line naming the row, the gradebook as it was" \
+  bash -c "test $(status_of roster-time) -eq 2 && test \$(wc -l <roster-time.err) -eq 1 &&
+           grep -q 'roster.csv, row 2: Submitted .garbage. is not a date-time' roster-time.err &&
+           cmp -s canvas-before.csv canvas-grades/gradebook.csv"
+printf 'Student,ID,SIS User ID,SIS Login ID,Section\n"Hopper, Grace",103,,,A\n"Someone, Else",103,,,A\n' >twice.csv
+run_capture export-twice "$SIMLAB" export canvas apple --grades canvas-grades --roster twice.csv -o upload.csv
+check "a Canvas roster that gives one ID to two rows: one line naming the row, nothing written" \
+  bash -c "test $(status_of export-twice) -eq 2 && test \$(wc -l <export-twice.err) -eq 1 &&
+           grep -q 'twice.csv, row 3: ID 103 is row 2.s too' export-twice.err && ! test -e upload.csv"
+
 # Another simlab holds the folder: the second stops at its lock before it takes the download in.
 mkdir held
 exec 8>held/.simlab-lock && flock -n 8
