@@ -1,5 +1,6 @@
 // simlab grade: grade every submission of a class on every test, in parallel, resumably.
 #include <CLI/CLI.hpp>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -161,12 +162,24 @@ engine::StudentIds classIds(const std::string& out, const std::string& root,
 }
 
 // Each student's hand-in as the platform gave it: the download's (with Canvas's late flag), or, for a class taken in
-// earlier (--intake-only), its roster's; then the times the instructor names (--submitted), which win.
-engine::HandIns handIns(const GradeCommandOptions& o, const std::string& out,
-                        const std::vector<engine::IntakeStudent>& taken, const engine::StudentIds& ids) {
+// earlier (--intake-only), its roster's, else the file's own time; then the times the instructor names
+// (--submitted), which win.
+engine::HandIns handIns(const GradeCommandOptions& o, const std::string& out, const std::string& root,
+                        const Rubric& rubric, const std::vector<engine::IntakeStudent>& taken,
+                        const engine::StudentIds& ids) {
     using namespace simlab::engine;
     HandIns all;
     if (taken.empty()) all = rosterHandIns(out + "/roster.csv");
+    if (taken.empty()) {
+        for (const FolderEntry& e : listFolder(root, /*followFolder=*/true)) {
+            if (e.type != EntryType::Directory || e.name[0] == '.' || all.count(e.name)) continue;
+            const Submission found = findSubmission(root + "/" + e.name, rubric.submission, false);
+            struct stat st {};
+            if (!found.name.empty() && ::lstat((found.folder + "/" + found.name).c_str(), &st) == 0) {
+                all[e.name] = handInOf(utcText(st.st_mtime), "the file's time", std::nullopt);
+            }
+        }
+    }
     for (const IntakeStudent& s : taken) {
         const HandIn h =
             handInOf(s.submitted, s.submittedFrom, s.canvasFile.empty() ? std::nullopt : std::optional<bool>(s.late));
@@ -192,8 +205,8 @@ engine::HandIns handIns(const GradeCommandOptions& o, const std::string& out,
 
 // The course's late policy (course.toml: --course, or beside the rubric), its extensions matched through the
 // platform's ids, and each student's hand-in as the platform gave it; what the run says of those times.
-void latePolicy(const GradeCommandOptions& o, const engine::Assignment& assignment, const std::string& out,
-                const std::string& root, const std::vector<engine::IntakeStudent>& taken,
+void latePolicy(const GradeCommandOptions& o, const engine::Assignment& assignment, const Rubric& rubric,
+                const std::string& out, const std::string& root, const std::vector<engine::IntakeStudent>& taken,
                 engine::ClassOptions& options) {
     using namespace simlab::engine;
     const std::string rubricPath = o.rubric.empty() ? assignment.rubric : o.rubric;
@@ -201,7 +214,7 @@ void latePolicy(const GradeCommandOptions& o, const engine::Assignment& assignme
         !o.course.empty() ? o.course : (fs::path(rubricPath).parent_path() / "course.toml").string();
     if (!o.course.empty() && !fs::is_regular_file(path)) throw UsageError("no course file " + printable(path));
     const StudentIds ids = classIds(out, root, taken);
-    options.submitted = handIns(o, out, taken, ids);
+    options.submitted = handIns(o, out, root, rubric, taken, ids);
     options.late = loadLatePolicy(path, assignment.id, ids);
     if (!options.late.active) return;
     const LatePolicy& p = options.late;
@@ -348,7 +361,7 @@ void runGrade(const GradeCommandOptions& o) {
     options.shards = shard.second;
     options.manual = std::move(manual);
     options.locked = lock.has_value();
-    if (!shard.second) latePolicy(o, assignment, out, root, taken, options);
+    if (!shard.second) latePolicy(o, assignment, rubric, out, root, taken, options);
 
     const isolation::SandboxSupport& sandbox = checkedSandbox(manifest, root, out);
     std::printf("Grading %s (%s) from %s into %s%s: %d jobs, sandbox: %s\n", assignment.id.c_str(),

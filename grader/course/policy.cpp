@@ -433,11 +433,6 @@ std::string studentsText(std::size_t n) { return std::to_string(n) + (n == 1 ? "
 std::vector<std::string> checkHandIns(HandIns& handIns, const LatePolicy& p) {
     std::vector<std::string> lines;
     if (!p.active) return lines;
-    if (handIns.empty()) {
-        lines.push_back("every student is timed by their file's own time, which no platform vouches for (a copied "
-                        "folder has the copy's); --submitted FILE gives the platform's times");
-        return lines;
-    }
     std::vector<std::string> unvouched, flagged;
     std::set<std::string> times, sources;
     for (const auto& [id, h] : handIns) {
@@ -450,8 +445,8 @@ std::vector<std::string> checkHandIns(HandIns& handIns, const LatePolicy& p) {
     // Every file of one time: the download's (Canvas's zip at times gives none) or a copy's. They say nothing of
     // anyone's hand-in, and are dropped.
     if (unvouched.size() >= 2 && times.size() == 1) {
-        lines.push_back("every time in the download is the same, " + *times.begin() +
-                        ": they are the download's or a copy's, not when each student handed in, and are not used" +
+        lines.push_back("every student's time is the same, " + *times.begin() +
+                        ": they are a download's or a copy's, not when each student handed in, and are not used" +
                         (flagged.empty() ? std::string()
                                          : "; Canvas flags " + studentsText(flagged.size()) +
                                                " late, not charged until --submitted gives their times: " +

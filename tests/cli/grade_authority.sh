@@ -104,8 +104,8 @@ printf 'student,days\n' >course/ext.csv
 grade copied-grades copied canvas
 check "a copied download: the run says every time is the copy's, and names those Canvas flags late" \
   bash -c "test $(status_of copied-grades) -eq 0 &&
-           grep -q '^Hand-in times: every time in the download is the same, 2026-11-20T12:00:00Z: .*Canvas flags 2 students late, not charged until --submitted gives their times: hoppergrace_103, turing_104$' copied-grades.out &&
-           grep -q 'Hand-in times: every time in the download is the same' copied-grades/report.html"
+           grep -q '^Hand-in times: every student.s time is the same, 2026-11-20T12:00:00Z: .*Canvas flags 2 students late, not charged until --submitted gives their times: hoppergrace_103, turing_104$' copied-grades.out &&
+           grep -q 'Hand-in times: every student.* time is the same' copied-grades/report.html"
 check "  nobody is charged on the copy's times: on time by Canvas's flag, 100" \
   bash -c "test '$(gb copied-grades lovelaceada_101 score)' = 100 &&
            late_says copied-grades lovelaceada_101 'on time by Canvas.s flag'"
@@ -170,6 +170,14 @@ run_capture export-twice "$SIMLAB" export canvas apple --grades canvas-grades --
 check "a Canvas roster that gives one ID to two rows: one line naming the row, nothing written" \
   bash -c "test $(status_of export-twice) -eq 2 && test \$(wc -l <export-twice.err) -eq 1 &&
            grep -q 'twice.csv, row 3: ID 103 is row 2.s too' export-twice.err && ! test -e upload.csv"
+
+# A plain class folder, copied: its files' times are all the copy's. Said, and nobody is charged on them.
+mkdir -p plain/ada plain/bob && cp "$reference" plain/ada/ && cp "$reference" plain/bob/
+touch -d '2026-11-20 12:00:00 UTC' plain/*/NewtonsApple.cpp
+run_capture plain "$SIMLAB" grade apple plain -o plain-grades --rubric course/rubric.toml -j 2
+check "a copied class folder: every time the same, said; nobody charged on it" \
+  bash -c "test $(status_of plain) -eq 0 && grep -q '^Hand-in times: every student.s time is the same, 2026-11-20T12:00:00Z' plain.out &&
+           test '$(gb plain-grades ada score)/$(gb plain-grades bob score)' = 100/100"
 
 # Another simlab holds the folder: the second stops at its lock before it takes the download in.
 mkdir held

@@ -83,7 +83,7 @@ TEST_CASE("The run says whose times no platform vouches for, where flags and tim
                  {"c", handInOf("2026-10-05T06:00:00Z", "Canvas's file time", false)}};
     std::vector<std::string> lines = checkHandIns(h, p);
     REQUIRE(lines.size() == 1);
-    CHECK(lines[0].find("every time in the download is the same, 2026-10-05T06:00:00Z") == 0);
+    CHECK(lines[0].find("every student's time is the same, 2026-10-05T06:00:00Z") == 0);
     CHECK(lines[0].find("Canvas flags 1 student late, not charged until --submitted gives their times: a") !=
           std::string::npos);
     CHECK((h["a"].time.empty() && h["b"].time.empty()));
