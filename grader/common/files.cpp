@@ -75,10 +75,8 @@ void writeFileThenRename(const std::string& path, const std::string& text, bool 
         if (replacing) {
             // The group first (it may clear setgid bits), then the mode; either may be refused (a group the writer
             // is not in): the file is written all the same.
-            if (::fchown(fd, static_cast<uid_t>(-1), before.st_gid) != 0) {
-            }
-            if (::fchmod(fd, before.st_mode & 0777) != 0) {
-            }
+            (void)!::fchown(fd, static_cast<uid_t>(-1), before.st_gid);
+            (void)!::fchmod(fd, before.st_mode & 0777);
         }
         std::size_t done = 0;
         while (done < text.size()) {

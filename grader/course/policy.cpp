@@ -474,8 +474,9 @@ std::vector<std::string> checkHandIns(HandIns& handIns, const LatePolicy& p) {
     if (!unvouched.empty()) {
         std::string from;
         for (const std::string& s : sources) from += (from.empty() ? "" : ", ") + s;
-        lines.push_back(studentsText(unvouched.size()) + " timed by " + printable(from) +
-                        ", which no platform vouches for (a copied folder has the copy's): " + named(unvouched) +
+        const bool files = from.find("file") != std::string::npos;
+        lines.push_back(studentsText(unvouched.size()) + " timed by " + printable(from) + ", which no platform vouches for" +
+                        (files ? " (a copied folder has the copy's)" : "") + ": " + named(unvouched) +
                         "; --submitted FILE gives the platform's times");
     }
     return lines;
