@@ -158,11 +158,13 @@ Builder::Builder(const Manifest& manifest) : manifest_(manifest), cacheDir_(mani
     for (const fs::path& part : fs::absolute(cacheDir_).lexically_normal()) {
         made /= part;
         if (::mkdir(made.c_str(), 0755) != 0 && errno != EEXIST) {
-            throw std::runtime_error("cannot make the object cache's folder " + made.string() + ": " + std::strerror(errno));
+            throw std::runtime_error("cannot make the object cache's folder " + made.string() + ": " +
+                                     std::strerror(errno));
         }
     }
     std::error_code ignored;
-    if (!fs::is_directory(cacheDir_, ignored)) throw std::runtime_error("the object cache " + cacheDir_ + " is not a folder");
+    if (!fs::is_directory(cacheDir_, ignored))
+        throw std::runtime_error("the object cache " + cacheDir_ + " is not a folder");
     fs::permissions(cacheDir_, fs::perms::owner_all, ignored);
     if (!manifest.installed) checkPrecompiledHeader();  // before anything is built or said to be
     trimObjectCache(cacheDir_);

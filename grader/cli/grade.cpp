@@ -425,10 +425,11 @@ void addGrade(CLI::App& app) {
                      "or hour, grace days, an extensions file); default: course.toml beside the rubric, if there "
                      "is one")
         ->check(CLI::ExistingFile);
-    grade->add_option("--submitted", options->submittedTimes,
-                      "when each student handed in, on the platform's word: Canvas's submissions as its API gives "
-                      "them (JSON: user_id, submitted_at, late), or a CSV of student (any id the platform gives) and "
-                      "submitted; these times set how late, in place of the files' own")
+    grade
+        ->add_option("--submitted", options->submittedTimes,
+                     "when each student handed in, on the platform's word: Canvas's submissions as its API gives "
+                     "them (JSON: user_id, submitted_at, late), or a CSV of student (any id the platform gives) and "
+                     "submitted; these times set how late, in place of the files' own")
         ->type_name("FILE");
     grade->add_option("--shard", options->shard,
                       "I/N: grade share I of N of the class (students I, I + N, ... in name order) into OUT's student "

@@ -60,13 +60,15 @@ namespace {
 // people share (writeOutputAtomically).
 enum class Access { Fixed, Shared };
 
-void writeFileThenRename(const std::string& path, const std::string& text, bool durable, Access access = Access::Fixed) {
+void writeFileThenRename(const std::string& path, const std::string& text, bool durable,
+                         Access access = Access::Fixed) {
     const std::string temporary = path + ".tmp." + std::to_string(::getpid());
     {
         // A shared output replacing a file keeps that file's mode and group (a TA's group write on manual.csv);
         // a new one has the umask's mode and the folder's group (the kernel gives a setgid folder's).
         struct stat before {};
-        const bool replacing = access == Access::Shared && ::stat(path.c_str(), &before) == 0 && S_ISREG(before.st_mode);
+        const bool replacing =
+            access == Access::Shared && ::stat(path.c_str(), &before) == 0 && S_ISREG(before.st_mode);
         const mode_t mode = access == Access::Fixed ? 0644 : replacing ? 0600 : 0666;
         // Close-on-exec: a process another thread starts meanwhile must not keep the file open for writing (a
         // program being written would be busy, ETXTBSY, when it is run).

@@ -376,7 +376,7 @@ void refreshKeptRecords(const Assignment& assignment, const Rubric& rubric, cons
         const std::string dir = outDir + "/students/" + id;
         if (!fs::exists(dir + "/" + kFeedbackHtml)) {
             writeOutputAtomically(dir + "/" + kFeedbackHtml,
-                                feedbackHtml(assignment, r, rubric.manual, attachedBeside(dir)));
+                                  feedbackHtml(assignment, r, rubric.manual, attachedBeside(dir)));
         }
     }
 }
@@ -546,7 +546,8 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     // One simlab at a time writes a class's grades, or shards side by side, each its own students.
     std::optional<OutputLock> outputLock;
     if (!options.locked) {
-        outputLock.emplace(outDir, sharded ? std::to_string(options.shard) + "-of-" + std::to_string(options.shards) : "");
+        outputLock.emplace(outDir,
+                           sharded ? std::to_string(options.shard) + "-of-" + std::to_string(options.shards) : "");
     }
     const Limits limits = options.grade.limits.value_or(rubric.limits);
     const Hash base = gradingBasis(builder, assignment, rubric, limits, options.grade.includeHidden);

@@ -353,7 +353,8 @@ std::vector<MoodleName> moodleReadings(const std::string& entry) {
     std::vector<MoodleName> readings;
     for (auto it = std::sregex_iterator(entry.begin(), entry.end(), kMoodleMark); it != std::sregex_iterator(); ++it) {
         const std::smatch& m = *it;
-        const std::size_t at = static_cast<std::size_t>(m.position(0)), after = at + static_cast<std::size_t>(m.length(0));
+        const std::size_t at = static_cast<std::size_t>(m.position(0)),
+                          after = at + static_cast<std::size_t>(m.length(0));
         if (at == 0 || after >= entry.size()) continue;
         readings.push_back({entry.substr(0, at), m[1].str(), m[2].str(), entry.substr(after)});
     }
@@ -393,9 +394,8 @@ std::vector<IntakeStudent> moodle(const std::string& folder, const std::string& 
                                                   return known != namesOf.end() && !known->second.count(r.name);
                                               }),
                                readings.end());
-                const auto own = std::find_if(readings.begin(), readings.end(), [&](const MoodleName& r) {
-                    return namesOf.count(r.id) > 0;
-                });
+                const auto own = std::find_if(readings.begin(), readings.end(),
+                                              [&](const MoodleName& r) { return namesOf.count(r.id) > 0; });
                 if (own != readings.end() && std::count_if(readings.begin(), readings.end(), [&](const MoodleName& r) {
                                                  return namesOf.count(r.id) > 0;
                                              }) == 1) {

@@ -223,7 +223,8 @@ std::vector<std::string> projectFiles(const std::string& sourceDir) {
             if (said.find("dubious ownership") != std::string::npos) {
                 throw UsageError("git will not read " + printable(sourceDir) +
                                  ": it belongs to another user (git's \"dubious ownership\"); run simlab as its owner, "
-                                 "or trust it with git config --global --add safe.directory " + printable(sourceDir));
+                                 "or trust it with git config --global --add safe.directory " +
+                                 printable(sourceDir));
             }
             const std::size_t fatal = said.find("fatal: ");
             std::string line = said.substr(fatal == std::string::npos ? 0 : fatal);

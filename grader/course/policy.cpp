@@ -71,7 +71,8 @@ void readRules(const toml::table& table, LatePolicy& p, const std::string& where
 
 // The index of the column `name` in a CSV's first row; npos when it has none.
 std::size_t columnOf(const std::vector<std::string>& header, const std::string& name) {
-    const auto at = std::find_if(header.begin(), header.end(), [&](const std::string& c) { return trimmed(c) == name; });
+    const auto at =
+        std::find_if(header.begin(), header.end(), [&](const std::string& c) { return trimmed(c) == name; });
     return at == header.end() ? std::string::npos : static_cast<std::size_t>(at - header.begin());
 }
 
@@ -96,7 +97,8 @@ std::string studentOfRow(const std::string& who, const StudentIds& ids, const st
 }
 
 // A second row for a student already given one: one line naming both rows.
-void onceEach(std::map<std::string, std::size_t>& seen, const std::string& id, std::size_t row, const std::string& line) {
+void onceEach(std::map<std::string, std::size_t>& seen, const std::string& id, std::size_t row,
+              const std::string& line) {
     const auto [at, first] = seen.emplace(id, row);
     if (!first) {
         throw UsageError(line + ": " + printable(id) + " has row " + std::to_string(at->second) +
@@ -282,7 +284,9 @@ HandIns rosterHandIns(const std::string& rosterPath) {
                       canvasFile = columnOf(rows[0], "Canvas file");
     if (id == std::string::npos) return handIns;
     for (std::size_t r = 1; r < rows.size(); ++r) {
-        auto cell = [&](std::size_t c) { return c < rows[r].size() ? csvCellValue(trimmed(rows[r][c])) : std::string(); };
+        auto cell = [&](std::size_t c) {
+            return c < rows[r].size() ? csvCellValue(trimmed(rows[r][c])) : std::string();
+        };
         const std::string who = cell(id), when = cell(at);
         if (who.empty()) continue;
         std::string time;
@@ -295,7 +299,8 @@ HandIns rosterHandIns(const std::string& rosterPath) {
             time = utcText(*t);
         }
         // Canvas's download names a late submission so, and roster.csv keeps its flag.
-        const std::optional<bool> flag = cell(canvasFile).empty() ? std::nullopt : std::optional<bool>(!cell(late).empty());
+        const std::optional<bool> flag =
+            cell(canvasFile).empty() ? std::nullopt : std::optional<bool>(!cell(late).empty());
         const HandIn h = handInOf(time, cell(from).empty() ? "roster.csv" : cell(from), flag);
         // Members of a group share a folder: the latest of their times (and late if any is).
         const auto [kept, first] = handIns.emplace(who, h);
@@ -324,7 +329,8 @@ HandIns readSubmittedTimes(const std::string& path, const StudentIds& ids) {
         std::string time;
         if (!when.empty()) {
             const std::optional<std::time_t> t = parseTime(when);
-            if (!t) throw UsageError(line + ": '" + printable(when) + "' is not a date-time such as 2026-10-02T23:59:00Z");
+            if (!t)
+                throw UsageError(line + ": '" + printable(when) + "' is not a date-time such as 2026-10-02T23:59:00Z");
             time = utcText(*t);
         }
         times[id] = handInOf(time, from, late);
@@ -333,11 +339,13 @@ HandIns readSubmittedTimes(const std::string& path, const StudentIds& ids) {
     if (first != std::string::npos && text[first] == '[') {
         // Canvas's API: GET .../assignments/:id/submissions, a list of submissions.
         const nlohmann::json list = nlohmann::json::parse(text, nullptr, false);
-        if (list.is_discarded() || !list.is_array()) throw UsageError(where + " is not a JSON list of Canvas's submissions");
+        if (list.is_discarded() || !list.is_array())
+            throw UsageError(where + " is not a JSON list of Canvas's submissions");
         for (std::size_t i = 0; i < list.size(); ++i) {
             const nlohmann::json& s = list[i];
             const std::string line = where + ", submission " + std::to_string(i + 1);
-            if (!s.is_object() || !s.contains("user_id") || !(s["user_id"].is_number_integer() || s["user_id"].is_string())) {
+            if (!s.is_object() || !s.contains("user_id") ||
+                !(s["user_id"].is_number_integer() || s["user_id"].is_string())) {
                 throw UsageError(line + " has no user_id");
             }
             const std::string user = s["user_id"].is_string() ? s["user_id"].get<std::string>() : s["user_id"].dump();
@@ -447,10 +455,10 @@ std::vector<std::string> checkHandIns(HandIns& handIns, const LatePolicy& p) {
     if (unvouched.size() >= 2 && times.size() == 1) {
         lines.push_back("every student's time is the same, " + *times.begin() +
                         ": they are a download's or a copy's, not when each student handed in, and are not used" +
-                        (flagged.empty() ? std::string()
-                                         : "; Canvas flags " + studentsText(flagged.size()) +
-                                               " late, not charged until --submitted gives their times: " +
-                                               named(flagged)));
+                        (flagged.empty()
+                             ? std::string()
+                             : "; Canvas flags " + studentsText(flagged.size()) +
+                                   " late, not charged until --submitted gives their times: " + named(flagged)));
         for (const std::string& id : unvouched) {
             handIns[id].time.clear();
             handIns[id].from.clear();
@@ -475,9 +483,9 @@ std::vector<std::string> checkHandIns(HandIns& handIns, const LatePolicy& p) {
         std::string from;
         for (const std::string& s : sources) from += (from.empty() ? "" : ", ") + s;
         const bool files = from.find("file") != std::string::npos;
-        lines.push_back(studentsText(unvouched.size()) + " timed by " + printable(from) + ", which no platform vouches for" +
-                        (files ? " (a copied folder has the copy's)" : "") + ": " + named(unvouched) +
-                        "; --submitted FILE gives the platform's times");
+        lines.push_back(studentsText(unvouched.size()) + " timed by " + printable(from) +
+                        ", which no platform vouches for" + (files ? " (a copied folder has the copy's)" : "") + ": " +
+                        named(unvouched) + "; --submitted FILE gives the platform's times");
     }
     return lines;
 }

@@ -31,15 +31,20 @@ constexpr std::size_t kStarterRun = 8;
 
 const std::set<std::string>& cppKeywords() {
     static const std::set<std::string> words = {
-        "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
-        "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval", "constexpr",
-        "constinit", "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype", "default", "delete",
-        "do", "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern", "false", "float", "for",
-        "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
-        "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register", "reinterpret_cast",
-        "requires", "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast", "struct",
-        "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename",
-        "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq"};
+        "alignas",     "alignof",   "and",        "and_eq",    "asm",      "auto",         "bitand",
+        "bitor",       "bool",      "break",      "case",      "catch",    "char",         "char8_t",
+        "char16_t",    "char32_t",  "class",      "compl",     "concept",  "const",        "consteval",
+        "constexpr",   "constinit", "const_cast", "continue",  "co_await", "co_return",    "co_yield",
+        "decltype",    "default",   "delete",     "do",        "double",   "dynamic_cast", "else",
+        "enum",        "explicit",  "export",     "extern",    "false",    "float",        "for",
+        "friend",      "goto",      "if",         "inline",    "int",      "long",         "mutable",
+        "namespace",   "new",       "noexcept",   "not",       "not_eq",   "nullptr",      "operator",
+        "or",          "or_eq",     "private",    "protected", "public",   "register",     "reinterpret_cast",
+        "requires",    "return",    "short",      "signed",    "sizeof",   "static",       "static_assert",
+        "static_cast", "struct",    "switch",     "template",  "this",     "thread_local", "throw",
+        "true",        "try",       "typedef",    "typeid",    "typename", "union",        "unsigned",
+        "using",       "virtual",   "void",       "volatile",  "wchar_t",  "while",        "xor",
+        "xor_eq"};
     return words;
 }
 
@@ -76,8 +81,9 @@ StudentTokens studentTokens(const std::string& text, const std::vector<CppToken>
         for (std::size_t i = 0; i + kStarterRun <= tokens.size(); ++i) {
             window.clear();
             for (std::size_t j = i; j < i + kStarterRun; ++j) window.push_back(tokens[j].kind);
-            if (runs.count(window)) std::fill(given.begin() + static_cast<std::ptrdiff_t>(i),
-                                              given.begin() + static_cast<std::ptrdiff_t>(i + kStarterRun), true);
+            if (runs.count(window))
+                std::fill(given.begin() + static_cast<std::ptrdiff_t>(i),
+                          given.begin() + static_cast<std::ptrdiff_t>(i + kStarterRun), true);
         }
     }
     StudentTokens out;
@@ -215,9 +221,9 @@ std::vector<CppToken> cppTokens(const std::string& text) {
         for (; i < to && i < n; ++i) line += text[i] == '\n';
     };
     // The punctuators of two and three characters, longest first.
-    static const std::vector<std::string> punctuators = {
-        "<=>", "<<=", ">>=", "...", "->*", "::", "->", "++", "--", "<<", ">>", "<=", ">=", "==", "!=", "&&", "||",
-        "+=", "-=", "*=", "/=", "%=", "&=", "|=", "^=", ".*", "##"};
+    static const std::vector<std::string> punctuators = {"<=>", "<<=", ">>=", "...", "->*", "::", "->", "++", "--",
+                                                         "<<",  ">>",  "<=",  ">=",  "==",  "!=", "&&", "||", "+=",
+                                                         "-=",  "*=",  "/=",  "%=",  "&=",  "|=", "^=", ".*", "##"};
     while (i < n) {
         const unsigned char c = static_cast<unsigned char>(text[i]);
         if (c == '\n') {
@@ -257,7 +263,8 @@ std::vector<CppToken> cppTokens(const std::string& text) {
         std::string kind;
         // A string or character literal, with its prefix (u8, u, U, L, R): raw strings to their delimiter.
         std::size_t prefix = 0;
-        while (prefix < 3 && i + prefix < n && std::strchr("u8ULR", text[i + prefix]) && text[i + prefix] != '\0') ++prefix;
+        while (prefix < 3 && i + prefix < n && std::strchr("u8ULR", text[i + prefix]) && text[i + prefix] != '\0')
+            ++prefix;
         const bool raw = prefix > 0 && text[i + prefix - 1] == 'R';
         if (i + prefix < n && (text[i + prefix] == '"' || text[i + prefix] == '\'') &&
             (prefix == 0 || !identifierPart(static_cast<unsigned char>(start > 0 ? text[start - 1] : ' ')))) {
@@ -265,7 +272,8 @@ std::vector<CppToken> cppTokens(const std::string& text) {
             std::size_t at = i + prefix + 1;
             if (raw && quote == '"') {
                 const std::size_t open = text.find('(', at);
-                const std::string close = ")" + (open == std::string::npos ? std::string() : text.substr(at, open - at)) + "\"";
+                const std::string close =
+                    ")" + (open == std::string::npos ? std::string() : text.substr(at, open - at)) + "\"";
                 const std::size_t end = open == std::string::npos ? std::string::npos : text.find(close, open);
                 at = end == std::string::npos ? n : end + close.size();
             } else {
@@ -280,7 +288,8 @@ std::vector<CppToken> cppTokens(const std::string& text) {
             const std::string word = text.substr(i, at - i);
             kind = cppKeywords().count(word) ? word : "ID";
             i = at;
-        } else if (std::isdigit(c) || (c == '.' && i + 1 < n && std::isdigit(static_cast<unsigned char>(text[i + 1])))) {
+        } else if (std::isdigit(c) ||
+                   (c == '.' && i + 1 < n && std::isdigit(static_cast<unsigned char>(text[i + 1])))) {
             // A pp-number: digits, letters, '.', digit separators, and a sign after an exponent.
             std::size_t at = i + 1;
             while (at < n) {
@@ -410,8 +419,7 @@ std::string similarityHtml(const std::string& title, const SimilarityReport& rep
     out << "<style>.pair{display:flex;gap:1em}.side{flex:1;min-width:0}.side pre{overflow-x:auto;font-size:85%}"
            ".side mark{color:inherit}mark.r0{background:#f5d76e80}mark.r1{background:#7fb2f080}"
            "mark.r2{background:#8fd19e80}</style>\n";
-    out << "<header>\n<h1>" << htmlText(title) << ": similar submissions</h1>\n<p>"
-        << report.ids.size()
+    out << "<header>\n<h1>" << htmlText(title) << ": similar submissions</h1>\n<p>" << report.ids.size()
         << " files compared in pairs by sim_c++ (similarity-tester), the starter's code removed by its tokens "
            "(whatever its names). ";
     char rules[256];
@@ -436,7 +444,8 @@ std::string similarityHtml(const std::string& title, const SimilarityReport& rep
         out << "</tbody>\n</table>\n";
     }
     out << "</section>\n";
-    for (std::size_t i = 0; i < report.flagged.size(); ++i) out << pairSection(i, report.flagged[i], files, report.starterLines);
+    for (std::size_t i = 0; i < report.flagged.size(); ++i)
+        out << pairSection(i, report.flagged[i], files, report.starterLines);
     out << "<section>\n<h2>The most alike pairs</h2>\n<p class=\"muted\">At most 200, most alike first: ";
     for (std::size_t i = 0; i < report.pairs.size() && i < 200; ++i) {
         const SimilarPair& p = report.pairs[i];

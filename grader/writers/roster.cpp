@@ -118,7 +118,8 @@ std::vector<RosterEntry> readRoster(const std::string& text, const std::string& 
             throw UsageError(line + " names no student (Student, ID, SIS User ID and SIS Login ID are all empty)");
         }
         for (const auto& [key, value] : {std::pair<const char*, const std::string&>{"ID", e.canvasId},
-                                         {"SIS User ID", e.sisUserId}, {"SIS Login ID", e.sisLoginId}}) {
+                                         {"SIS User ID", e.sisUserId},
+                                         {"SIS Login ID", e.sisLoginId}}) {
             if (value.empty()) continue;
             const auto [at, first] = seen.emplace(std::make_pair(std::string(key), value), r + 1);
             if (!first) {

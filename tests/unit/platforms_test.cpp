@@ -222,14 +222,16 @@ TEST_CASE("Similarity: C++ read as tokens, identifiers, numbers and literals by 
         "#include <cmath>\nauto s = u8R\"x(a\")x\" + 'c'; // a comment\n/* two\nlines */ x.y->z >>= 1.5e-3;\n\"open");
     std::vector<std::string> kinds;
     for (const CppToken& k : t) kinds.push_back(k.kind);
-    CHECK(kinds == std::vector<std::string>{"auto", "ID", "=", "STR", "+", "CHR", ";", "ID", ".", "ID", "->", "ID", ">>=",
-                                            "NUM", ";", "STR"});
+    CHECK(kinds == std::vector<std::string>{"auto", "ID", "=", "STR", "+", "CHR", ";", "ID", ".", "ID", "->", "ID",
+                                            ">>=", "NUM", ";", "STR"});
     CHECK(t[3].text == "u8R\"x(a\")x\"");
     CHECK((t[0].line == 2 && t[7].line == 4 && t[12].text == ">>=" && t[13].text == "1.5e-3" && t[15].line == 5));
 }
 
-TEST_CASE("Similarity: the starter's code removed by its tokens, renamed or not; flagged above the class by three "
-          "spreads, 50 to 100 %", "[platforms]") {
+TEST_CASE(
+    "Similarity: the starter's code removed by its tokens, renamed or not; flagged above the class by three "
+    "spreads, 50 to 100 %",
+    "[platforms]") {
     const std::string starter =
         "void f(const Model& model, State& state) {\n    model.system.realize(state, Stage::Dynamics);\n}\n";
     // The starter's function with its names changed is still the starter's; the student's own line stays, on its line.

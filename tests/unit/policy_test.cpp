@@ -58,7 +58,8 @@ TEST_CASE("Late or not by Canvas's flag; how late by the time", "[policy]") {
     r = handedIn("b", "2026-10-05T06:00:00Z", "Canvas's file time");
     applyLatePolicy(r, p, handInOf(r.submitted, r.submittedFrom, false));
     CHECK(r.late.percent == 0);
-    CHECK(r.late.line == "handed in on time by Canvas's flag (Canvas's file time, 2026-10-05T06:00:00Z, is later: not used)");
+    CHECK(r.late.line ==
+          "handed in on time by Canvas's flag (Canvas's file time, 2026-10-05T06:00:00Z, is later: not used)");
     // Flagged late, but the time is on time: no penalty on the time alone, and what to do said.
     r = handedIn("c", "2026-10-03T06:00:00Z", "Canvas's file time");
     applyLatePolicy(r, p, handInOf(r.submitted, r.submittedFrom, true));

@@ -71,8 +71,8 @@ std::string withoutStarter(const std::string& text, const std::string& starter);
 /// The runs of `sim_c++ -n` output ("3.cpp: line 4-9 |5.cpp: line 2-7 [40]") by file number, the lower first.
 std::map<std::pair<std::size_t, std::size_t>, std::vector<SharedRun>> parseSimRuns(const std::string& output);
 
-/// Compares every pair of `files` (id -> the file's text), the starter's code removed by its tokens, with sim_c++ run in the
-/// sandbox (it reads students' bytes), and flags a pair at or above `floor` or the class-relative threshold.
+/// Compares every pair of `files` (id -> the file's text), the starter's code removed by its tokens, with sim_c++ run
+/// in the sandbox (it reads students' bytes), and flags a pair at or above `floor` or the class-relative threshold.
 /// Throws UsageError in one line if sim_c++ is missing or fails.
 SimilarityReport compareSubmissions(const std::map<std::string, std::string>& files, const std::string& starter,
                                     double floor = kSimilarityFloor);
