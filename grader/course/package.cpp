@@ -225,7 +225,24 @@ std::vector<std::string> projectFiles(const std::string& sourceDir) {
     std::vector<std::string> files;
     if (fs::exists(fs::path(sourceDir) / ".git") && fs::exists("/usr/bin/git")) {
         // What the repository tracks, nothing else: no build log, editor file or other untracked file is handed out.
-        std::istringstream list(isolation::runTool({"/usr/bin/git", "-C", sourceDir, "ls-files", "--cached"}, sourceDir));
+        std::string tracked;
+        try {
+            tracked = isolation::runTool({"/usr/bin/git", "-C", sourceDir, "ls-files", "--cached"}, sourceDir);
+        } catch (const std::runtime_error& e) {
+            // git's own message is several lines; the user gets one.
+            const std::string said = e.what();
+            if (said.find("dubious ownership") != std::string::npos) {
+                throw UsageError("git will not read " + printable(sourceDir) +
+                                 ": it belongs to another user (git's \"dubious ownership\"); run simlab as its owner, "
+                                 "or trust it with git config --global --add safe.directory " +
+                                 printable(sourceDir));
+            }
+            const std::size_t fatal = said.find("fatal: ");
+            std::string line = said.substr(fatal == std::string::npos ? 0 : fatal);
+            line = line.substr(0, line.find('\n'));
+            throw UsageError("git cannot list the files of " + printable(sourceDir) + ": " + printable(line));
+        }
+        std::istringstream list(tracked);
         std::string file;
         while (std::getline(list, file)) {
             if (fs::is_regular_file(fs::path(sourceDir) / file)) files.push_back(file);  // not deleted since

@@ -385,6 +385,8 @@ std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, 
                                 "gradebook.csv has each one's raw score and penalty)")
             << ".</p>\n";
     }
+    // What the times the lateness was measured from are worth: whose word, and where the sources disagree.
+    for (const std::string& line : result.handIns) out << "<p>Hand-in times: " << htmlText(line) << ".</p>\n";
     // The sandboxes the students' code ran in (one, unless the class was graded in parts on other machines).
     std::map<std::string, std::size_t> sandboxes;
     for (const StudentRecord& r : records) {
