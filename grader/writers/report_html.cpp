@@ -243,7 +243,7 @@ std::string studentsTable(const std::vector<const StudentRecord*>& rows, bool wi
         }
         if (tests) out << "<td class=\"name\">" << htmlText(shortened(tests(*r), kNoteChars)) << "</td>";
         if (r->status == "graded") out << "<td class=\"muted\">graded</td>";
-        else out << "<td><span class=\"badge error\">" << htmlText(r->status) << "</span></td>";
+        else out << "<td>" << writers::outcomeBadge(r->status) << "</td>";
         if (notes) out << "<td class=\"name\">" << htmlText(shortened(r->note, kNoteChars)) << "</td>";
         out << "</tr>\n";
     }

@@ -1,0 +1,142 @@
+#!/usr/bin/env node
+// Opens simlab's pages in one headless Chromium (Debian's, through puppeteer-core), from disk, with no network, and
+// runs axe-core's WCAG 2.0 and 2.1 rules of levels A and AA on each: every <details> opened, so that what it holds
+// is checked too, once in the light colour scheme and once in the dark one (simlab's grade pages have both).
+//
+//   node axe-check.js PAGE.html...
+//
+// Prints one line per page: the rules broken, each with the elements that break it, or "0 rules broken" with the
+// number of rules that held. Exit 0 when no page breaks a rule; 1 when one does, or when a page, Chromium or the
+// npm packages (scripts/install-deps installs them) cannot be had; 2 on a usage error.
+"use strict";
+
+const fs = require("fs");
+const path = require("path");
+
+const TAGS = ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa"];
+const SCHEMES = ["light", "dark"];
+
+function fail(message) {
+  console.error("axe-check: error: " + message);
+  process.exit(1);
+}
+
+let puppeteer, axeSource;
+try {
+  puppeteer = require("puppeteer-core");
+  axeSource = require("axe-core").source;
+} catch (e) {
+  fail("the page checks' npm packages are not installed in " + __dirname + "/node_modules " +
+       "(scripts/install-deps installs them with npm ci): " + String(e.message).split("\n")[0]);
+}
+
+function browserPath() {
+  for (const candidate of [process.env.CHROMIUM, "/usr/bin/chromium", "/usr/bin/chromium-browser"]) {
+    if (candidate && fs.existsSync(candidate)) return candidate;
+  }
+  return null;
+}
+
+// A line about the elements that break a rule: how many, and the first few by their CSS selector.
+function elements(nodes) {
+  const shown = nodes.slice(0, 4).map((n) => n.target.join(" ")).join(", ");
+  return nodes.length + (nodes.length === 1 ? " element: " : " elements: ") + shown +
+    (nodes.length > 4 ? ", ..." : "");
+}
+
+async function checkPage(browser, file) {
+  const page = await browser.newPage();
+  const console_ = [];
+  page.on("pageerror", (e) => console_.push(String(e.message).split("\n")[0]));
+  try {
+    // simlab's grade pages forbid scripts (Content-Security-Policy): axe's own is let in.
+    await page.setBypassCSP(true);
+    await page.setViewport({ width: 1200, height: 800 });
+    // Nothing leaves the machine: a page that asks for anything but a file or a data URI is told no.
+    await page.setRequestInterception(true);
+    page.on("request", (r) => (/^(file|data|blob|about):/.test(r.url()) ? r.continue() : r.abort()));
+    const url = "file://" + path.resolve(file);
+    const results = {};
+    for (const scheme of SCHEMES) {
+      await page.emulateMediaFeatures([{ name: "prefers-color-scheme", value: scheme }]);
+      await page.goto(url, { waitUntil: "load", timeout: 60000 });
+      // The replay pages draw their chart and tables from a script: let it run its first frames.
+      await page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
+      await page.evaluate(() => document.querySelectorAll("details").forEach((d) => { d.open = true; }));
+      await page.evaluate(axeSource);
+      results[scheme] = await page.evaluate((tags) => window.axe.run(document, {
+        runOnly: { type: "tag", values: tags },
+        resultTypes: ["violations", "incomplete"],
+      }), TAGS);
+    }
+    return { results, errors: console_ };
+  } finally {
+    await page.close();
+  }
+}
+
+async function main() {
+  const files = process.argv.slice(2);
+  if (files.length === 0) {
+    console.error("usage: node axe-check.js PAGE.html...");
+    process.exit(2);
+  }
+  for (const file of files) {
+    if (!fs.existsSync(file)) fail(file + ": no such file");
+  }
+  const executablePath = browserPath();
+  if (!executablePath) fail("chromium is not installed (scripts/install-deps installs it)");
+
+  // The replays draw with WebGL: SwiftShader, Chromium's software GPU, asked for by name (tests/pages/page-check).
+  const args = ["--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--disable-quic",
+                "--no-first-run", "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                "--hide-scrollbars"];
+  if (process.getuid && process.getuid() === 0) args.push("--no-sandbox");
+  const browser = await puppeteer.launch({ executablePath, headless: true, args, timeout: 60000 });
+  let broken = 0, failed = 0;
+  try {
+    for (const file of files) {
+      let checked;
+      try {
+        checked = await checkPage(browser, file);
+      } catch (e) {
+        console.log("axe-check: " + file + ": could not be checked: " + String(e.message).split("\n")[0]);
+        ++failed;
+        continue;
+      }
+      const rules = new Map();  // rule id -> the line said of it, per scheme
+      let held = 0, review = 0;
+      for (const scheme of SCHEMES) {
+        const r = checked.results[scheme];
+        held = Math.max(held, r.passes ? r.passes.length : 0);
+        review += r.incomplete.length;
+        for (const v of r.violations) {
+          const line = v.id + " (" + v.impact + ", " + v.tags.filter((t) => TAGS.includes(t)).join(" ") + "): " +
+            v.help + ": " + elements(v.nodes);
+          const seen = rules.get(v.id);
+          rules.set(v.id, seen && seen.line === line ? { line, schemes: seen.schemes.concat(scheme) }
+                                                      : { line: seen ? seen.line + "; " + line : line,
+                                                          schemes: (seen ? seen.schemes : []).concat(scheme) });
+        }
+      }
+      for (const e of checked.errors) console.log("axe-check: " + file + ": the page's script failed: " + e);
+      if (checked.errors.length > 0) ++failed;
+      if (rules.size === 0) {
+        console.log("axe-check: " + file + ": 0 rules broken (light and dark)" +
+                    (review ? "; " + review + " results axe leaves to a person" : ""));
+        continue;
+      }
+      broken += rules.size;
+      console.log("axe-check: " + file + ": " + rules.size + (rules.size === 1 ? " rule" : " rules") + " broken");
+      for (const [, v] of rules) console.log("  " + v.line + " [" + v.schemes.join(", ") + "]");
+    }
+  } finally {
+    await browser.close();
+  }
+  console.log("axe-check: " + files.length + (files.length === 1 ? " page" : " pages") + ", " + broken +
+              (broken === 1 ? " rule" : " rules") + " broken (axe-core " + require("axe-core").version +
+              ", tags " + TAGS.join(" ") + ")");
+  process.exit(broken > 0 || failed > 0 ? 1 : 0);
+}
+
+main().catch((e) => fail(String(e.message || e).split("\n")[0]));
