@@ -101,7 +101,8 @@ function CodeBlock(block)
   count = count + 1
   local kind = block.classes[1]
   local label = ((kind and (names[kind] or kind)) or "text") .. ", example " .. count
-  return pandoc.Div({ block }, pandoc.Attr("", { "code" }, { tabindex = "0", role = "group", ["aria-label"] = label }))
+  return pandoc.Div({ block }, pandoc.Attr("", { "code" }, { { "tabindex", "0" }, { "role", "group" },
+                                                            { "aria-label", label } }))
 end
 )";
 

@@ -5,6 +5,10 @@
 //
 //   node axe-check.js PAGE.html...
 //
+// A replay page (simlab/replay.h) is also worked from the keyboard alone: Tab reaches each of its controls, the 3-D
+// view, the chart and the table; End and Home on the time slider move the replay to its last and first instants; an
+// arrow key on the focused 3-D view turns it.
+//
 // Prints one line per page: the rules broken, each with the elements that break it, or "0 rules broken" with the
 // number of rules that held. Exit 0 when no page breaks a rule; 1 when one does, or when a page, Chromium or the
 // npm packages (scripts/install-deps installs them) cannot be had; 2 on a usage error.
@@ -69,10 +73,53 @@ async function checkPage(browser, file) {
         resultTypes: ["violations", "incomplete"],
       }), TAGS);
     }
-    return { results, errors: console_ };
+    const keys = (await page.$("#replay-data")) ? await replayKeys(page, url) : null;
+    return { results, errors: console_, keys };
   } finally {
     await page.close();
   }
+}
+
+// The replay page's keyboard route (see the top of this file): the problems found, one line each.
+async function replayKeys(page, url) {
+  const problems = [];
+  await page.emulateMediaFeatures([{ name: "prefers-color-scheme", value: "light" }]);
+  await page.goto(url + "#t=0", { waitUntil: "load", timeout: 60000 });
+  await page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
+  await page.evaluate(() => { document.getElementById("in-words").open = true; document.activeElement.blur(); });
+  const reached = [];
+  for (let i = 0; i < 12; ++i) {
+    await page.keyboard.press("Tab");
+    reached.push(await page.evaluate(() => {
+      const e = document.activeElement;
+      return e.id || (e.tagName === "SUMMARY" ? "summary" : e.tagName.toLowerCase());
+    }));
+  }
+  for (const id of ["play", "speed", "time", "view", "chart", "summary", "series-table"]) {
+    if (!reached.includes(id)) problems.push("Tab never reaches #" + id + " (it reaches " + reached.join(", ") + ")");
+  }
+  const now = () => page.$eval("#now", (e) => e.textContent);
+  await page.focus("#time");
+  await page.keyboard.press("End");
+  const end = await now();
+  await page.keyboard.press("Home");
+  const start = await now();
+  if (end === start) problems.push("End and Home on the time slider leave it at " + start);
+  if (await page.$("#view canvas")) {
+    await page.focus("#view");
+    const view = await page.$("#view");
+    const before = await view.screenshot({ encoding: "base64" });
+    await page.keyboard.press("ArrowLeft");
+    await page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
+    const after = await view.screenshot({ encoding: "base64" });
+    if (before === after) problems.push("ArrowLeft on the focused 3-D view does not turn it");
+  }
+  const rows = await page.$$eval("#series-table tbody tr", (r) => r.length);
+  if (rows === 0) problems.push("the time series has no table");
+  const words = await page.$eval("#motion", (e) => e.textContent.trim());
+  if (!/^From t = /.test(words)) problems.push("the motion is not said in words: '" + words.slice(0, 60) + "'");
+  return { problems, summary: "Tab reaches the play button, the speed, the time, the 3-D view, the chart and the " +
+    "table; End and Home move to " + end + " and back to " + start + "; the table has " + rows + " rows" };
 }
 
 async function main() {
@@ -113,17 +160,28 @@ async function main() {
         for (const v of r.violations) {
           const line = v.id + " (" + v.impact + ", " + v.tags.filter((t) => TAGS.includes(t)).join(" ") + "): " +
             v.help + ": " + elements(v.nodes);
-          const seen = rules.get(v.id);
-          rules.set(v.id, seen && seen.line === line ? { line, schemes: seen.schemes.concat(scheme) }
-                                                      : { line: seen ? seen.line + "; " + line : line,
-                                                          schemes: (seen ? seen.schemes : []).concat(scheme) });
+          const seen = rules.get(v.id) || { line, schemes: [] };
+          seen.schemes.push(scheme);
+          rules.set(v.id, seen);
         }
       }
       for (const e of checked.errors) console.log("axe-check: " + file + ": the page's script failed: " + e);
       if (checked.errors.length > 0) ++failed;
+      if (checked.keys) {
+        for (const p of checked.keys.problems) console.log("axe-check: " + file + ": keyboard: " + p);
+        if (checked.keys.problems.length > 0) ++failed;
+        else console.log("axe-check: " + file + ": keyboard: " + checked.keys.summary);
+      }
       if (rules.size === 0) {
         console.log("axe-check: " + file + ": 0 rules broken (light and dark)" +
                     (review ? "; " + review + " results axe leaves to a person" : ""));
+        if (process.env.AXE_CHECK_REVIEW) {
+          for (const scheme of SCHEMES) {
+            for (const r of checked.results[scheme].incomplete) {
+              console.log("  to review (" + scheme + "): " + r.id + ": " + r.help + ": " + elements(r.nodes));
+            }
+          }
+        }
         continue;
       }
       broken += rules.size;
