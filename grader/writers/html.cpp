@@ -1,5 +1,6 @@
 #include "simlab/writers/html.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -170,6 +171,34 @@ std::string svgElementText(const std::string& svg, const std::string& name, cons
     return text;
 }
 
+// The words a drawing shows (the character data of its <text> elements, in its order, each once), for a picture
+// that says nothing of itself: at most 60 of them, joined by "; ".
+std::string drawnWords(const std::string& svg) {
+    std::vector<std::string> words;
+    for (std::size_t at = svg.find("<text"); at != std::string::npos && words.size() < 60; at = svg.find("<text", at)) {
+        const std::size_t open = svg.find('>', at), close = svg.find("</text>", at);
+        if (open == std::string::npos || close == std::string::npos || close < open) break;
+        std::string inner = svg.substr(open + 1, close - open - 1);
+        std::string plain;  // without the tags inside (<tspan>)
+        bool tag = false;
+        for (const char c : inner) {
+            if (c == '<') tag = true;
+            else if (c == '>') tag = false;
+            else if (!tag) plain += c;
+        }
+        const std::string text = svgElementText("<t>" + plain + "</t>", "t");
+        const std::size_t first = text.find_first_not_of(" \t\n");
+        if (first != std::string::npos) {
+            const std::string word = text.substr(first, text.find_last_not_of(" \t\n") - first + 1);
+            if (std::find(words.begin(), words.end(), word) == words.end()) words.push_back(word);
+        }
+        at = close + 7;
+    }
+    std::string out;
+    for (const std::string& w : words) out += (out.empty() ? "" : "; ") + w;
+    return out;
+}
+
 // A value of the points' JSON as a table shows it: up to 10 significant digits, as the plot was drawn from.
 std::string cellNumber(const nlohmann::json& v) {
     if (!v.is_number()) return "";
@@ -268,10 +297,21 @@ std::string figureHtml(const std::string& id, const std::string& src, const std:
     }
     description = svgElementText(svg, "desc");
     if (description.rfind("Produced by GNUPLOT", 0) == 0) description.clear();  // gnuplot's own, not a description
+    std::string shownAlt = alt;
+    if (data.empty() && !svg.empty()) {
+        // A drawing (a model's schematic): its own title where it is a phrase (graphviz titles a graph by its id),
+        // and, where it says nothing of itself, the words it shows.
+        const std::string own = svgElementText(svg, "title");
+        if (own.find(' ') != std::string::npos) shownAlt = alt + ": " + own;
+        if (description.empty()) {
+            const std::string words = drawnWords(svg);
+            if (!words.empty()) description = "The words in the drawing, in its order: " + words + ".";
+        }
+    }
     std::ostringstream out;
     const std::string about = id + "-about", table = id + "-data";
     out << "<figure id=\"" << htmlText(id) << "\"><img src=\"" << src << "\" alt=\""
-        << htmlText(title.empty() ? alt : "Plot: " + title) << "\""
+        << htmlText(title.empty() ? shownAlt : "Plot: " + title) << "\""
         << (description.empty() ? "" : " aria-describedby=\"" + htmlText(about) + "\"")
         << " style=\"max-width: 100%\">";
     if (!description.empty() || !tables.empty() || !link.empty()) {
