@@ -27,7 +27,8 @@ fi
 
 # The handouts and the replays, as the student bundle has them; a lab program's replay of its own.
 run_capture package "$SIMLAB" package student -o bundle
-check "the student bundle is made, with its handout pages" test "$(ls bundle/handouts/*.html | wc -l)" -eq 8
+handout_pages=(bundle/handouts/*.html)
+check "the student bundle is made, with its handout pages" test "${#handout_pages[@]}" -eq 8
 run_capture replay "$BIN_DIR/book-reference" --quiet --spin intermediate --output book.txt --replay book.html
 check "book-reference --replay writes book.html" test "$(status_of replay)" -eq 0
 
@@ -51,7 +52,7 @@ cp "$SOURCE_DIR/starter/apple/NewtonsApple.cpp" similar/cy/
 run_capture similarity "$SIMLAB" similarity apple similar -o similarity
 check "simlab similarity writes its page" test -s similarity/similarity.html
 
-pages=(bundle/handouts/*.html book.html "$graded/report.html" grades-book/report.html grades-biosim/report.html
+pages=("${handout_pages[@]}" book.html "$graded/report.html" grades-book/report.html grades-biosim/report.html
        grades-book/students/reference/feedback.html grades-biosim/students/reference/feedback.html
        similarity/similarity.html)
 for student in reference wrong-height compile-error segfault infinite-loop; do
