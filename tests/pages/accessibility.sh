@@ -83,6 +83,10 @@ check "the handout's reference run is described from its data (the parabola, the
   bash -c "grep -q 'aria-describedby=\"reference-plot-about\"' bundle/handouts/projectile.html &&
            grep -q 'exact parabola, a line, from 0 at 0' bundle/handouts/projectile.html &&
            grep -q '<caption>Marked on height y (m) against range x (m)</caption>' bundle/handouts/projectile.html"
+check "a handout's own figure drawn by simlab (the long run) is shown with its description and its points" \
+  bash -c "grep -q 'alt=\"Plot: book, the spin about the intermediate axis: energy digits are not trajectory digits' bundle/handouts/book.html &&
+           grep -q 'id=\"figure-1-about\">book, the spin about the intermediate axis' bundle/handouts/book.html &&
+           grep -q '<details class=\"data\" id=\"figure-1-data\">' bundle/handouts/book.html"
 check "every code block of a handout takes the keyboard's focus, named" \
   bash -c "test \$(grep -o '<pre' bundle/handouts/book.html | wc -l) -eq \$(grep -o '<div class=\"code\" tabindex=\"0\" role=\"group\" aria-label=\"[a-zA-Z+ ]*, example [0-9]*\">' bundle/handouts/book.html | wc -l)"
 check "the replay says the motion in words" grep -q '<p id="motion">From t = 0 s to t = 4 s, [0-9]* frames. Body 1 (a brick and frame): its origin stays at (0, 0, 0) m; it turns through' book.html
