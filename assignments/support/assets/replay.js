@@ -379,7 +379,8 @@
       note.textContent = "Drag to turn, scroll to zoom, right-drag to move.";
     }
     note.textContent += (note.textContent ? " " : "") +
-      "From the keyboard, with the view selected (Tab): the arrow keys turn it, + and - zoom, 0 sets it back.";
+      "From the keyboard, with the view selected (Tab): the arrow keys turn it, + and - zoom, 0 sets it back; " +
+      "or the buttons at the right.";
     if (data.skipped > 0) {
       note.textContent += (note.textContent ? " " : "") + data.skipped +
         (data.skipped === 1 ? " decoration (text) is" : " decorations (text) are") + " not shown.";
@@ -439,8 +440,15 @@
       return true;
     }
     view.addEventListener("keydown", function (event) {
-      if (event.altKey || event.ctrlKey || event.metaKey) return;
+      if (event.altKey || event.ctrlKey || event.metaKey || event.target.tagName === "BUTTON") return;
       if (turnBy(event.key)) event.preventDefault();
+    });
+    // The same with a tap or a click, for a pointer that cannot drag.
+    var buttons = document.getElementById("view-turn");
+    buttons.hidden = false;
+    buttons.addEventListener("click", function (event) {
+      var key = event.target.getAttribute("data-key");
+      if (key) turnBy(key);
     });
 
     function pose(t) {

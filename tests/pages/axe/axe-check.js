@@ -1,11 +1,11 @@
 #!/usr/bin/env node
 // Opens simlab's pages in one headless Chromium (Debian's, through puppeteer-core), from disk, with no network, and
 // runs axe-core's WCAG 2.0 and 2.1 rules of levels A and AA on each: every <details> opened, so that what it holds
-// is checked too, once in the light colour scheme and once in the dark one (simlab's grade pages have both).
+// is checked too, in the light colour scheme and, for a page that has one (simlab's grade pages), the dark one.
 //
 //   node axe-check.js PAGE.html...
 //
-// A replay page (simlab/replay.h) is also worked from the keyboard alone: Tab reaches each of its controls, the 3-D
+// The first replay page (simlab/replay.h; every replay runs the same script) is also worked from the keyboard alone: Tab reaches each of its controls, the 3-D
 // view, the chart and the table; End and Home on the time slider move the replay to its last and first instants; an
 // arrow key on the focused 3-D view turns it.
 //
@@ -48,7 +48,7 @@ function elements(nodes) {
     (nodes.length > 4 ? ", ..." : "");
 }
 
-async function checkPage(browser, file) {
+async function checkPage(browser, file, withKeys) {
   const page = await browser.newPage();
   const console_ = [];
   page.on("pageerror", (e) => console_.push(String(e.message).split("\n")[0]));
@@ -61,7 +61,8 @@ async function checkPage(browser, file) {
     page.on("request", (r) => (/^(file|data|blob|about):/.test(r.url()) ? r.continue() : r.abort()));
     const url = "file://" + path.resolve(file);
     const results = {};
-    for (const scheme of SCHEMES) {
+    const schemes = fs.readFileSync(file, "utf8").includes("prefers-color-scheme") ? SCHEMES : ["light"];
+    for (const scheme of schemes) {
       await page.emulateMediaFeatures([{ name: "prefers-color-scheme", value: scheme }]);
       await page.goto(url, { waitUntil: "load", timeout: 60000 });
       // The replay pages draw their chart and tables from a script: let it run its first frames.
@@ -73,7 +74,7 @@ async function checkPage(browser, file) {
         resultTypes: ["violations", "incomplete"],
       }), TAGS);
     }
-    const keys = (await page.$("#replay-data")) ? await replayKeys(page, url) : null;
+    const keys = withKeys && (await page.$("#replay-data")) ? await replayKeys(page, url) : null;
     return { results, errors: console_, keys };
   } finally {
     await page.close();
@@ -88,14 +89,16 @@ async function replayKeys(page, url) {
   await page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
   await page.evaluate(() => { document.getElementById("in-words").open = true; document.activeElement.blur(); });
   const reached = [];
-  for (let i = 0; i < 12; ++i) {
+  for (let i = 0; i < 20; ++i) {
     await page.keyboard.press("Tab");
     reached.push(await page.evaluate(() => {
       const e = document.activeElement;
-      return e.id || (e.tagName === "SUMMARY" ? "summary" : e.tagName.toLowerCase());
+      return e.id || e.getAttribute("aria-label") || (e.tagName === "SUMMARY" ? "summary" : e.tagName.toLowerCase());
     }));
   }
-  for (const id of ["play", "speed", "time", "view", "chart", "summary", "series-table"]) {
+  const drawn = (await page.$("#view canvas")) !== null;  // no WebGL: no 3-D view to turn, nor its buttons
+  for (const id of ["play", "speed", "time", "view"].concat(drawn ? ["turn left", "reset the view"] : [],
+                                                             ["chart", "summary", "series-table"])) {
     if (!reached.includes(id)) problems.push("Tab never reaches #" + id + " (it reaches " + reached.join(", ") + ")");
   }
   const now = () => page.$eval("#now", (e) => e.textContent);
@@ -105,7 +108,7 @@ async function replayKeys(page, url) {
   await page.keyboard.press("Home");
   const start = await now();
   if (end === start) problems.push("End and Home on the time slider leave it at " + start);
-  if (await page.$("#view canvas")) {
+  if (drawn) {
     await page.focus("#view");
     const view = await page.$("#view");
     const before = await view.screenshot({ encoding: "base64" });
@@ -113,13 +116,18 @@ async function replayKeys(page, url) {
     await page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
     const after = await view.screenshot({ encoding: "base64" });
     if (before === after) problems.push("ArrowLeft on the focused 3-D view does not turn it");
+    await page.click("#view-turn button[data-key='+']");
+    await page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
+    const zoomed = await view.screenshot({ encoding: "base64" });
+    if (zoomed === after) problems.push("the zoom-in button does not zoom the 3-D view");
   }
   const rows = await page.$$eval("#series-table tbody tr", (r) => r.length);
   if (rows === 0) problems.push("the time series has no table");
   const words = await page.$eval("#motion", (e) => e.textContent.trim());
   if (!/^From t = /.test(words)) problems.push("the motion is not said in words: '" + words.slice(0, 60) + "'");
-  return { problems, summary: "Tab reaches the play button, the speed, the time, the 3-D view, the chart and the " +
-    "table; End and Home move to " + end + " and back to " + start + "; the table has " + rows + " rows" };
+  return { problems, summary: "Tab reaches the play button, the speed, the time, the 3-D view and its buttons, the " +
+    "chart and the table; End and Home move to " + end + " and back to " + start + "; an arrow key and a button " +
+    "turn and zoom the view; the table has " + rows + " rows" };
 }
 
 async function main() {
@@ -140,12 +148,13 @@ async function main() {
                 "--hide-scrollbars"];
   if (process.getuid && process.getuid() === 0) args.push("--no-sandbox");
   const browser = await puppeteer.launch({ executablePath, headless: true, args, timeout: 60000 });
-  let broken = 0, failed = 0;
+  let broken = 0, failed = 0, keysChecked = false;
   try {
     for (const file of files) {
       let checked;
       try {
-        checked = await checkPage(browser, file);
+        checked = await checkPage(browser, file, !keysChecked);
+        keysChecked = keysChecked || checked.keys !== null;
       } catch (e) {
         console.log("axe-check: " + file + ": could not be checked: " + String(e.message).split("\n")[0]);
         ++failed;
@@ -153,7 +162,8 @@ async function main() {
       }
       const rules = new Map();  // rule id -> the line said of it, per scheme
       let held = 0, review = 0;
-      for (const scheme of SCHEMES) {
+      const schemes = Object.keys(checked.results);
+      for (const scheme of schemes) {
         const r = checked.results[scheme];
         held = Math.max(held, r.passes ? r.passes.length : 0);
         review += r.incomplete.length;
@@ -173,10 +183,10 @@ async function main() {
         else console.log("axe-check: " + file + ": keyboard: " + checked.keys.summary);
       }
       if (rules.size === 0) {
-        console.log("axe-check: " + file + ": 0 rules broken (light and dark)" +
+        console.log("axe-check: " + file + ": 0 rules broken (" + schemes.join(" and ") + ")" +
                     (review ? "; " + review + " results axe leaves to a person" : ""));
         if (process.env.AXE_CHECK_REVIEW) {
-          for (const scheme of SCHEMES) {
+          for (const scheme of schemes) {
             for (const r of checked.results[scheme].incomplete) {
               console.log("  to review (" + scheme + "): " + r.id + ": " + r.help + ": " + elements(r.nodes));
             }
