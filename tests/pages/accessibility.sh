@@ -94,6 +94,8 @@ check "a handout's own figure drawn by simlab (the long run) is shown with its d
 check "every code block of a handout takes the keyboard's focus, named" \
   bash -c "test \$(grep -o '<pre' bundle/handouts/book.html | wc -l) -eq \$(grep -o '<div class=\"code\" tabindex=\"0\" role=\"group\" aria-label=\"[a-zA-Z+ ]*, example [0-9]*\">' bundle/handouts/book.html | wc -l)"
 check "the replay says the motion in words" grep -q '<p id="motion">From t = 0 s to t = 4 s, [0-9]* frames. Body 1 (a brick and frame): its origin stays at (0, 0, 0) m; it turns through' book.html
+check "the report's histogram says its counts" \
+  grep -qE 'role="img" aria-label="Students per tenth of the points: [0-9]+ to under [0-9]+, [0-9]+ students?' "$graded/report.html"
 check "an outcome is a word after a symbol, not a colour alone" \
   bash -c "grep -q '<span class=\"badge pass\"><span aria-hidden=\"true\">✓</span> passed</span>' $graded/students/reference/feedback.html &&
            grep -q '<span class=\"badge fail\"><span aria-hidden=\"true\">✗</span> failed</span>' $graded/students/wrong-height/feedback.html &&
