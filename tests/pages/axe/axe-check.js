@@ -5,9 +5,11 @@
 //
 //   node axe-check.js PAGE.html...
 //
-// The first replay page (simlab/replay.h; every replay runs the same script) is also worked from the keyboard alone: Tab reaches each of its controls, the 3-D
-// view, the chart and the table; End and Home on the time slider move the replay to its last and first instants; an
-// arrow key on the focused 3-D view turns it.
+// Every page is opened with less motion asked for (prefers-reduced-motion), so that a replay waits to be played and
+// draws no frame while axe reads it. The first replay page (simlab/replay.h; every replay runs the same script) is
+// also worked from the keyboard alone: Tab reaches each of its controls, the 3-D view and its buttons, the chart and
+// the table; End and Home on the time slider move the replay to its last and first instants; an arrow key on the
+// focused 3-D view turns it, and its zoom button zooms it.
 //
 // Prints one line per page: the rules broken, each with the elements that break it, or "0 rules broken" with the
 // number of rules that held. Exit 0 when no page breaks a rule; 1 when one does, or when a page, Chromium or the
@@ -63,7 +65,9 @@ async function checkPage(browser, file, withKeys) {
     const results = {};
     const schemes = fs.readFileSync(file, "utf8").includes("prefers-color-scheme") ? SCHEMES : ["light"];
     for (const scheme of schemes) {
-      await page.emulateMediaFeatures([{ name: "prefers-color-scheme", value: scheme }]);
+      // With less motion asked for, a replay waits to be played: no frame is drawn while axe reads the page.
+      await page.emulateMediaFeatures([{ name: "prefers-color-scheme", value: scheme },
+                                       { name: "prefers-reduced-motion", value: "reduce" }]);
       await page.goto(url, { waitUntil: "load", timeout: 60000 });
       // The replay pages draw their chart and tables from a script: let it run its first frames.
       await page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
@@ -84,7 +88,8 @@ async function checkPage(browser, file, withKeys) {
 // The replay page's keyboard route (see the top of this file): the problems found, one line each.
 async function replayKeys(page, url) {
   const problems = [];
-  await page.emulateMediaFeatures([{ name: "prefers-color-scheme", value: "light" }]);
+  await page.emulateMediaFeatures([{ name: "prefers-color-scheme", value: "light" },
+                                   { name: "prefers-reduced-motion", value: "reduce" }]);
   await page.goto(url + "#t=0", { waitUntil: "load", timeout: 60000 });
   await page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
   await page.evaluate(() => { document.getElementById("in-words").open = true; document.activeElement.blur(); });
