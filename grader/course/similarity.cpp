@@ -418,7 +418,8 @@ std::string similarityHtml(const std::string& title, const SimilarityReport& rep
     out << writers::pageStart(title + ": similar submissions");
     out << "<style>.pair{display:flex;gap:1em}.side{flex:1;min-width:0}.side pre{overflow-x:auto;font-size:85%}"
            ".side mark{color:inherit}mark.r0{background:#f5d76e80}mark.r1{background:#7fb2f080}"
-           "mark.r2{background:#8fd19e80}</style>\n";
+           "mark.r2{background:#8fd19e80}@media (prefers-color-scheme: dark){mark.r0{background:#9a7b0080}"
+           "mark.r1{background:#1f5fae80}mark.r2{background:#2e7d3c80}}</style>\n";
     out << "<header>\n<h1>" << htmlText(title) << ": similar submissions</h1>\n<p>" << report.ids.size()
         << " files compared in pairs by sim_c++ (similarity-tester), the starter's code removed by its tokens "
            "(whatever its names). ";
