@@ -351,7 +351,7 @@ const isolation::CourseSymbols& Builder::courseSymbols(const Assignment& assignm
                 (s.inLibraries ? '1' : '0') + (s.required ? '1' : '0') + (s.referenced ? '1' : '0') + "\t" + name +
                 "\t" + s.from + "\n";
     }
-    writeFileAtomically(cached, text);
+    writePrivateAtomically(cached, text);
     return symbols;
 }
 

@@ -127,7 +127,7 @@ std::string classFolder(const GradeCommandOptions& o, const std::string& root, c
         return root;
     }
     const std::size_t cap = static_cast<std::size_t>(rubric.limits.submissionKiB) * 1024;
-    fs::create_directories(out);
+    createOutputFolder(out);
     std::vector<std::string> handedIn = {rubric.submission};
     handedIn.insert(handedIn.end(), rubric.extraFiles.begin(), rubric.extraFiles.end());
     const std::vector<IntakeStudent> students = takeIn(o.from, root, out + "/class", handedIn, cap);
@@ -339,7 +339,7 @@ void runGrade(const GradeCommandOptions& o) {
     // (A shard shares the folder with the other shards, and takes its own lock as it grades.)
     std::optional<OutputLock> lock;
     if (!shard.second) {
-        fs::create_directories(out);
+        createOutputFolder(out);
         lock.emplace(out);
     }
     const std::string root = classFolder(o, submissions, out, rubric, taken);

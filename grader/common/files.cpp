@@ -108,7 +108,7 @@ namespace {
 
 // How a written file may be read: `Fixed`, 0644 whatever the umask (what a sandbox's user reads); `Shared`, an output
 // people share (writeOutputAtomically).
-enum class Access { Fixed, Shared };
+enum class Access { Fixed, Shared, Private };
 
 void writeFileThenRename(const std::string& path, const std::string& text, bool durable,
                          Access access = Access::Fixed) {
@@ -119,7 +119,7 @@ void writeFileThenRename(const std::string& path, const std::string& text, bool 
         struct stat before {};
         const bool replacing =
             access == Access::Shared && ::stat(path.c_str(), &before) == 0 && S_ISREG(before.st_mode);
-        const mode_t mode = access == Access::Fixed ? 0644 : replacing ? 0600 : 0666;
+        const mode_t mode = access == Access::Fixed ? 0644 : access == Access::Private || replacing ? 0600 : 0666;
         // Close-on-exec: a process another thread starts meanwhile must not keep the file open for writing (a
         // program being written would be busy, ETXTBSY, when it is run).
         const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, mode);
@@ -204,6 +204,22 @@ void writeOutputAtomically(const std::string& path, const std::string& text) {
 
 void writeOutputDurably(const std::string& path, const std::string& text) {
     writeFileThenRename(path, text, true, Access::Shared);
+}
+
+void writePrivateAtomically(const std::string& path, const std::string& text) {
+    writeFileThenRename(path, text, false, Access::Private);
+    ::chmod(path.c_str(), 0600);  // a file it replaced may have had another mode
+}
+
+void createOutputFolder(const std::string& path) {
+    std::error_code error;
+    if (fs::is_directory(path, error)) return;
+    const fs::path parent = fs::absolute(path, error).lexically_normal().parent_path();
+    if (!parent.empty()) fs::create_directories(parent, error);
+    // Grades are the course's staff's: the owner's and the group's (a setgid parent's), never every user's.
+    if (::mkdir(path.c_str(), 0770) != 0 && errno != EEXIST) {
+        throw std::runtime_error("cannot create the folder " + path + ": " + std::strerror(errno));
+    }
 }
 
 OutputLock::OutputLock(const std::string& folder, const std::string& shard) {

@@ -542,6 +542,7 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     ClassResult result;
     const std::vector<std::string> ids = classStudents(submissionsDir, options, result.skipped);
     const bool sharded = options.shards > 0;
+    createOutputFolder(outDir);
     fs::create_directories(outDir + "/students");
     // One simlab at a time writes a class's grades, or shards side by side, each its own students.
     std::optional<OutputLock> outputLock;

@@ -215,7 +215,7 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
         t.outcome = Outcome::OutputTruncated;
         t.reason = "it printed more than " + std::to_string(limits.outputKiB) + " KiB, and was stopped";
     } else if (probe.diskLimit) {
-        t.outcome = Outcome::OutputTruncated;
+        t.outcome = Outcome::OutOfDisk;
         t.reason = "its files together took more than " + std::to_string(3 * limits.fileMiB) +
                    " MiB, the space a test has, and it was stopped";
     } else if (probe.cpuTimeout) {
@@ -427,10 +427,12 @@ isolation::ProcessResult runJudge(const Assignment& assignment, const std::vecto
     writeFileAtomically(judgeProgram, readFile(assignment.judge));
     fs::permissions(judgeProgram, fs::perms::owner_all);
     isolation::ProcessRequest judge;
-    // One test spec naming every test: Catch2 reads commas as "or" (a rubric's names hold none).
+    // The tests' names in a file of the judge's own (Catch2's --input-file, a name a line), not on its command
+    // line, which every user may read in /proc where no namespace hides the judge's process (limits only).
     std::string names;
-    for (const RubricTest* test : tests) names += (names.empty() ? "" : ",") + test->name;
-    judge.argv = {judgeProgram, "--use-colour", "no", names};
+    for (const RubricTest* test : tests) names += test->name + "\n";
+    writeFileAtomically(judgeFiles + "/tests.txt", names);
+    judge.argv = {judgeProgram, "--use-colour", "no", "--input-file", judgeFiles + "/tests.txt"};
     judge.env = {"PATH=/usr/bin:/bin", "HOME=" + w.root + "/" + tag + "judge-home", "TMPDIR=/tmp", "LC_ALL=C",
                  "SIMLAB_RUBRIC=" + judgeFiles + "/rubric.toml", "SIMLAB_SUBMISSION_DIR=" + judgeFiles + "/submission",
                  "SIMLAB_ANSWER_LIMIT=" + std::to_string(static_cast<unsigned long long>(limits.observationMiB) << 20)};
@@ -567,6 +569,7 @@ std::string outcomeName(Outcome outcome) {
         case Outcome::TimedOut: return "timed out";
         case Outcome::Stalled: return "stalled";
         case Outcome::OutOfMemory: return "killed for memory";
+        case Outcome::OutOfDisk: return "killed for disk";
         case Outcome::Crashed: return "crashed";
         case Outcome::OutputTruncated: return "output truncated";
         case Outcome::BadReport: return "bad report";
@@ -580,7 +583,7 @@ std::string outcomeName(Outcome outcome) {
 
 Outcome outcomeNamed(const std::string& name) {
     for (Outcome o : {Outcome::Passed, Outcome::Failed, Outcome::TimedOut, Outcome::Stalled, Outcome::OutOfMemory,
-                      Outcome::Crashed, Outcome::OutputTruncated, Outcome::BadReport, Outcome::DidNotFinish,
+                      Outcome::OutOfDisk, Outcome::Crashed, Outcome::OutputTruncated, Outcome::BadReport, Outcome::DidNotFinish,
                       Outcome::DidNotCompile, Outcome::Refused, Outcome::MissingFile}) {
         if (outcomeName(o) == name) return o;
     }
@@ -620,13 +623,22 @@ std::string placesExposed(const Manifest& manifest) {
     if (!exposure.exposed()) return "";
     const std::string why = "in this sandbox (" + sandbox.mode + ") ";
     if (!exposure.error.empty()) return why + exposure.error + ", so hidden tests are not run: install bubblewrap";
-    if (exposure.readable.empty()) {
+    if (::geteuid() != 0) {
+        // A test runs as this user, and reads what this user may: no mode keeps it out.
+        return why + "a test's code runs as you and could read " + printable(exposure.readable.empty()
+                                                                                  ? exposure.passable.front()
+                                                                                  : exposure.readable.front()) +
+               ", so hidden tests are not run: grade hidden tests as root (each test then runs as a user of its "
+               "own), or where bubblewrap or Landlock runs";
+    }
+    if (exposure.readable.empty() && exposure.passable.empty()) {
         return why + "simlab's places hold more than it can try (over 500,000 files), so hidden tests are not run: "
                      "install bubblewrap";
     }
     // The command that closes what was read: simlab lock closes the course's places; a lab's folder, a class or
     // its grades it closes when named.
-    const std::string& first = exposure.readable.front();
+    const bool passage = exposure.readable.empty();
+    const std::string& first = passage ? exposure.passable.front() : exposure.readable.front();
     const std::string place = isolation::placeOf(first);
     std::string named;
     for (const auto& lab : manifest.labs) {
@@ -643,8 +655,9 @@ std::string placesExposed(const Manifest& manifest) {
         }) ||
         (manifest.installed && place.rfind(manifest.prefix + "/", 0) == 0);
     if (named.empty() && !ofTheCourse) named = place;
-    const std::size_t more = exposure.readableCount - 1;
-    return why + "a test's code could read " + printable(first) +
+    const std::size_t more = passage ? 0 : exposure.readableCount - 1;
+    return why + (passage ? "a test's code could pass through " + printable(first) + " to what simlab writes there"
+                          : "a test's code could read " + printable(first)) +
            (more > 0 ? " and " + std::to_string(more) + " more file" + (more == 1 ? "" : "s") + " of simlab's places"
                      : std::string()) +
            ", so hidden tests are not run: close them with `simlab lock" + (named.empty() ? "" : " " + printable(named)) +

@@ -49,6 +49,13 @@ void writeFileDurably(const std::string& path, const std::string& text);
 /// still may after simlab wrote it again.
 void writeOutputAtomically(const std::string& path, const std::string& text);
 void writeOutputDurably(const std::string& path, const std::string& text);
+/// The same for a file of simlab's own (a cache's): its owner's alone (0600), whatever the umask.
+void writePrivateAtomically(const std::string& path, const std::string& text);
+
+/// A folder of grades, made if missing (with the folders above it): its owner's and its group's (0770 less the
+/// umask), never every user's - where files are kept apart by their modes alone, a test's throwaway user must not
+/// reach what simlab writes there later.
+void createOutputFolder(const std::string& path);
 
 /// A hold on a folder simlab writes into (`folder`/.simlab-lock, flock): a second simlab given the same folder
 /// stops with a UsageError naming the first one's process. Released when destroyed or when the process ends.
