@@ -25,6 +25,7 @@
 #include "simlab/common/errors.h"
 #include "simlab/isolation/process.h"
 #include "simlab/protocol/verdict.h"
+#include "simlab/grading/failure_sites.h"
 #include "simlab/grading/record.h"
 
 namespace fs = std::filesystem;
@@ -109,14 +110,38 @@ struct ProbeEvents {
     bool terminated = false;  // std::terminate ran
     std::string type, what;   // the exception in flight then, if there was one
     std::string refused;      // the system call the students' filter refused (the host names it), if one was
+    // Where the student's code was (simlab/isolation/failure_sites.h): as a signal was about to end the process (the
+    // last such line, and its signal), at the last sample of its CPU time, and where the exception the course's
+    // code caught last was thrown (and its type). Addresses in the probe, looked up only beside the outcome the
+    // kernel gave.
+    int crashSignal = 0;
+    std::vector<std::uint64_t> crashAt, sampleAt, threwAt;
+    std::string threwType;
 };
+
+// The report channel keeps 1 MiB of lines (supervise): past that, later lines are lost, and the last sample kept is
+// not the last one made.
+constexpr std::size_t kReportsKept = 1 << 20;
 
 ProbeEvents probeEvents(const std::vector<std::string>& lines) {
     ProbeEvents e;
+    std::size_t bytes = 0;
+    for (const std::string& line : lines) bytes += line.size() + 1;
+    const bool whole = bytes + 4096 < kReportsKept;
     for (const std::string& line : lines) {
         const nlohmann::json record = wire::parseBounded(line);
         if (!record.is_object() || !record.contains("event") || !record["event"].is_string()) continue;
         const std::string event = record["event"];
+        const nlohmann::json at = record.value("at", nlohmann::json());
+        if (event == "crash" && record.contains("signal") && record["signal"].is_number_integer()) {
+            e.crashSignal = record["signal"].get<int>();
+            e.crashAt = readFailureFrames(at);
+        }
+        if (event == "sample" && whole) e.sampleAt = readFailureFrames(at);
+        if (event == "threw" && record.contains("type") && record["type"].is_string()) {
+            e.threwType = record["type"];
+            e.threwAt = readFailureFrames(at);
+        }
         if (event == "memory") e.memory = true;
         if (event == "refused" && record.contains("call") && record["call"].is_string()) {
             e.refused = record["call"].get<std::string>().substr(0, 64);
@@ -147,9 +172,10 @@ std::optional<wire::Verdict> judgeVerdict(const std::vector<std::string>& lines,
     }
 }
 
-// Why a probe that died of a signal died, as far as simlab can tell.
-std::string crashReason(const isolation::ProcessResult& probe, const ProbeEvents& events) {
-    std::string reason = "crashed (" + isolation::signalName(probe.signal) + ")";
+// Why a probe that died of a signal died, as far as simlab can tell, and where in the student's file (`site`: " in
+// simulate() (NewtonsApple.cpp:52)", or nothing).
+std::string crashReason(const isolation::ProcessResult& probe, const ProbeEvents& events, const std::string& site) {
+    std::string reason = "crashed (" + isolation::signalName(probe.signal) + ")" + site;
     if (probe.signal == SIGABRT && events.terminated) {
         if (events.type.empty()) return reason + ": std::terminate was called with no exception in flight";
         return reason + ": " + events.type + (events.what.empty() ? "" : " \"" + events.what + "\"") +
@@ -175,9 +201,29 @@ std::string crashReason(const isolation::ProcessResult& probe, const ProbeEvents
     return reason;
 }
 
-// `stalledFirst` names the test whose stall had this one stopped early (see Stalls), if it was.
+// Where the student's code was, for a reason: each frame list of `events` the test's outcome may need.
+std::vector<std::vector<std::uint64_t>> framesToLookUp(const isolation::ProcessResult& probe, const ProbeEvents& events) {
+    std::vector<std::vector<std::uint64_t>> frames;
+    if (probe.signal != 0 && events.crashSignal == probe.signal) frames.push_back(events.crashAt);
+    if (probe.cpuTimeout) frames.push_back(events.sampleAt);
+    frames.push_back(events.threwAt);
+    return frames;
+}
+
+// "threw T in f() (F.cpp:12): message" for the judge's "threw T: message", when T is the type the probe's event says
+// was thrown at that site; the reason as it was otherwise.
+std::string withThrowSite(const std::string& reason, const ProbeEvents& events, const FailureSites& sites) {
+    const std::string head = "threw " + events.threwType;
+    if (events.threwType.empty() || reason.rfind(head + ": ", 0) != 0) return reason;
+    const std::string site = sites.site(events.threwAt).inReason();
+    return site.empty() ? reason : head + site + reason.substr(head.size());
+}
+
+// `stalledFirst` names the test whose stall had this one stopped early (see Stalls), if it was; `events` are what
+// its probe said, and `sites` where in the student's file their frames are.
 TestResult interpret(const RubricTest& test, const isolation::ProcessResult& probe,
-                     const isolation::ProcessResult& judge, const Limits& limits, const std::string& stalledFirst) {
+                     const isolation::ProcessResult& judge, const Limits& limits, const std::string& stalledFirst,
+                     const ProbeEvents& events, const FailureSites& sites) {
     TestResult t;
     t.name = test.name;
     t.visibility = test.visibility;
@@ -185,7 +231,6 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
     t.seconds = probe.wallSeconds;
     t.cpuSeconds = probe.cpuSeconds;
     t.output = probe.output;
-    const ProbeEvents events = probeEvents(probe.reports);
     std::string malformed;
     const std::optional<wire::Verdict> verdict = judgeVerdict(judge.reports, test.name, &malformed);
     double credit = 0;
@@ -216,7 +261,10 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
                    " MiB, the space a test has, and it was stopped";
     } else if (probe.cpuTimeout) {
         t.outcome = Outcome::TimedOut;
-        t.reason = "no end within " + seconds(std::ceil(limits.cpuSeconds)) + " of CPU time";
+        // Where it was at the last sample of its CPU time, a tenth of a second or so before it was stopped.
+        const std::string site = sites.site(events.sampleAt).inReason();
+        t.reason = (site.empty() ? "" : "stopped" + site + ": ") + "no end within " +
+                   seconds(std::ceil(limits.cpuSeconds)) + " of CPU time";
     } else if (probe.wallTimeout && !stalledFirst.empty()) {
         t.outcome = Outcome::Stalled;
         t.reason = "no progress for " + seconds(kIdleSeconds) + ": \"" + stalledFirst +
@@ -232,7 +280,8 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
         t.reason = text;
     } else if (probe.signal != 0) {
         t.outcome = Outcome::Crashed;
-        t.reason = crashReason(probe, events);
+        t.reason = crashReason(probe, events,
+                               events.crashSignal == probe.signal ? sites.site(events.crashAt).inReason() : "");
     } else if (!verdict) {
         t.outcome = Outcome::DidNotFinish;
         if (!malformed.empty()) {
@@ -255,7 +304,7 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
     } else {
         t.outcome = verdict->passed ? Outcome::Passed : Outcome::Failed;
         credit = verdict->passed ? 1.0 : verdict->credit;
-        t.reason = verdict->reason;
+        t.reason = verdict->passed ? verdict->reason : withThrowSite(verdict->reason, events, sites);
         t.feedback = verdict->feedback;
         for (const wire::Attachment& file : verdict->attachments) t.attachments.emplace_back(file.name, file.text);
         if (verdict->figure) {
@@ -280,6 +329,8 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
 struct Workspace {
     std::string root, build, probe, host;
     std::string student;  ///< GradeOptions::student, for the judge
+    std::string source;   ///< the student's file's name, and its number of lines: where failures are looked up
+    std::size_t sourceLines = 0;
 };
 
 // A judge's files: the rubric, and the files handed in beside the source (or why each was refused).
@@ -479,18 +530,29 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     bool interrupted = judged.interrupted;
     for (const auto& [test, probe] : probes.results) interrupted = interrupted || probe.interrupted;
     if (interrupted) throw Interrupted();
-    std::vector<TestResult> results;
+    std::vector<isolation::ProcessResult> ran;
+    std::vector<ProbeEvents> events;
+    std::vector<std::vector<std::uint64_t>> lookUp;
     for (const RubricTest* test : tests) {
         isolation::ProcessResult probe;  // a test that asked nothing had no probe: as if one had started and ended cleanly
         probe.started = true;
         probe.exitCode = 0;
         if (const auto found = probes.results.find(test->name); found != probes.results.end()) probe = found->second;
+        events.push_back(probeEvents(probe.reports));
+        for (auto& frames : framesToLookUp(probe, events.back())) lookUp.push_back(std::move(frames));
+        ran.push_back(std::move(probe));
+    }
+    // Where the failures were, every test's at once.
+    FailureSites sites(w.probe + "/probe.so", w.source, w.sourceLines, w.root + "/" + tag + "sites");
+    sites.lookUp(lookUp);
+    std::vector<TestResult> results;
+    for (std::size_t i = 0; i < tests.size(); ++i) {
         std::string stalledFirst;
         {
             std::lock_guard<std::mutex> guard(stalls.lock);
-            if (stalls.stopped.count(test->name)) stalledFirst = stalls.first;
+            if (stalls.stopped.count(tests[i]->name)) stalledFirst = stalls.first;
         }
-        results.push_back(interpret(*test, probe, judged, limits, stalledFirst));
+        results.push_back(interpret(*tests[i], ran[i], judged, limits, stalledFirst, events[i], sites));
     }
     return results;
 }
@@ -781,7 +843,8 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
     // sandbox is lent; work/judgeN: the rubric and the files handed in beside the source, which judge N's sandbox
     // is lent - never a probe's. Each process gets an empty folder of its own as well.
     TempDir work("simlab-" + assignment.id + "-", options.workRoot);
-    Workspace w{work.path(), work.path() + "/build", work.path() + "/probe", builder.probeHost(), options.student};
+    Workspace w{work.path(), work.path() + "/build", work.path() + "/probe", builder.probeHost(), options.student,
+                files.name, static_cast<std::size_t>(std::count(files.text.begin(), files.text.end(), '\n')) + 1};
     // Every folder of the grading is private from the moment it exists: the judge's copy, the rubric and the
     // student's source are never another user's to read, even while they are being written. Each folder below is
     // handed to the sandbox user of the process that works in it, for that run (0700); the probe's is simlab's

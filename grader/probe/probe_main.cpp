@@ -9,10 +9,12 @@
 // std::terminate with what was in flight), 4 brings requests from the judge, 5 takes answers to it. Student code
 // shares this process and can write to any of them; whatever it writes is data the judge and the engine check,
 // never a verdict.
+#include <dlfcn.h>
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -21,7 +23,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <typeinfo>
+#include <vector>
 
+#include "simlab/isolation/failure_sites.h"
 #include "simlab/isolation/host_protocol.h"
 #include "simlab/probe/probe.h"
 
@@ -70,6 +74,25 @@ void onTerminate() {
     std::abort();
 }
 
+// An exception of the student's code that became the answer: where it was thrown, as the host's throw hook saw it
+// (simlab/isolation/failure_sites.h), told on the event channel for the engine to look up. Nothing where the host
+// does not know.
+void onStudentThrow(const std::exception& caught, const std::string& type) {
+    using simlab::isolation::kMaxFailureFrames;
+    static const auto thrownFrom =
+        reinterpret_cast<simlab::isolation::ThrownFrom>(::dlsym(RTLD_DEFAULT, simlab::isolation::kThrownFromSymbol));
+    if (!thrownFrom) return;
+    std::uint64_t at[kMaxFailureFrames];
+    const int count = thrownFrom(dynamic_cast<const void*>(&caught), at, kMaxFailureFrames);
+    if (count <= 0) return;
+    try {
+        nlohmann::json event = {{"event", "threw"}, {"type", type}, {"at", std::vector<std::uint64_t>(at, at + count)}};
+        writeAll(kEventFd, event.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    } catch (...) {
+        // no memory left to say it: the answer still says what was thrown
+    }
+}
+
 // The channel kept from programs the student's code might execute.
 void keepChannel() {
     for (int fd : {kEventFd, kRequestFd, kAnswerFd}) ::fcntl(fd, F_SETFD, FD_CLOEXEC);
@@ -98,6 +121,7 @@ bool readRequest(std::string& pending, std::string& line) {
 __attribute__((constructor(101))) void prepare() {
     std::set_new_handler(onOutOfMemory);
     std::set_terminate(onTerminate);
+    simlab::probe::reportThrows(onStudentThrow);
     keepChannel();
 }
 

@@ -36,6 +36,7 @@
 #include <cstring>
 #include <vector>
 
+#include "failure_sites.h"
 #include "simlab/isolation/filter.h"
 #include "simlab/isolation/host_protocol.h"
 
@@ -90,6 +91,7 @@ void onRefusedCall(int, siginfo_t* info, void* context) {
 #endif
     append(line, sizeof line, used, "\"}\n");
     (void)!::write(host::kEventFd, line, used);
+    host::tellFailureSite(SIGSYS);
     // Then as SIGSYS would: the engine sees the signal.
     struct sigaction plain {};
     plain.sa_handler = SIG_DFL;
@@ -109,6 +111,7 @@ void onRefusedCall(int, siginfo_t* info, void* context) {
     refused.sa_flags = SA_SIGINFO;
     ::sigemptyset(&refused.sa_mask);
     ::sigaction(SIGSYS, &refused, nullptr);
+    host::watchFailureSites(probe);
     const std::string& program = filter::studentProgram(false);
     if (!program.empty() && !filter::install(program)) cannot("simlab: cannot load the probe's system-call filter");
     void* loaded = ::dlopen(probe, RTLD_NOW | RTLD_LOCAL);
