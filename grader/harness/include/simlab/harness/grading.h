@@ -39,6 +39,16 @@ bool atLeast(double value, double floor, double target, const std::string& unit)
 /// Returns value <= allowed (false for NaN).
 bool atMost(double value, double allowed, const std::string& what);
 
+/// A measured value beside the one expected: "y(4) = +88.4 m, expected -68.4 m" for
+/// compared("y(4)", 88.4, -68.4, "m"). Each is shown to as many significant digits (3 at least, 17 at most) as it
+/// takes to tell them apart, and signed where their signs differ.
+std::string compared(const std::string& what, double value, double expected, const std::string& unit);
+
+/// The value that reveals a failed figure's mistake, at its worst point (a compared(), and what it means): a
+/// failing test's reason shows it after its figure, "0.0 digits, need 10: y(4) = +88.4 m, expected -68.4 m"; a
+/// passing test's shows the figure alone. The last call of a test counts.
+void worstPoint(const std::string& text);
+
 /// A file for the student's feedback folder, e.g. attach("schematic-tree.svg", svg): a plain name (letters,
 /// digits, '.', '-', '_'; no leading dot), at most 256 KiB, three per test. simlab writes it beside the report.
 void attach(const std::string& name, const std::string& text);
@@ -67,5 +77,8 @@ StudentVariant studentVariant();
 
 /// Format a number the way reports show it: 3 significant digits, scientific when small or large.
 std::string show(double value);
+
+/// "y(4)" for at("y", 4): a quantity at a time, as a reason names it (the time to 6 significant digits).
+std::string at(const std::string& quantity, double time);
 
 }  // namespace simlab::grading
