@@ -137,7 +137,13 @@ std::string functionShown(const std::string& demangled) {
         if (name[i] == ' ' && depth == 0) start = i + 1;
     }
     name.erase(0, start);
-    if (name.empty() || name.size() > 120 || !std::all_of(name.begin(), name.end(), nameCharacter)) return "";
+    std::string characters = name;  // a call operator's parentheses are the one kind a name may hold
+    for (std::size_t at = characters.find("operator()"); at != std::string::npos; at = characters.find("operator()")) {
+        characters.erase(at + 8, 2);
+    }
+    if (name.empty() || name.size() > 120 || !std::all_of(characters.begin(), characters.end(), nameCharacter)) {
+        return "";
+    }
     if (!(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_')) return "";
     return name;
 }
