@@ -2,8 +2,8 @@
 // beside the expected one.
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <string>
+#include <vector>
 
 #include "simlab/harness/grading.h"
 
@@ -22,15 +22,33 @@ std::string at(const std::string& quantity, double time) {
 }
 
 std::string compared(const std::string& what, double value, double expected, const std::string& unit) {
-    const bool signs = std::signbit(value) != std::signbit(expected) && value != 0 && expected != 0;
-    char shown[2][40];
+    return compared(what, std::vector<double>{value}, std::vector<double>{expected}, unit);
+}
+
+std::string compared(const std::string& what, const std::vector<double>& value, const std::vector<double>& expected,
+                     const std::string& unit) {
+    bool signs = false;
+    for (std::size_t i = 0; i < value.size() && i < expected.size(); ++i) {
+        signs = signs || (std::signbit(value[i]) != std::signbit(expected[i]) && value[i] != 0 && expected[i] != 0);
+    }
+    // Written with the fewest digits (3 at least) at which the two differ.
+    auto write = [signs](const std::vector<double>& v, int digits) {
+        std::string text = v.size() == 1 ? "" : "(";
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            char number[40];
+            std::snprintf(number, sizeof number, signs ? "%+.*g" : "%.*g", digits, v[i]);
+            text += (i > 0 ? ", " : "") + std::string(number);
+        }
+        return text + (v.size() == 1 ? "" : ")");
+    };
+    std::string shown, shownExpected;
     for (int digits = 3; digits <= 17; ++digits) {
-        std::snprintf(shown[0], sizeof shown[0], signs ? "%+.*g" : "%.*g", digits, value);
-        std::snprintf(shown[1], sizeof shown[1], signs ? "%+.*g" : "%.*g", digits, expected);
-        if (std::strcmp(shown[0], shown[1]) != 0) break;
+        shown = write(value, digits);
+        shownExpected = write(expected, digits);
+        if (shown != shownExpected) break;
     }
     const std::string space = unit.empty() ? "" : " ";
-    return what + " = " + shown[0] + space + unit + ", expected " + shown[1] + space + unit;
+    return what + " = " + shown + space + unit + ", expected " + shownExpected + space + unit;
 }
 
 }  // namespace simlab::grading

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace simlab {
 struct Plot;
@@ -43,6 +44,11 @@ bool atMost(double value, double allowed, const std::string& what);
 /// compared("y(4)", 88.4, -68.4, "m"). Each is shown to as many significant digits (3 at least, 17 at most) as it
 /// takes to tell them apart, and signed where their signs differ.
 std::string compared(const std::string& what, double value, double expected, const std::string& unit);
+
+/// compared() for vectors: "w_B(4) = (6.91, 0.2, 0.15) rad/s, expected (7, 0.2, 0.15) rad/s", every component to as
+/// many digits as it takes to tell the two apart, all signed where any two differ in sign.
+std::string compared(const std::string& what, const std::vector<double>& value, const std::vector<double>& expected,
+                     const std::string& unit);
 
 /// The value that reveals a failed figure's mistake, at its worst point (a compared(), and what it means): a
 /// failing test's reason shows it after its figure, "0.0 digits, need 10: y(4) = +88.4 m, expected -68.4 m"; a

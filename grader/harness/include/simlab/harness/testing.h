@@ -58,6 +58,12 @@ public:
         point_ = grading::compared(what, value, expected, unit) + (context.empty() ? "" : " " + context);
         return true;
     }
+    /// add() with the comparison already written (a grading::compared of vectors, say).
+    bool add(double figure, const std::string& comparison) {
+        if (!worse(figure)) return false;
+        point_ = comparison;
+        return true;
+    }
     /// A figure with no values to compare (nothing was measured: the check that says why is the reason).
     void add(double figure) {
         if (worse(figure)) point_.clear();
