@@ -116,6 +116,7 @@ struct ProbeEvents {
     // kernel gave.
     int crashSignal = 0;
     std::vector<std::uint64_t> crashAt, sampleAt, threwAt;
+    double sampleCpu = 0;  // the process's CPU time at its last sample
     std::string threwType;
 };
 
@@ -137,7 +138,10 @@ ProbeEvents probeEvents(const std::vector<std::string>& lines) {
             e.crashSignal = record["signal"].get<int>();
             e.crashAt = readFailureFrames(at);
         }
-        if (event == "sample" && whole) e.sampleAt = readFailureFrames(at);
+        if (event == "sample" && whole && record.contains("cpu") && record["cpu"].is_number_unsigned()) {
+            e.sampleAt = readFailureFrames(at);
+            e.sampleCpu = 1e-6 * static_cast<double>(record["cpu"].get<std::uint64_t>());
+        }
         if (event == "threw" && record.contains("type") && record["type"].is_string()) {
             e.threwType = record["type"];
             e.threwAt = readFailureFrames(at);
@@ -201,11 +205,20 @@ std::string crashReason(const isolation::ProcessResult& probe, const ProbeEvents
     return reason;
 }
 
+// The last sample of a test stopped for its CPU time, if it says where the student's code was as it was stopped:
+// taken when the sampled process had used nearly all the CPU time the test's processes used together (a sample is
+// made every tenth of a second, and the engine looks every tenth), not before a process of its own spun the rest.
+constexpr double kSampleBefore = 0.5;  // seconds of CPU time
+const std::vector<std::uint64_t>& whereStopped(const isolation::ProcessResult& probe, const ProbeEvents& events) {
+    static const std::vector<std::uint64_t> none;
+    return probe.cpuTimeout && events.sampleCpu >= probe.cpuSeconds - kSampleBefore ? events.sampleAt : none;
+}
+
 // Where the student's code was, for a reason: each frame list of `events` the test's outcome may need.
 std::vector<std::vector<std::uint64_t>> framesToLookUp(const isolation::ProcessResult& probe, const ProbeEvents& events) {
     std::vector<std::vector<std::uint64_t>> frames;
     if (probe.signal != 0 && events.crashSignal == probe.signal) frames.push_back(events.crashAt);
-    if (probe.cpuTimeout) frames.push_back(events.sampleAt);
+    frames.push_back(whereStopped(probe, events));
     frames.push_back(events.threwAt);
     return frames;
 }
@@ -262,7 +275,7 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
     } else if (probe.cpuTimeout) {
         t.outcome = Outcome::TimedOut;
         // Where it was at the last sample of its CPU time, a tenth of a second or so before it was stopped.
-        const std::string site = sites.site(events.sampleAt).inReason();
+        const std::string site = sites.site(whereStopped(probe, events)).inReason();
         t.reason = (site.empty() ? "" : "stopped" + site + ": ") + "no end within " +
                    seconds(std::ceil(limits.cpuSeconds)) + " of CPU time";
     } else if (probe.wallTimeout && !stalledFirst.empty()) {

@@ -6,7 +6,8 @@
 // exports.
 //
 // Descriptors, set up by the engine and the host: 3 carries events to the engine (running out of memory,
-// std::terminate with what was in flight), 4 brings requests from the judge, 5 takes answers to it. Student code
+// std::terminate with what was in flight, where an exception of the student's was thrown), 4 brings requests from
+// the judge, 5 takes answers to it. Student code
 // shares this process and can write to any of them; whatever it writes is data the judge and the engine check,
 // never a verdict.
 #include <dlfcn.h>

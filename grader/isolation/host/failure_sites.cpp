@@ -114,20 +114,6 @@ private:
     std::size_t used_ = 0;
 };
 
-// After the crash is told: the signal's own end, as if no handler had been there (the engine reads the signal from
-// the kernel). A fault that comes back as the handler returns ends the process the same way.
-void endAs(int signal) {
-    struct sigaction plain {};
-    plain.sa_handler = SIG_DFL;
-    ::sigemptyset(&plain.sa_mask);
-    ::sigaction(signal, &plain, nullptr);
-    sigset_t only;
-    ::sigemptyset(&only);
-    ::sigaddset(&only, signal);
-    ::sigprocmask(SIG_UNBLOCK, &only, nullptr);
-    ::syscall(SYS_tgkill, ::getpid(), ::syscall(SYS_gettid), signal);
-}
-
 void onFatalSignal(int signal, siginfo_t*, void*) {
     if (tWalking) ::siglongjmp(tGiveUp, 1);  // the walk of another watch met a bad frame: that walk ends
     tellFailureSite(signal);
@@ -139,11 +125,15 @@ void onFatalSignal(int signal, siginfo_t*, void*) {
 void onSample(int, siginfo_t* info, void*) {
     if (!info || info->si_code != SI_TIMER) return;
     const int saved = errno;
+    struct timespec used {};
+    ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &used);
     Frames frames;
     walk(frames);
     if (frames.count > 0) {
         Line line;
-        line.add("{\"event\":\"sample\",");
+        line.add("{\"event\":\"sample\",\"cpu\":");
+        line.add(static_cast<std::uint64_t>(used.tv_sec) * 1000000 + static_cast<std::uint64_t>(used.tv_nsec) / 1000);
+        line.add(",");
         line.frames(frames);
         line.send();
     }
@@ -203,6 +193,18 @@ void tellFailureSite(int signal) {
     line.add(",");
     line.frames(frames);
     line.send();
+}
+
+void endAs(int signal) {
+    struct sigaction plain {};
+    plain.sa_handler = SIG_DFL;
+    ::sigemptyset(&plain.sa_mask);
+    ::sigaction(signal, &plain, nullptr);
+    sigset_t only;
+    ::sigemptyset(&only);
+    ::sigaddset(&only, signal);
+    ::sigprocmask(SIG_UNBLOCK, &only, nullptr);
+    ::syscall(SYS_tgkill, ::getpid(), ::syscall(SYS_gettid), signal);
 }
 
 void watchFailureSites(const char* probe) {

@@ -14,4 +14,8 @@ void watchFailureSites(const char* probe);
 /// call's). Async-signal-safe; nothing before watchFailureSites.
 void tellFailureSite(int signal);
 
+/// From a handler of `signal`: the signal's own end, as if no handler had been there (the engine reads the signal
+/// from the kernel). Async-signal-safe. A fault that comes back as the handler returns ends the process the same way.
+void endAs(int signal);
+
 }  // namespace simlab::isolation::host

@@ -9,7 +9,8 @@
 // channel, one line each:
 //
 //     {"event":"crash","signal":11,"at":[21344,22107]}      a signal is about to end the process
-//     {"event":"sample","at":[21344,22107]}                 where it was after each tenth of a second of CPU time
+//     {"event":"sample","cpu":2600000,"at":[21344,22107]}   where it was after each tenth of a second of CPU time
+//                                                           (the process's CPU time then, in microseconds)
 //     {"event":"threw","type":"std::runtime_error","at":[...]}   the course's code caught the student's exception
 //
 // The student's code shares that process and can write anything there, and replace the handlers, so a line says
