@@ -1,4 +1,5 @@
-// Where in the student's file a test failed (failure_sites.h): the probe's frames looked up by addr2line in the sandbox.
+// Where in the student's file a test failed (failure_sites.h): the probe's frames, looked up by addr2line in the
+// sandbox.
 #include "simlab/grading/failure_sites.h"
 
 #include <algorithm>
@@ -34,8 +35,9 @@ Limits lookupLimits() {
 }
 
 bool isHexAddress(const std::string& line) {
+    const auto hex = [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) != 0; };
     return line.size() > 2 && line.size() <= 18 && line[0] == '0' && line[1] == 'x' &&
-           std::all_of(line.begin() + 2, line.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); });
+           std::all_of(line.begin() + 2, line.end(), hex);
 }
 
 // "file:line" or "file:line (discriminator 3)", as addr2line writes a frame's place; line 0 where unknown ("??:0",
@@ -103,7 +105,8 @@ std::map<std::uint64_t, std::vector<LineEntry>> readAddr2line(const std::string&
 
 std::string functionShown(const std::string& demangled) {
     std::string name = demangled;
-    for (const std::string_view anonymous : {std::string_view("(anonymous namespace)::"), std::string_view("{anonymous}::")}) {
+    for (const std::string_view anonymous :
+         {std::string_view("(anonymous namespace)::"), std::string_view("{anonymous}::")}) {
         for (std::size_t at = name.find(anonymous); at != std::string::npos; at = name.find(anonymous, at)) {
             name.erase(at, anonymous.size());
         }

@@ -110,10 +110,11 @@ struct ProbeEvents {
     bool terminated = false;  // std::terminate ran
     std::string type, what;   // the exception in flight then, if there was one
     std::string refused;      // the system call the students' filter refused (the host names it), if one was
-    // Where the student's code was (simlab/isolation/failure_sites.h): as a signal was about to end the process (the
-    // last such line, and its signal), at the last sample of its CPU time, and where the exception the course's
-    // code caught last was thrown (and its type). Addresses in the probe, looked up only beside the outcome the
-    // kernel gave.
+    // Where the student's code was (simlab/isolation/failure_sites.h): as a signal was about to end the process (and
+    // the signal), at the last sample of its CPU time, and where the exception the course's code caught was thrown
+    // (and its type). Addresses in the probe, looked up only beside the outcome the kernel gave. A place is kept only
+    // where it is the one the process told: two crash lines or two exceptions that differ (a child's and its own, a
+    // test that asked twice), or a channel past what is kept, leave it unknown.
     int crashSignal = 0;
     std::vector<std::uint64_t> crashAt, sampleAt, threwAt;
     double sampleCpu = 0;  // the process's CPU time at its last sample
@@ -128,23 +129,28 @@ ProbeEvents probeEvents(const std::vector<std::string>& lines) {
     ProbeEvents e;
     std::size_t bytes = 0;
     for (const std::string& line : lines) bytes += line.size() + 1;
-    const bool whole = bytes + 4096 < kReportsKept;
+    bool placesKnown = bytes + 4096 < kReportsKept, crashTold = false, throwTold = false;
     for (const std::string& line : lines) {
         const nlohmann::json record = wire::parseBounded(line);
         if (!record.is_object() || !record.contains("event") || !record["event"].is_string()) continue;
         const std::string event = record["event"];
-        const nlohmann::json at = record.value("at", nlohmann::json());
+        const std::vector<std::uint64_t> at = readFailureFrames(record.value("at", nlohmann::json()));
         if (event == "crash" && record.contains("signal") && record["signal"].is_number_integer()) {
-            e.crashSignal = record["signal"].get<int>();
-            e.crashAt = readFailureFrames(at);
+            const int signal = record["signal"].get<int>();
+            placesKnown = placesKnown && (!crashTold || (signal == e.crashSignal && at == e.crashAt));
+            crashTold = true;
+            e.crashSignal = signal;
+            e.crashAt = at;
         }
-        if (event == "sample" && whole && record.contains("cpu") && record["cpu"].is_number_unsigned()) {
-            e.sampleAt = readFailureFrames(at);
+        if (event == "sample" && record.contains("cpu") && record["cpu"].is_number_unsigned()) {
+            e.sampleAt = at;
             e.sampleCpu = 1e-6 * static_cast<double>(record["cpu"].get<std::uint64_t>());
         }
         if (event == "threw" && record.contains("type") && record["type"].is_string()) {
+            placesKnown = placesKnown && (!throwTold || (record["type"] == e.threwType && at == e.threwAt));
+            throwTold = true;
             e.threwType = record["type"];
-            e.threwAt = readFailureFrames(at);
+            e.threwAt = at;
         }
         if (event == "memory") e.memory = true;
         if (event == "refused" && record.contains("call") && record["call"].is_string()) {
@@ -156,6 +162,7 @@ ProbeEvents probeEvents(const std::vector<std::string>& lines) {
             e.what = record.contains("what") && record["what"].is_string() ? record["what"].get<std::string>() : "";
         }
     }
+    if (!placesKnown) e.crashAt = e.sampleAt = e.threwAt = {};
     return e;
 }
 
@@ -215,7 +222,8 @@ const std::vector<std::uint64_t>& whereStopped(const isolation::ProcessResult& p
 }
 
 // Where the student's code was, for a reason: each frame list of `events` the test's outcome may need.
-std::vector<std::vector<std::uint64_t>> framesToLookUp(const isolation::ProcessResult& probe, const ProbeEvents& events) {
+std::vector<std::vector<std::uint64_t>> framesToLookUp(const isolation::ProcessResult& probe,
+                                                       const ProbeEvents& events) {
     std::vector<std::vector<std::uint64_t>> frames;
     if (probe.signal != 0 && events.crashSignal == probe.signal) frames.push_back(events.crashAt);
     frames.push_back(whereStopped(probe, events));

@@ -53,7 +53,8 @@ TEST_CASE("hidden: extreme settings keep the fall accurate", "[apple][hidden]") 
     // long fall with coarse sampling.
     simlab::RunSettings tight = settingsFor(1, 0.001, 1e-12), loose = settingsFor(1, 0.3, 1e-3),
                         longFall = settingsFor(100, 1, 1e-7);
-    const WorstDigits digits = worstDigits({scene(3, 9.81), scene(3, 9.81), scene(50000, 9.81)}, {tight, loose, longFall});
+    const WorstDigits digits =
+        worstDigits({scene(3, 9.81), scene(3, 9.81), scene(50000, 9.81)}, {tight, loose, longFall});
     CHECK(atLeast(digits, grading::param("floor"), grading::param("target"), "digits at the worst setting"));
 }
 

@@ -119,7 +119,8 @@ WorstDrift driftOf(const Run& run, F f, const std::string& name, const std::stri
         const SimTK::Vec3 now(f(s));
         const double change = exact::magnitude(now - first);
         drift.add((std::isnan(change) ? INFINITY : change) / size,
-                  grading::compared(grading::at(name, s.time), shown(now), shown(first), unit) + " (its value at t = 0)");
+                  grading::compared(grading::at(name, s.time), shown(now), shown(first), unit) +
+                      " (its value at t = 0)");
     }
     return drift;
 }

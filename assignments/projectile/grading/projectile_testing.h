@@ -91,8 +91,8 @@ inline HitDigits groundHitDigits(const Scene& scene, double dt) {
     }
     const double tStar = exact::flightTime(scene), xStar = exact::range(scene);
     digits.time.add(simlab::accuracyDigits(landing.hit.time, tStar), "t*", landing.hit.time, tStar, "s");
-    digits.range.add(simlab::accuracyDigits(landing.hit.x, xStar, scene.launchSpeed * tStar), "x*", landing.hit.x, xStar,
-                     "m");
+    digits.range.add(simlab::accuracyDigits(landing.hit.x, xStar, scene.launchSpeed * tStar), "x*", landing.hit.x,
+                     xStar, "m");
     return digits;
 }
 

@@ -89,8 +89,9 @@ TEST_CASE("only a descent through y = 0 is a ground hit: from a trench the ball 
                           "takes falling sign transitions and not rising ones");
     }
     WorstDigits digits;
-    digits.add(simlab::accuracyDigits(landing.hit.time, tHit), "t*", landing.hit.time, tHit, "s",
-               rising ? "(the rising crossing, as the ball climbs out of the trench: the trigger fires on the way up)" : "");
+    const std::string crossing =
+        rising ? "(the rising crossing, as the ball climbs out of the trench: the trigger fires on the way up)" : "";
+    digits.add(simlab::accuracyDigits(landing.hit.time, tHit), "t*", landing.hit.time, tHit, "s", crossing);
     CHECK(atLeast(digits, grading::param("floor"), grading::param("target"), "digits of the landing time"));
 }
 

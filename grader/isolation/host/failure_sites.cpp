@@ -61,7 +61,9 @@ _Unwind_Reason_Code onFrame(struct _Unwind_Context* context, void* data) {
     if (pc == 0) return _URC_END_OF_STACK;
     if (!beforeInstruction) --pc;  // a return address: the call the frame made ends just before it
     struct dl_find_object found;
-    if (::_dl_find_object(reinterpret_cast<void*>(pc), &found) != 0 || !found.dlfo_link_map) return _URC_NO_REASON;
+    // The unwinder gives the address as a number; the loader takes it as a pointer.
+    void* address = reinterpret_cast<void*>(pc);  // NOLINT(performance-no-int-to-ptr)
+    if (::_dl_find_object(address, &found) != 0 || !found.dlfo_link_map) return _URC_NO_REASON;
     const struct link_map* module = found.dlfo_link_map;
     if (!module->l_name || std::strcmp(module->l_name, gProbe) != 0) return _URC_NO_REASON;
     const std::uint64_t at = pc - module->l_addr;
@@ -223,7 +225,9 @@ void watchFailureSites(const char* probe) {
     walk(warm);
     // A fault may come back while its handler walks (a stack the student's code broke): SA_NODEFER lets it in, to end
     // the walk.
-    for (const int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGTRAP, SIGABRT}) handle(signal, onFatalSignal, SA_NODEFER);
+    for (const int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGTRAP, SIGABRT}) {
+        handle(signal, onFatalSignal, SA_NODEFER);
+    }
     handle(kSampleSignal, onSample, SA_RESTART);
     startSampler();
 }
@@ -232,7 +236,8 @@ void watchFailureSites(const char* probe) {
 
 // The throw hook: the host exports __cxa_throw, so every throw in the process (the student's, the C++ library's,
 // Simbody's) comes here first; where it was thrown is kept for the probe's course code, which asks with the object
-// it caught (simlab_thrown_from); then the C++ runtime's own throw.
+// it caught (simlab_thrown_from); then the C++ runtime's own throw. The name is the C++ ABI's, which the hook must take.
+// NOLINTNEXTLINE(bugprone-reserved-identifier)
 extern "C" __attribute__((visibility("default"), noreturn)) void __cxa_throw(void* object, std::type_info* type,
                                                                             void (*destroy)(void*)) {
     using namespace simlab::isolation::host;
