@@ -130,6 +130,11 @@ Assignment buildLab(const Manifest& manifest, const std::string& dir) {
         int fd;
         ~Unlock() { ::close(fd); }
     } unlock{lock};
+    // Everything the build writes is its owner's alone (umask 077); what the sandbox's tools must read is lent below.
+    struct Umask {
+        mode_t old;
+        ~Umask() { ::umask(old); }
+    } umask{::umask(077)};
     const std::string project = root + "/project", build = root + "/build", log = root + "/build.log";
     fs::create_directories(project);
     const std::string lists = "# The lab in " + lab.string() + ", built against simlab " + manifest.version +
@@ -150,11 +155,6 @@ Assignment buildLab(const Manifest& manifest, const std::string& dir) {
     // The log may quote a hidden test's lines (a compiler's error): its owner's alone from the start.
     if (const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0600); fd >= 0) ::close(fd);
     ::chmod(log.c_str(), 0600);
-    // Everything the build writes is its owner's alone (umask 077); what the sandbox's tools must read is lent below.
-    struct Umask {
-        mode_t old;
-        ~Umask() { ::umask(old); }
-    } umask{::umask(077)};
     // Configured until it has generated a build system (a configure that failed leaves a cache and no Makefile).
     const bool first = !fs::exists(build + "/Makefile", error) && !fs::exists(build + "/build.ninja", error);
     if (first) {

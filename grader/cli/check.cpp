@@ -62,6 +62,7 @@ std::string tradeSceneLine(const engine::Assignment& assignment, const Rubric& r
 void runCheck(const CheckOptions& o) {
     using namespace simlab::engine;
     const Manifest manifest = loadManifest();
+    sayLeftovers(sweepLeftovers());
     const Assignment& assignment = manifest.find(o.assignment);
     const std::string source = o.source.empty() ? assignment.starter : o.source;
     requireCppSource(source);
@@ -76,7 +77,7 @@ void runCheck(const CheckOptions& o) {
     // an #include of one would show its lines in the compiler's messages.
     const bool amongSystemFiles = manifest.sourceDir.rfind("/usr/", 0) == 0 || manifest.buildDir.rfind("/usr/", 0) == 0;
     if (o.all || amongSystemFiles) {
-        if (const std::string exposed = secretsExposed(manifest); !exposed.empty()) throw UsageError(exposed);
+        if (const std::string exposed = placesExposed(manifest); !exposed.empty()) throw UsageError(exposed);
     }
     requireStudentId(o.student);
     if (!o.student.empty() && !rubric.variants.perStudent) {

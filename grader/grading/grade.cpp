@@ -23,6 +23,8 @@
 
 #include "simlab/protocol/bounded_json.h"
 #include "simlab/common/errors.h"
+#include "simlab/build/lab.h"
+#include "simlab/build/lock.h"
 #include "simlab/isolation/process.h"
 #include "simlab/protocol/verdict.h"
 #include "simlab/grading/failure_sites.h"
@@ -365,8 +367,12 @@ void writeJudgeFiles(const std::string& dir, const Rubric& rubric, const Submiss
     }
 }
 
-// A folder every sandbox user may pass through to what it is handed, without seeing what else is there.
+// Where the sandbox's users reach their folders by the host's own paths (as root, without bubblewrap: Landlock, or
+// limits only), a folder they pass through to what they are handed, without seeing what else is there; else
+// simlab's alone, like everything of a grading (bubblewrap binds each process's folders for it).
 void makePassable(const std::string& path) {
+    const isolation::SandboxSupport& sandbox = isolation::sandboxSupport();
+    if (!sandbox.ownUser || sandbox.bubblewrap) return;
     std::error_code ignored;
     fs::permissions(path, fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec, ignored);
 }
@@ -383,14 +389,16 @@ std::unique_ptr<isolation::TestServer> startProbeServer(const Workspace& w, cons
     const std::string home = w.root + "/" + tag + "probes";
     createPrivateFolder(program);
     createPrivateFolder(home);
+    // The server's alone (0600 in a folder of 0700): each test's child copies it into its own folder, as its own
+    // user, before it loads it (probe_host.cpp).
     writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
-    // Opened to the tests' users only once it is whole: each loads it after it has become its user.
-    fs::permissions(program, fs::perms::owner_all | fs::perms::others_exec);
-    fs::permissions(program + "/probe.so", fs::perms::owner_read | fs::perms::others_read);
+    fs::permissions(program + "/probe.so", fs::perms::owner_read | fs::perms::owner_write);
     // Each test's child makes its folder there, through root's group (probe_host.cpp): nothing else of it is
-    // any test's to write or list.
-    fs::permissions(home,
-                    fs::perms::owner_all | fs::perms::group_write | fs::perms::group_exec | fs::perms::others_exec);
+    // any test's to write or list. (bubblewrap puts a folder in memory there, with those modes, for the server.)
+    if (!isolation::sandboxSupport().bubblewrap) {
+        fs::permissions(home,
+                        fs::perms::owner_all | fs::perms::group_write | fs::perms::group_exec | fs::perms::others_exec);
+    }
     isolation::ProcessRequest server;
     server.argv = {w.host, "--serve", program + "/probe.so"};
     server.env = kProbeEnvironment;
@@ -686,21 +694,42 @@ GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, 
     return report;
 }
 
-std::string secretsExposed(const Manifest& manifest, const std::vector<std::string>& more) {
-    std::vector<std::string> secrets = courseSecrets(manifest);
-    secrets.insert(secrets.end(), more.begin(), more.end());
-    for (std::string& path : secrets) {
-        std::error_code ignored;
-        if (!path.empty()) path = fs::absolute(path, ignored).lexically_normal().string();
+std::string placesExposed(const Manifest& manifest) {
+    const isolation::SandboxSupport& sandbox = isolation::sandboxSupport();
+    if (sandbox.bubblewrap || sandbox.landlock) return "";
+    const isolation::Exposure exposure = isolation::exposedPlaces(lentOfPlaces(manifest));
+    if (!exposure.exposed()) return "";
+    const std::string why = "in this sandbox (" + sandbox.mode + ") ";
+    if (!exposure.error.empty()) return why + exposure.error + ", so hidden tests are not run: install bubblewrap";
+    if (exposure.readable.empty()) {
+        return why + "simlab's places hold more than it can try (over 500,000 files), so hidden tests are not run: "
+                     "install bubblewrap";
     }
-    const std::vector<std::string> readable = isolation::readableInSandbox(secrets);
-    if (readable.empty()) return "";
-    std::string paths;
-    for (const std::string& path : readable) paths += " " + path;
-    return "in this sandbox (" + isolation::sandboxSupport().mode + ") a test's code could read " + readable.front() +
-           (readable.size() > 1 ? " and " + std::to_string(readable.size() - 1) + " more" : "") +
-           ", so hidden tests are not run: make them unreadable to other users (scripts/lock-course, or chmod -R "
-           "go-rwx" + paths + "), or install bubblewrap";
+    // The command that closes what was read: simlab lock closes the course's places; a lab's folder, a class or
+    // its grades it closes when named.
+    const std::string& first = exposure.readable.front();
+    const std::string place = isolation::placeOf(first);
+    std::string named;
+    for (const auto& lab : manifest.labs) {
+        if (place == lab->dir || (place.rfind(manifest.cacheDir + "/labs/", 0) == 0 &&
+                                  place == labBuildFolder(manifest, lab->dir))) {
+            named = lab->dir;
+        }
+    }
+    const std::vector<std::string> course = {manifest.sourceDir, manifest.buildDir, manifest.cacheDir,
+                                             manifest.sampleClass, fs::path(manifest.path).parent_path().string()};
+    const bool ofTheCourse =
+        std::any_of(course.begin(), course.end(), [&](const std::string& c) {
+            return !c.empty() && (place == c || place.rfind(c + "/", 0) == 0 || c.rfind(place + "/", 0) == 0);
+        }) ||
+        (manifest.installed && place.rfind(manifest.prefix + "/", 0) == 0);
+    if (named.empty() && !ofTheCourse) named = place;
+    const std::size_t more = exposure.readableCount - 1;
+    return why + "a test's code could read " + printable(first) +
+           (more > 0 ? " and " + std::to_string(more) + " more file" + (more == 1 ? "" : "s") + " of simlab's places"
+                     : std::string()) +
+           ", so hidden tests are not run: close them with `simlab lock" + (named.empty() ? "" : " " + printable(named)) +
+           "` (it leaves other users only what a test is lent), or install bubblewrap";
 }
 
 double roundScore(double points) { return std::round(points * 100.0) / 100.0; }

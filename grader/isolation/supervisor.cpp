@@ -177,7 +177,9 @@ void supervise(const ProcessRequest& r, Watched& w, Clock::time_point start, Pro
                 killAll();
             }
             const std::uintmax_t diskCap = 3 * (static_cast<std::uintmax_t>(r.limits.fileMiB) << 20);
-            if (!killed && !w.folder.empty() && folderBytes(w.folder, diskCap) > diskCap) {
+            std::uintmax_t written = w.folder.empty() ? 0 : folderBytes(w.folder, diskCap);
+            if (w.sharedUser != 0 && written <= diskCap) written += sharedTemporaryBytes(w.sharedUser, diskCap - written);
+            if (!killed && written > diskCap) {
                 result.diskLimit = true;
                 killAll();
             }

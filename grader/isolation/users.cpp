@@ -316,16 +316,61 @@ bool handTo(const std::string& path, uid_t uid) {
     return !error;
 }
 
+namespace {
+
+// The machine's shared temporary folders, which every user may write where no file rules keep a process out.
+const char* const kSharedTemporary[] = {"/tmp", "/var/tmp", "/dev/shm", "/run/lock"};
+
+// Calls `each` with every entry of a shared temporary folder that `uid` owns: at their tops, and at the tops of the
+// folders there that every user may write into (a sticky folder such as /tmp/.X11-unix).
+template <typename Each>
+void forFilesOf(uid_t uid, const Each& each) {
+    for (const char* shared : kSharedTemporary) {
+        std::vector<std::string> folders = {shared};
+        for (std::size_t i = 0; i < folders.size(); ++i) {
+            DIR* d = ::opendir(folders[i].c_str());
+            if (!d) continue;
+            std::vector<std::string> entries;
+            while (const struct dirent* e = ::readdir(d)) {
+                if (e->d_name[0] == '.' && (e->d_name[1] == 0 || (e->d_name[1] == '.' && e->d_name[2] == 0))) continue;
+                entries.push_back(folders[i] + "/" + e->d_name);
+            }
+            ::closedir(d);
+            for (const std::string& p : entries) {
+                struct stat info {};
+                if (::lstat(p.c_str(), &info) != 0) continue;
+                if (info.st_uid == uid) {
+                    if (!each(p, info)) return;
+                } else if (i == 0 && S_ISDIR(info.st_mode) && (info.st_mode & S_IWOTH)) {
+                    folders.push_back(p);
+                }
+            }
+        }
+    }
+}
+
+}  // namespace
+
+std::uintmax_t sharedTemporaryBytes(uid_t uid, std::uintmax_t stopAt) {
+    std::uintmax_t bytes = 0;
+    forFilesOf(uid, [&](const std::string& p, const struct stat& info) {
+        bytes += S_ISDIR(info.st_mode) ? folderBytes(p, stopAt) : static_cast<std::uintmax_t>(info.st_blocks) * 512;
+        return bytes <= stopAt;
+    });
+    return bytes;
+}
+
 // Without bubblewrap or Landlock a sandbox user could write to the machine's shared temporary folders: what it
 // left there goes with it.
 void removeFilesOf(uid_t uid) {
-    namespace fs = std::filesystem;
-    for (const char* dir : {"/tmp", "/var/tmp", "/dev/shm", "/run/lock"}) {
+    std::vector<std::string> found;
+    forFilesOf(uid, [&](const std::string& p, const struct stat&) {
+        found.push_back(p);
+        return true;
+    });
+    for (const std::string& p : found) {
         std::error_code error;
-        for (auto it = fs::directory_iterator(dir, error); !error && it != fs::directory_iterator(); it.increment(error)) {
-            struct stat info {};
-            if (::lstat(it->path().c_str(), &info) == 0 && info.st_uid == uid) fs::remove_all(it->path(), error);
-        }
+        std::filesystem::remove_all(p, error);
     }
 }
 

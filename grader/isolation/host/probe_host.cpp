@@ -8,7 +8,8 @@
 //   simlab-probe-host PROBE.so           one test's probe; the engine starts it as the test's own user
 //   simlab-probe-host --serve PROBE.so   a submission's server (engine::TestServer): it keeps CAP_SETUID,
 //                                        CAP_SETGID and CAP_SETPCAP alone and, for each test the engine asks for,
-//                                        forks a child that drops them, becomes the test's user and loads PROBE.so
+//                                        forks a child that drops them, becomes the test's user and loads its
+//                                        own copy of PROBE.so (which only the server may read)
 //   simlab-probe-host --exec PROGRAM...  a program built from a student's file (a study of one): loads the
 //                                        students' filter, execs allowed, then runs PROGRAM - where the sandbox
 //                                        could not load that filter before the user was handed over (bubblewrap
@@ -98,8 +99,9 @@ void onRefusedCall(int, siginfo_t* info, void* context) {
     ::_exit(128 + SIGSYS);
 }
 
-// The probe: the students' filter, then the submission's shared object, then its entry point. Never returns.
-[[noreturn]] void runProbe(const char* probe) {
+// The probe: the students' filter, then the submission's shared object, then its entry point. Never returns. A
+// test's own copy (`ownCopy`) goes once it is loaded: the folder's space is the test's.
+[[noreturn]] void runProbe(const char* probe, bool ownCopy) {
     struct sigaction refused {};
     refused.sa_sigaction = onRefusedCall;
     refused.sa_flags = SA_SIGINFO;
@@ -110,16 +112,49 @@ void onRefusedCall(int, siginfo_t* info, void* context) {
     if (!program.empty() && !filter::install(program)) cannot("simlab: cannot load the probe's system-call filter");
     void* loaded = ::dlopen(probe, RTLD_NOW | RTLD_LOCAL);
     if (!loaded) cannot("simlab: cannot load the probe", ::dlerror());
+    if (ownCopy) ::unlink(probe);
     using Entry = int (*)();
     const auto entry = reinterpret_cast<Entry>(::dlsym(loaded, "simlab_probe_entry"));
     if (!entry) cannot("simlab: the probe has no entry point");
     ::_exit(entry());
 }
 
+// The test's own copy of the probe, `probe` (the server's descriptor of it, which only the server's user may
+// read), written into the test's folder as the test's user (the file system's user: setfsuid) and its alone. The
+// probe on disk is thus no other user's to read, and one test's copy is no other test's.
+bool copyProbe(int probe, const char* folder, uid_t uid) {
+    char path[128] = {};
+    std::size_t used = 0;
+    append(path, sizeof path, used, folder);
+    append(path, sizeof path, used, "/probe.so");
+    ::syscall(SYS_setfsuid, uid);
+    const int copy = ::open(path, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0400);
+    ::syscall(SYS_setfsuid, 0);
+    if (copy < 0) return false;
+    bool ok = true;
+    char buffer[65536];
+    for (off_t at = 0;;) {
+        const ssize_t got = ::pread(probe, buffer, sizeof buffer, at);
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0) {
+            ok = got == 0;
+            break;
+        }
+        for (ssize_t written = 0; written < got;) {
+            const ssize_t n = ::write(copy, buffer + written, static_cast<std::size_t>(got - written));
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) return ::close(copy), false;
+            written += n;
+        }
+        at += got;
+    }
+    return ::close(copy) == 0 && ok;
+}
+
 // In a server's forked child: the test's descriptors in place (output on 1 and 2, then 3, 4, 5), nothing else of
 // the server's open, the test's limits, no capability left to regain, the test's user, a parent-death signal, and
-// a folder of its own. Nothing of the student's is in this process yet.
-void becomeTest(const host::StartTest& test, const int (&fds)[5], pid_t server) {
+// a folder of its own with its copy of the probe. Nothing of the student's is in this process yet.
+void becomeTest(const host::StartTest& test, const int (&fds)[5], pid_t server, int probe) {
     sigset_t none;
     ::sigemptyset(&none);
     ::sigprocmask(SIG_SETMASK, &none, nullptr);
@@ -131,7 +166,6 @@ void becomeTest(const host::StartTest& test, const int (&fds)[5], pid_t server) 
     ::dup2(moved[2], host::kEventFd);
     ::dup2(moved[3], host::kRequestFd);
     ::dup2(moved[4], host::kAnswerFd);
-    ::close_range(host::kAnswerFd + 1, ~0U, 0);
     host::setLimits(test.cpuSeconds, test.memoryBytes, test.fileBytes, test.tasks);
     // The test's folder, made as the test's user through the server's group, which alone may add to the server's
     // folder (root's, mode 0731): the test's user can pass through it to its own folder, and neither list nor add
@@ -145,6 +179,8 @@ void becomeTest(const host::StartTest& test, const int (&fds)[5], pid_t server) 
     const bool made = ::mkdir(folder, 0700) == 0;
     ::syscall(SYS_setfsuid, 0);
     if (!made) cannot("simlab: cannot enter the test's working directory");
+    if (!copyProbe(probe, folder, test.uid)) cannot("simlab: cannot copy the probe into the test's folder");
+    ::close_range(host::kAnswerFd + 1, ~0U, 0);
     if (!host::leaveCapabilities()) cannot("simlab: cannot leave the server's capabilities behind");
     if (!host::becomeUser(test.uid)) cannot("simlab: cannot switch to the test's user");
     if (!host::holdsNoCapability() || ::prctl(PR_CAPBSET_READ, CAP_SETUID, 0, 0, 0) == 1) {
@@ -164,7 +200,7 @@ void becomeTest(const host::StartTest& test, const int (&fds)[5], pid_t server) 
 // Serves the engine on kServerFd: a test's probe forked for each request, its start and its end told on the
 // test's own socket. Returns only in a test's child, ready to load the probe; the server itself leaves when the
 // engine closes its end.
-void serveTests() {
+void serveTests(int probe) {
     using host::StartTest;
     using host::TestEvent;
     const pid_t server = ::getpid();
@@ -226,7 +262,7 @@ void serveTests() {
         }
         const pid_t pid = ::fork();
         if (pid == 0) {
-            becomeTest(test, fds, server);
+            becomeTest(test, fds, server, probe);
             return;
         }
         const int pidfd = pid > 0 ? static_cast<int>(::syscall(SYS_pidfd_open, pid, 0)) : -1;
@@ -276,10 +312,17 @@ int main(int argc, char** argv) {
         cannot("simlab: cannot make the probe's system-call filter");
     }
     if (serve) {
-        serveTests();  // returns in a test's child
+        // Read once, as the server's user: each test's child copies it into its own folder.
+        // (Kept above the descriptors a test's child puts in place.)
+        const int opened = ::open(probe, O_RDONLY | O_CLOEXEC);
+        const int image = opened < 0 ? -1 : ::fcntl(opened, F_DUPFD_CLOEXEC, 64);
+        if (image < 0) cannot("simlab: cannot read the probe", ::strerrordesc_np(errno));
+        ::close(opened);
+        serveTests(image);  // returns in a test's child, whose folder holds its copy
+        probe = "./probe.so";
     } else if (!host::holdsNoCapability() || ::getuid() == 0 || ::geteuid() == 0) {
         // Run alone, the host is already the test's user: it never loads a student's code with privilege.
         cannot("simlab: a probe runs as a user of its own, never as root or with a capability");
     }
-    runProbe(probe);
+    runProbe(probe, serve);
 }

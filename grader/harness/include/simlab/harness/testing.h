@@ -334,8 +334,8 @@ inline const trade::Scene& studentScene(const trade::Question& q) {
 }
 
 /// Points for the trade question on scene `s` of `q` (tradeCredit): the figure is the cost against the front. An
-/// answer that keeps the digits asked for goes on the leaderboard: its evaluations, the digits it kept (to a tenth,
-/// counted up to `beyond` past those asked, as the front is read) and its cost against the front.
+/// answer that keeps the digits asked for goes on the leaderboard: its cost against the front first, then its
+/// evaluations and the digits it kept (to a tenth, counted up to `beyond` past those asked, as the front is read).
 template <class Sample, class Scene>
 void gradeTrade(const trade::Question& q, const trade::Scene& s, const TradeDigits<Sample, Scene>& digitsOf) {
     TradeCredit c = tradeCredit<Sample, Scene>(q, s, digitsOf);
@@ -343,9 +343,11 @@ void gradeTrade(const trade::Question& q, const trade::Scene& s, const TradeDigi
     grading::measured(c.ratio, "x the front", c.line);
     if (std::isfinite(c.evaluations) && std::isfinite(c.ratio)) {
         const double kept = std::min(c.digits, q.digits + grading::param("beyond"));
+        // The cost against the front leads: it is the one figure comparable across students' scenes (a partial
+        // answer on a cheap scene may take fewer evaluations than the front of a dear one).
+        grading::leaderboard("trade: x the front", std::round(c.ratio * 100) / 100, "asc");
         grading::leaderboard("trade: evaluations", c.evaluations, "asc");
         grading::leaderboard("trade: digits kept", std::floor(kept * 10) / 10, "desc");
-        grading::leaderboard("trade: x the front", std::round(c.ratio * 100) / 100, "asc");
     }
     if (c.credit >= 1) return;
     if (c.credit > 0) grading::partialCredit(c.credit);
