@@ -176,10 +176,7 @@ function(simlab_contract id header)
     VERBATIM)
   add_custom_target(simlab_pch_${id} ALL DEPENDS ${pch})
   add_dependencies(simlab_pch_${id} simlab_pch_inputs_${id})
-  # Student files are compiled with line tables (-g1; the precompiled header has none): where a test's run crashes,
-  # throws or is stopped, the engine names the line of the student's file from the probe's tables
-  # (grader/grading/failure_sites.cpp).
-  set_property(GLOBAL PROPERTY SIMLAB_COMPILE_${id} ${SIMLAB_SUBMISSION_COMMAND} ${use} -g1)
+  set_property(GLOBAL PROPERTY SIMLAB_COMPILE_${id} ${SIMLAB_SUBMISSION_COMMAND} ${use})
   set_property(GLOBAL PROPERTY SIMLAB_PCH_HEADER_${id} ${pch_header})
   set_property(GLOBAL PROPERTY SIMLAB_PCH_DEPENDS_${id} simlab_pch_${id} ${pch})
 endfunction()
@@ -289,7 +286,7 @@ function(simlab_add_assignment id)
   # The lab program, built from the student file in this tree (the starter unless told otherwise) ...
   set(SIMLAB_${id}_SOURCE ${starter} CACHE FILEPATH "Student file the ${A_PROGRAM} program is built from")
   set(object ${CMAKE_CURRENT_BINARY_DIR}/${A_PROGRAM}_student.o)
-  # With variables for a debugger too (VS Code's launch configuration): the graded object has line tables alone.
+  # With line tables and variables for a debugger (VS Code's launch configuration): the graded object is not this one.
   simlab_compile_submission(${object} ${SIMLAB_${id}_SOURCE} ${id} -g)
   add_executable(${A_PROGRAM} $<TARGET_OBJECTS:${id}_program_main> ${object})
   target_link_libraries(${A_PROGRAM} PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})

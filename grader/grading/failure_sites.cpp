@@ -2,9 +2,12 @@
 // sandbox.
 #include "simlab/grading/failure_sites.h"
 
+#include <elf.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <string_view>
@@ -54,6 +57,94 @@ void readPlace(const std::string& text, LineEntry& entry) {
         return;
     }
     entry.line = std::stoi(number);
+}
+
+// An ELF file's section headers, read with every offset and size checked against the file; none for anything else.
+class ElfSections {
+public:
+    explicit ElfSections(const std::string& file) : file_(file) {
+        Elf64_Ehdr header;
+        if (!within(0, sizeof header)) return;
+        std::memcpy(&header, file.data(), sizeof header);
+        if (std::memcmp(header.e_ident, ELFMAG, SELFMAG) != 0 || header.e_ident[EI_CLASS] != ELFCLASS64 ||
+            header.e_shentsize != sizeof(Elf64_Shdr) || header.e_shnum == 0 || header.e_shstrndx >= header.e_shnum ||
+            !within(header.e_shoff, std::uint64_t{header.e_shnum} * sizeof(Elf64_Shdr))) {
+            return;
+        }
+        std::vector<Elf64_Shdr> all(header.e_shnum);
+        std::memcpy(all.data(), file.data() + header.e_shoff, all.size() * sizeof(Elf64_Shdr));
+        for (const Elf64_Shdr& s : all) {
+            if (s.sh_type != SHT_NOBITS && !within(s.sh_offset, s.sh_size)) return;
+        }
+        names_ = all[header.e_shstrndx];
+        list_ = std::move(all);
+    }
+    const std::vector<Elf64_Shdr>& list() const { return list_; }
+    std::string contents(const Elf64_Shdr& s) const {
+        return s.sh_type == SHT_NOBITS ? std::string() : file_.substr(s.sh_offset, s.sh_size);
+    }
+    /// The string at `offset` of the string table `table`; empty where there is none.
+    std::string text(const Elf64_Shdr& table, std::uint64_t offset) const {
+        if (offset >= table.sh_size) return "";
+        const char* start = file_.data() + table.sh_offset + offset;
+        return std::string(start, strnlen(start, table.sh_size - offset));
+    }
+    std::string name(const Elf64_Shdr& s) const { return text(names_, s.sh_name); }
+
+private:
+    bool within(std::uint64_t offset, std::uint64_t size) const {
+        return offset <= file_.size() && size <= file_.size() - offset;
+    }
+    const std::string& file_;
+    Elf64_Shdr names_{};
+    std::vector<Elf64_Shdr> list_;
+};
+
+// A relocatable object's code: each executable section's name and bytes, and its relocations' places, kinds and
+// addends (their symbols' numbers aside: line tables add symbols). Empty for what is not an ELF object.
+std::vector<std::pair<std::string, std::string>> codeOf(const std::string& file) {
+    const ElfSections sections(file);
+    std::vector<std::pair<std::string, std::string>> code;
+    const std::vector<Elf64_Shdr>& list = sections.list();
+    for (const Elf64_Shdr& s : list) {
+        if (s.sh_flags & SHF_EXECINSTR) code.emplace_back(sections.name(s), sections.contents(s));
+        if (s.sh_type != SHT_RELA || s.sh_info >= list.size() || !(list[s.sh_info].sh_flags & SHF_EXECINSTR)) continue;
+        const std::string entries = sections.contents(s);
+        std::string relocations;
+        for (std::size_t at = 0; at + sizeof(Elf64_Rela) <= entries.size(); at += sizeof(Elf64_Rela)) {
+            Elf64_Rela r;
+            std::memcpy(&r, entries.data() + at, sizeof r);
+            relocations += std::to_string(r.r_offset) + " " + std::to_string(ELF64_R_TYPE(r.r_info)) + " " +
+                           std::to_string(r.r_addend) + "\n";
+        }
+        code.emplace_back(sections.name(s), relocations);
+    }
+    return code;
+}
+
+// A linked file's functions, by their symbols: name, address and size, in the order of their addresses.
+struct Function {
+    std::string name;
+    std::uint64_t address = 0, size = 0;
+};
+std::vector<Function> functionsOf(const std::string& file) {
+    const ElfSections sections(file);
+    std::vector<Function> functions;
+    const std::vector<Elf64_Shdr>& list = sections.list();
+    for (const Elf64_Shdr& s : list) {
+        if (s.sh_type != SHT_SYMTAB || s.sh_link >= list.size()) continue;
+        const std::string symbols = sections.contents(s);
+        for (std::size_t at = 0; at + sizeof(Elf64_Sym) <= symbols.size(); at += sizeof(Elf64_Sym)) {
+            Elf64_Sym sym;
+            std::memcpy(&sym, symbols.data() + at, sizeof sym);
+            if (ELF64_ST_TYPE(sym.st_info) != STT_FUNC || sym.st_shndx == SHN_UNDEF || sym.st_size == 0) continue;
+            functions.push_back({sections.text(list[s.sh_link], sym.st_name), sym.st_value, sym.st_size});
+        }
+    }
+    std::sort(functions.begin(), functions.end(), [](const Function& a, const Function& b) {
+        return a.address != b.address ? a.address < b.address : a.name < b.name;
+    });
+    return functions;
 }
 
 // The characters a C++ function's shown name holds: identifiers, scopes, template arguments.
@@ -178,10 +269,45 @@ SourceSite innermostIn(const std::vector<std::uint64_t>& frames,
     return {};
 }
 
-FailureSites::FailureSites(std::string probe, std::string file, std::size_t lines, std::string folder)
-    : probe_(std::move(probe)), file_(std::move(file)), folder_(std::move(folder)), lines_(lines) {}
+bool sameCode(const std::string& oneObject, const std::string& otherObject) {
+    const auto one = codeOf(oneObject);
+    return !one.empty() && one == codeOf(otherObject);
+}
+
+std::map<std::uint64_t, std::uint64_t> sameFunctionAddresses(const std::vector<std::uint64_t>& addresses,
+                                                             const std::string& linked, const std::string& twin) {
+    const std::vector<Function> from = functionsOf(linked), to = functionsOf(twin);
+    // Each function by its name and its place among those of the same name (static functions of two files).
+    auto place = [](const std::vector<Function>& functions, std::size_t i) {
+        std::size_t before = 0;
+        for (std::size_t j = 0; j < i; ++j) before += functions[j].name == functions[i].name;
+        return before;
+    };
+    std::map<std::uint64_t, std::uint64_t> mapped;
+    for (const std::uint64_t address : addresses) {
+        std::size_t found = from.size();
+        for (std::size_t i = 0; i < from.size(); ++i) {
+            if (from[i].address <= address && address - from[i].address < from[i].size) found = i;
+        }
+        if (found == from.size()) continue;
+        const Function& f = from[found];
+        const std::size_t nth = place(from, found);
+        for (std::size_t i = 0, seen = 0; i < to.size(); ++i) {
+            if (to[i].name != f.name || seen++ != nth) continue;
+            if (to[i].size == f.size) mapped[address] = to[i].address + (address - f.address);
+            break;
+        }
+    }
+    return mapped;
+}
+
+FailureSites::FailureSites(std::string probe, std::string object, std::string file, std::size_t lines,
+                           std::string folder, BuildLined buildLined)
+    : probe_(std::move(probe)), object_(std::move(object)), file_(std::move(file)), folder_(std::move(folder)),
+      lines_(lines), buildLined_(std::move(buildLined)) {}
 
 void FailureSites::lookUp(const std::vector<std::vector<std::uint64_t>>& frameLists) {
+    std::lock_guard<std::mutex> guard(lock_);
     std::vector<std::uint64_t> addresses;
     for (const auto& frames : frameLists) {
         for (const std::uint64_t address : frames) {
@@ -191,31 +317,51 @@ void FailureSites::lookUp(const std::vector<std::vector<std::uint64_t>>& frameLi
     std::sort(addresses.begin(), addresses.end());
     addresses.erase(std::unique(addresses.begin(), addresses.end()), addresses.end());
     if (addresses.empty() || file_.empty() || !fs::exists(kAddr2line)) return;
-    // The tool's own copy of the probe, in a folder its user is handed for the run.
-    createPrivateFolder(folder_);
-    writeFileAtomically(folder_ + "/probe.so", readFile(probe_));
+    // The twin with line tables, once: used only if the student's object in it is the graded one's code, byte for
+    // byte, relocation for relocation.
+    if (!twinTried_) {
+        twinTried_ = true;
+        createPrivateFolder(folder_);
+        const LinedTwin twin = buildLined_ ? buildLined_(folder_) : LinedTwin{};
+        if (!twin.probe.empty() && !twin.object.empty() && sameCode(readFile(object_), readFile(twin.object))) {
+            twin_ = twin.probe;
+        }
+    }
+    if (twin_.empty()) return;
+    // Each address as it lies in the twin: at the same place in the function of the same name and size.
+    const std::map<std::uint64_t, std::uint64_t> inTwin =
+        sameFunctionAddresses(addresses, readFile(probe_), readFile(twin_));
+    if (inTwin.empty()) return;
+    // The tool's own copy of the twin, in a folder its user is handed for the run.
+    const std::string tool = folder_ + "/tool";
+    createPrivateFolder(tool);
+    writeFileAtomically(tool + "/probe.so", readFile(twin_));
     isolation::ProcessRequest r;
     r.argv = {kAddr2line, "-e", "probe.so", "-f", "-C", "-i", "-a"};
-    for (const std::uint64_t address : addresses) {
+    std::map<std::uint64_t, std::uint64_t> fromTwin;
+    for (const auto& [address, twinAddress] : inTwin) {
         char text[24];
-        std::snprintf(text, sizeof text, "0x%llx", static_cast<unsigned long long>(address));
+        std::snprintf(text, sizeof text, "0x%llx", static_cast<unsigned long long>(twinAddress));
         r.argv.push_back(text);
+        fromTwin[twinAddress] = address;
     }
-    r.env = {"PATH=/usr/bin:/bin", "HOME=" + folder_, "TMPDIR=/tmp", "LC_ALL=C"};
-    r.workDir = folder_;
+    r.env = {"PATH=/usr/bin:/bin", "HOME=" + tool, "TMPDIR=/tmp", "LC_ALL=C"};
+    r.workDir = tool;
     r.limits = lookupLimits();
     r.keepOutput = 1 << 20;
     r.isolate = true;
     const isolation::ProcessResult run = isolation::runProcess(r);
     std::error_code ignored;
-    fs::remove(folder_ + "/probe.so", ignored);
+    fs::remove_all(tool, ignored);
     if (!run.exitedCleanly()) return;  // a place is a help, never a reason to fail
-    for (auto& [address, frames] : readAddr2line(run.output)) {
-        if (std::binary_search(addresses.begin(), addresses.end(), address)) entries_[address] = std::move(frames);
+    for (auto& [twinAddress, frames] : readAddr2line(run.output)) {
+        const auto address = fromTwin.find(twinAddress);
+        if (address != fromTwin.end()) entries_[address->second] = std::move(frames);
     }
 }
 
 SourceSite FailureSites::site(const std::vector<std::uint64_t>& frames) const {
+    std::lock_guard<std::mutex> guard(lock_);
     return innermostIn(frames, entries_, file_, lines_);
 }
 

@@ -119,6 +119,7 @@ struct ProbeEvents {
     // test that asked twice), or a channel past what is kept, leave it unknown.
     int crashSignal = 0;
     std::vector<std::uint64_t> crashAt, sampleAt, threwAt;
+    std::vector<std::uint64_t> terminateAt;  // where the exception std::terminate ended was thrown
     double sampleCpu = 0;  // the process's CPU time at its last sample
     std::string threwType;
 };
@@ -162,9 +163,10 @@ ProbeEvents probeEvents(const std::vector<std::string>& lines) {
             e.terminated = true;
             e.type = record.contains("type") && record["type"].is_string() ? record["type"].get<std::string>() : "";
             e.what = record.contains("what") && record["what"].is_string() ? record["what"].get<std::string>() : "";
+            e.terminateAt = readFailureFrames(record.value("at", nlohmann::json()));
         }
     }
-    if (!placesKnown) e.crashAt = e.sampleAt = e.threwAt = {};
+    if (!placesKnown) e.crashAt = e.sampleAt = e.threwAt = e.terminateAt = {};
     return e;
 }
 
@@ -228,6 +230,7 @@ std::vector<std::vector<std::uint64_t>> framesToLookUp(const isolation::ProcessR
                                                        const ProbeEvents& events) {
     std::vector<std::vector<std::uint64_t>> frames;
     if (probe.signal != 0 && events.crashSignal == probe.signal) frames.push_back(events.crashAt);
+    if (probe.signal == SIGABRT && events.terminated) frames.push_back(events.terminateAt);
     frames.push_back(whereStopped(probe, events));
     frames.push_back(events.threwAt);
     return frames;
@@ -303,8 +306,11 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
         t.reason = text;
     } else if (probe.signal != 0) {
         t.outcome = Outcome::Crashed;
-        t.reason = crashReason(probe, events,
-                               events.crashSignal == probe.signal ? sites.site(events.crashAt).inReason() : "");
+        // An exception nothing caught is where it was thrown (std::terminate's own frames may not unwind: clang's
+        // call of it from a noexcept function has no unwind table); any other crash where the signal came.
+        std::string site = probe.signal == SIGABRT && events.terminated ? sites.site(events.terminateAt).inReason() : "";
+        if (site.empty() && events.crashSignal == probe.signal) site = sites.site(events.crashAt).inReason();
+        t.reason = crashReason(probe, events, site);
     } else if (!verdict) {
         t.outcome = Outcome::DidNotFinish;
         if (!malformed.empty()) {
@@ -351,9 +357,8 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
 // a folder per process.
 struct Workspace {
     std::string root, build, probe, host;
-    std::string student;  ///< GradeOptions::student, for the judge
-    std::string source;   ///< the student's file's name, and its number of lines: where failures are looked up
-    std::size_t sourceLines = 0;
+    std::string student;             ///< GradeOptions::student, for the judge
+    FailureSites* sites = nullptr;  ///< where in the student's file the tests' failures were, the judges' together
 };
 
 // A judge's files: the rubric, and the files handed in beside the source (or why each was refused).
@@ -572,8 +577,7 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
         ran.push_back(std::move(probe));
     }
     // Where the failures were, every test's at once.
-    FailureSites sites(w.probe + "/probe.so", w.source, w.sourceLines, w.root + "/" + tag + "sites");
-    sites.lookUp(lookUp);
+    w.sites->lookUp(lookUp);
     std::vector<TestResult> results;
     for (std::size_t i = 0; i < tests.size(); ++i) {
         std::string stalledFirst;
@@ -581,7 +585,7 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
             std::lock_guard<std::mutex> guard(stalls.lock);
             if (stalls.stopped.count(tests[i]->name)) stalledFirst = stalls.first;
         }
-        results.push_back(interpret(*tests[i], ran[i], judged, limits, stalledFirst, events[i], sites));
+        results.push_back(interpret(*tests[i], ran[i], judged, limits, stalledFirst, events[i], *w.sites));
     }
     return results;
 }
@@ -893,8 +897,7 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
     // sandbox is lent; work/judgeN: the rubric and the files handed in beside the source, which judge N's sandbox
     // is lent - never a probe's. Each process gets an empty folder of its own as well.
     TempDir work("simlab-" + assignment.id + "-", options.workRoot);
-    Workspace w{work.path(), work.path() + "/build", work.path() + "/probe", builder.probeHost(), options.student,
-                files.name, static_cast<std::size_t>(std::count(files.text.begin(), files.text.end(), '\n')) + 1};
+    Workspace w{work.path(), work.path() + "/build", work.path() + "/probe", builder.probeHost(), options.student};
     // Every folder of the grading is private from the moment it exists: the judge's copy, the rubric and the
     // student's source are never another user's to read, even while they are being written. Each folder below is
     // handed to the sandbox user of the process that works in it, for that run (0700); the probe's is simlab's
@@ -909,6 +912,19 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
     const Limits limits = options.limits.value_or(rubric.limits);
 
     if (report.build.ok) {
+        // The probe's twin with line tables, made only when a failure needs a place (failure_sites.h): the same
+        // file and link, compiled with -g1.
+        const std::size_t lines = static_cast<std::size_t>(std::count(files.text.begin(), files.text.end(), '\n')) + 1;
+        FailureSites sites(w.probe + "/probe.so", report.build.object, files.name, lines, w.root + "/lines",
+                           [&](const std::string& folder) {
+                               Assignment lined = assignment;
+                               lined.compile.push_back("-g1");
+                               const BuildResult twin = builder.buildProbe(lined, files.name, files.text, folder,
+                                                                           folder + "/probe.so", false);
+                               return twin.ok ? FailureSites::LinedTwin{twin.binary, twin.object}
+                                              : FailureSites::LinedTwin{};
+                           });
+        w.sites = &sites;
         report.tests = runJudges(assignment, rubric, files, selected, w, limits, options, &report.graderOutput);
     } else {
         const std::string& stage = report.build.stage;

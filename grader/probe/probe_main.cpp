@@ -53,7 +53,19 @@ void onOutOfMemory() {
     std::_Exit(137);
 }
 
-// std::terminate: say what was in flight, then abort as C++ would.
+// Where the exception `caught` was thrown, as the host's throw hook saw it (simlab/isolation/failure_sites.h): the
+// probe's frames, innermost first; none where the host does not know (a floor has no host).
+std::vector<std::uint64_t> thrownFrom(const std::exception& caught) {
+    using simlab::isolation::kMaxFailureFrames;
+    static const auto hook =
+        reinterpret_cast<simlab::isolation::ThrownFrom>(::dlsym(RTLD_DEFAULT, simlab::isolation::kThrownFromSymbol));
+    if (!hook) return {};
+    std::uint64_t at[kMaxFailureFrames];
+    const int count = hook(dynamic_cast<const void*>(&caught), at, kMaxFailureFrames);
+    return count > 0 ? std::vector<std::uint64_t>(at, at + count) : std::vector<std::uint64_t>();
+}
+
+// std::terminate: say what was in flight and where it was thrown, then abort as C++ would.
 void onTerminate() {
     nlohmann::json event = {{"event", "terminate"}};
     try {
@@ -63,6 +75,8 @@ void onTerminate() {
             } catch (const std::exception& e) {
                 event["type"] = simlab::probe::typeName(typeid(e));
                 event["what"] = e.what();
+                const std::vector<std::uint64_t> at = thrownFrom(e);
+                if (!at.empty()) event["at"] = at;
             } catch (...) {
                 event["type"] = "something that is not a std::exception";
             }
@@ -75,19 +89,13 @@ void onTerminate() {
     std::abort();
 }
 
-// An exception of the student's code that became the answer: where it was thrown, as the host's throw hook saw it
-// (simlab/isolation/failure_sites.h), told on the event channel for the engine to look up. Nothing where the host
-// does not know.
+// An exception of the student's code that became the answer: where it was thrown, told on the event channel for the
+// engine to look up. Nothing where the host does not know.
 void onStudentThrow(const std::exception& caught, const std::string& type) {
-    using simlab::isolation::kMaxFailureFrames;
-    static const auto thrownFrom =
-        reinterpret_cast<simlab::isolation::ThrownFrom>(::dlsym(RTLD_DEFAULT, simlab::isolation::kThrownFromSymbol));
-    if (!thrownFrom) return;
-    std::uint64_t at[kMaxFailureFrames];
-    const int count = thrownFrom(dynamic_cast<const void*>(&caught), at, kMaxFailureFrames);
-    if (count <= 0) return;
     try {
-        nlohmann::json event = {{"event", "threw"}, {"type", type}, {"at", std::vector<std::uint64_t>(at, at + count)}};
+        const std::vector<std::uint64_t> at = thrownFrom(caught);
+        if (at.empty()) return;
+        const nlohmann::json event = {{"event", "threw"}, {"type", type}, {"at", at}};
         writeAll(kEventFd, event.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     } catch (...) {
         // no memory left to say it: the answer still says what was thrown

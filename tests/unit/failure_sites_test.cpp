@@ -2,6 +2,13 @@
 // read so that only a frame in the student's own file, at a line it has, is ever named.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+
+#include "simlab/build/build.h"
+#include "simlab/build/manifest.h"
+#include "simlab/common/files.h"
 #include "simlab/grading/failure_sites.h"
 
 using namespace simlab::engine;
@@ -82,4 +89,87 @@ TEST_CASE("only a frame in the student's file, at a line it has, is named", "[fa
     unnamed.file = "NewtonsApple.cpp";
     unnamed.line = 12;
     CHECK(unnamed.inReason() == " (NewtonsApple.cpp:12)");
+}
+
+namespace {
+
+// The address of the function whose symbol is `symbol` in the linked file `path` (binutils' nm reads it).
+std::uint64_t addressOf(const std::string& path, const std::string& symbol) {
+    std::FILE* nm = ::popen(("/usr/bin/nm " + path).c_str(), "r");
+    REQUIRE(nm);
+    char line[4096];
+    std::uint64_t address = 0;
+    while (std::fgets(line, sizeof line, nm)) {
+        const std::string text(line);
+        if (text.size() > 19 && text.compare(19, std::string::npos, symbol + "\n") == 0) {
+            address = std::stoull(text.substr(0, 16), nullptr, 16);
+        }
+    }
+    ::pclose(nm);
+    return address;
+}
+
+}  // namespace
+
+TEST_CASE("a probe's twin with line tables names the student's line, and only a twin of the same code serves",
+          "[failure-sites][build]") {
+    // The apple's reference built as a check builds it, and its twin compiled with -g1: the same code, laid out
+    // elsewhere by the linker (line tables bring unwind entries of their own).
+    TempDir cache("simlab-cache-test-");
+    ::setenv("SIMLAB_CACHE", cache.path().c_str(), 1);
+    const Manifest manifest = loadManifest();
+    const Assignment& apple = manifest.find("apple");
+    const Builder builder(manifest);
+    ::unsetenv("SIMLAB_CACHE");
+    const std::string text = readFile(apple.solution);
+    TempDir work("simlab-sites-test-");
+    const BuildResult graded =
+        builder.buildProbe(apple, "NewtonsApple.cpp", text, work.path(), work.path() + "/probe.so");
+    REQUIRE(graded.ok);
+    Assignment lined = apple;
+    lined.compile.push_back("-g1");
+    int builds = 0;
+    auto twin = [&](const std::string& folder) {
+        ++builds;
+        const BuildResult made =
+            builder.buildProbe(lined, "NewtonsApple.cpp", text, folder, folder + "/probe.so", false);
+        return FailureSites::LinedTwin{made.binary, made.object};
+    };
+    const std::size_t lines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
+    FailureSites sites(graded.binary, graded.object, "NewtonsApple.cpp", lines, work.path() + "/lines", twin);
+    // A call in simulate(): the innermost frame there, at a line of the function's.
+    const std::string simulate =
+        "_ZN5apple8simulateERKNS_5ModelERN5SimTK10IntegratorERKNS3_5StateERKN6simlab11RunSettingsERNS9_8RecorderINS_6"
+        "SampleEEE";
+    const std::uint64_t at = addressOf(graded.binary, simulate);
+    REQUIRE(at != 0);
+    sites.lookUp({{at + 8}, {at + 16}});
+    sites.lookUp({{at + 8}});  // looked up once; the twin made once
+    CHECK(builds == 1);
+    const SourceSite site = sites.site({at + 8});
+    CHECK(site.function == "apple::simulate");
+    const std::size_t declared = text.find("void simulate(");
+    REQUIRE(declared != std::string::npos);
+    const int line = static_cast<int>(std::count(text.begin(), text.begin() + declared, '\n')) + 1;
+    CHECK(site.line >= line);
+    CHECK(site.line <= line + 12);
+    // An object of other code is no twin: one more statement.
+    std::string other = text;
+    other.replace(other.find("    stepper.initialize(initial);"), 0, "    stepper.setReportAllSignificantStates(true);\n");
+    createPrivateFolder(work.path() + "/other");
+    const BuildResult otherBuilt = builder.buildProbe(apple, "NewtonsApple.cpp", other, work.path() + "/other",
+                                                      work.path() + "/other.so");
+    REQUIRE(otherBuilt.ok);
+    CHECK(sameCode(readFile(graded.object), readFile(graded.object)));
+    CHECK_FALSE(sameCode(readFile(graded.object), readFile(otherBuilt.object)));
+    CHECK_FALSE(sameCode("not an object", "not an object"));
+    FailureSites notTwins(graded.binary, graded.object, "NewtonsApple.cpp", lines, work.path() + "/not",
+                          [&](const std::string&) { return FailureSites::LinedTwin{otherBuilt.binary, otherBuilt.object}; });
+    notTwins.lookUp({{at + 8}});
+    CHECK_FALSE(notTwins.site({at + 8}).found());
+    // The twin's addresses are not the probe's, and an address in no function goes nowhere.
+    const auto mapped =
+        sameFunctionAddresses({at + 8, 1}, readFile(graded.binary), readFile(work.path() + "/lines/probe.so"));
+    REQUIRE(mapped.count(at + 8) == 1);
+    CHECK(mapped.count(1) == 0);
 }

@@ -12,6 +12,7 @@
 //     {"event":"sample","cpu":2600000,"at":[21344,22107]}   where it was after each tenth of a second of CPU time
 //                                                           (the process's CPU time then, in microseconds)
 //     {"event":"threw","type":"std::runtime_error","at":[...]}   the course's code caught the student's exception
+//     {"event":"terminate",...,"at":[...]}                  where the exception std::terminate ended was thrown
 //
 // The student's code shares that process and can write anything there, and replace the handlers, so a line says
 // nothing the engine must believe: an address is looked up in the probe's line tables by a tool in the sandbox that
