@@ -308,7 +308,8 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
         t.outcome = Outcome::Crashed;
         // An exception nothing caught is where it was thrown (std::terminate's own frames may not unwind: clang's
         // call of it from a noexcept function has no unwind table); any other crash where the signal came.
-        std::string site = probe.signal == SIGABRT && events.terminated ? sites.site(events.terminateAt).inReason() : "";
+        std::string site;
+        if (probe.signal == SIGABRT && events.terminated) site = sites.site(events.terminateAt).inReason();
         if (site.empty() && events.crashSignal == probe.signal) site = sites.site(events.crashAt).inReason();
         t.reason = crashReason(probe, events, site);
     } else if (!verdict) {

@@ -155,7 +155,8 @@ TEST_CASE("a probe's twin with line tables names the student's line, and only a 
     CHECK(site.line <= line + 12);
     // An object of other code is no twin: one more statement.
     std::string other = text;
-    other.replace(other.find("    stepper.initialize(initial);"), 0, "    stepper.setReportAllSignificantStates(true);\n");
+    other.replace(other.find("    stepper.initialize(initial);"), 0,
+                  "    stepper.setReportAllSignificantStates(true);\n");
     createPrivateFolder(work.path() + "/other");
     const BuildResult otherBuilt = builder.buildProbe(apple, "NewtonsApple.cpp", other, work.path() + "/other",
                                                       work.path() + "/other.so");
@@ -163,8 +164,8 @@ TEST_CASE("a probe's twin with line tables names the student's line, and only a 
     CHECK(sameCode(readFile(graded.object), readFile(graded.object)));
     CHECK_FALSE(sameCode(readFile(graded.object), readFile(otherBuilt.object)));
     CHECK_FALSE(sameCode("not an object", "not an object"));
-    FailureSites notTwins(graded.binary, graded.object, "NewtonsApple.cpp", lines, work.path() + "/not",
-                          [&](const std::string&) { return FailureSites::LinedTwin{otherBuilt.binary, otherBuilt.object}; });
+    auto otherTwin = [&](const std::string&) { return FailureSites::LinedTwin{otherBuilt.binary, otherBuilt.object}; };
+    FailureSites notTwins(graded.binary, graded.object, "NewtonsApple.cpp", lines, work.path() + "/not", otherTwin);
     notTwins.lookUp({{at + 8}});
     CHECK_FALSE(notTwins.site({at + 8}).found());
     // The twin's addresses are not the probe's, and an address in no function goes nowhere.

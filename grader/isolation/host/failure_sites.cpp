@@ -236,7 +236,8 @@ void watchFailureSites(const char* probe) {
 
 // The throw hook: the host exports __cxa_throw, so every throw in the process (the student's, the C++ library's,
 // Simbody's) comes here first; where it was thrown is kept for the probe's course code, which asks with the object
-// it caught (simlab_thrown_from); then the C++ runtime's own throw. The name is the C++ ABI's, which the hook must take.
+// it caught (simlab_thrown_from); then the C++ runtime's own throw. The name is the C++ ABI's, which the hook must
+// take.
 // NOLINTNEXTLINE(bugprone-reserved-identifier)
 extern "C" __attribute__((visibility("default"), noreturn)) void __cxa_throw(void* object, std::type_info* type,
                                                                             void (*destroy)(void*)) {
