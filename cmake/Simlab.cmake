@@ -279,8 +279,16 @@ function(simlab_add_assignment id)
   add_library(${id}_program_main OBJECT ${A_MAIN})
   target_link_libraries(${id}_program_main PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
   simlab_use_pch(${id}_program_main)
-  # The course's side includes its lab's files as "<id>/program/exact.h": from the folder that holds the lab's.
+  # The course's side includes its lab's files as "<id>/program/exact.h": from the folder that holds the lab's, or,
+  # where the folder is named otherwise (a copy of examples/pendulum in my_lab/), from one of the build's where
+  # <id> leads to it.
   get_filename_component(labs_dir ${dir} DIRECTORY)
+  get_filename_component(folder_name ${dir} NAME)
+  if(NOT folder_name STREQUAL id)
+    set(labs_dir ${CMAKE_CURRENT_BINARY_DIR}/lab-include)
+    file(MAKE_DIRECTORY ${labs_dir})
+    file(CREATE_LINK ${dir} ${labs_dir}/${id} SYMBOLIC)
+  endif()
   target_include_directories(${id}_program_main PRIVATE ${labs_dir})
 
   # The lab program, built from the student file in this tree (the starter unless told otherwise) ...

@@ -4,6 +4,7 @@
 // function here, and the writer of that format calls it on every text it did not write itself.
 #pragma once
 
+#include <map>
 #include <string>
 
 namespace simlab::engine {
@@ -59,5 +60,13 @@ std::string markdownText(const std::string& text);
 /// of a reader turning them into spaces); the characters XML 1.0 forbids (other C0 controls, U+FFFE, U+FFFF) as
 /// U+FFFD. Everything else, C1 and bidirectional controls included, is kept.
 std::string xmlText(const std::string& text);
+
+/// `word` as a POSIX shell reads it back as one word: as it is where that is safe, else in single quotes.
+std::string shellWord(const std::string& word);
+
+/// A file simlab writes from a template of its own (a platform's script, grader/*/scripts/): `text` with each
+/// @NAME@ of `values` in its place. A @NAME@ alone on its line with an empty value takes its line with it. Throws
+/// std::logic_error naming a @NAME@ the template holds and `values` has not, or one of `values` it never holds.
+std::string filledTemplate(std::string text, const std::map<std::string, std::string>& values);
 
 }  // namespace simlab::engine
