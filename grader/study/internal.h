@@ -105,8 +105,13 @@ std::string number(const json& value, const char* format = "%.6g");
 /// A text; "" for what is not one.
 std::string text(const json& value);
 
-/// trade.csv, the tables and (unless o.plots is off) the plots of `runs`, into `dir`.
-void writeTrade(const StudyOptions& o, const fs::path& dir, const std::vector<SubjectRun>& runs);
+/// The digits a study's table gives the cheapest setting for, unless it is told others.
+inline const std::vector<double> kTableDigits = {4, 6, 8, 10, 12};
+
+/// trade.csv, the tables and (unless o.plots is off) the plots of `runs`, into `dir`: a table gives the cheapest
+/// setting for each of `targets` digits (a question's study: those it asks, and each digit past them its grader reads).
+void writeTrade(const StudyOptions& o, const fs::path& dir, const std::vector<SubjectRun>& runs,
+                const std::vector<double>& targets = kTableDigits);
 /// `study minimal`'s files and table from its rows, into `dir`.
 void writeMinimal(const fs::path& dir, const std::vector<json>& rows);
 

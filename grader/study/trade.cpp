@@ -339,7 +339,10 @@ void studyQuestion(const StudyOptions& o, const engine::Assignment& a, const std
     }
     if (o.repeats > 0) argv.insert(argv.end(), {"--repeats", std::to_string(o.repeats)});
     std::cout << std::flush;  // the question's lines before the progress lines on a shared terminal or log
-    writeTrade(o, dir, {runSweeps(argv, !studentProgram.empty(), a.id, cores)});
+    // The table's rows: the digits asked, and each whole digit past them that the grader reads the front at.
+    std::vector<double> targets;
+    for (double d = q.digits; d <= q.digits + beyond + 1e-9; d += 1) targets.push_back(d);
+    writeTrade(o, dir, {runSweeps(argv, !studentProgram.empty(), a.id, cores)}, targets);
 }
 
 /// Each lab's study program on a core of its own (--jobs at once), each measuring its points one at a time; the
