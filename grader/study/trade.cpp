@@ -2,6 +2,7 @@
 // scene and its sweeps, the fronts of the question's data files, and each lab's study program at once.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -341,7 +342,7 @@ void studyQuestion(const StudyOptions& o, const engine::Assignment& a, const std
     std::cout << std::flush;  // the question's lines before the progress lines on a shared terminal or log
     // The table's rows: the digits asked, and each whole digit past them that the grader reads the front at.
     std::vector<double> targets;
-    for (double d = q.digits; d <= q.digits + beyond + 1e-9; d += 1) targets.push_back(d);
+    for (int past = 0; past <= static_cast<int>(std::floor(beyond + 1e-9)); ++past) targets.push_back(q.digits + past);
     writeTrade(o, dir, {runSweeps(argv, !studentProgram.empty(), a.id, cores)}, targets);
 }
 
