@@ -1,7 +1,8 @@
 // `simlab study long-run`: the book's or the baby boot's long-run view, which the lab's study program
 // (simlab/long_run.h) runs whole: it runs each setting, writes the CSV and the figure, and prints the table. Of the
 // reference solution, the command hands over to the program; of a student's file, the program built from it runs
-// in grading's sandbox, and what it wrote is copied out.
+// in grading's sandbox, where gnuplot does not run: it writes the CSV and prints the table there, the CSV is read
+// back as data, and the figure is drawn here from it.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
