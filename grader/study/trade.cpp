@@ -250,8 +250,8 @@ std::vector<const engine::Assignment*> studiedLabs(const engine::Manifest& manif
         const engine::Assignment& a = manifest.find(o.lab);
         if (a.studyProgramPath.empty() && (o.file.empty() || a.studyObjects.empty())) {
             throw engine::UsageError("no study of " + o.lab +
-                                     "'s reference solution, which is not in this tree: study "
-                                     "your own file with --file");
+                                     "'s reference solution, which is not in this tree: study your own file with "
+                                     "--file (e.g. --file " + engine::printable(a.starter) + ")");
         }
         labs.push_back(&a);
     }

@@ -78,6 +78,12 @@ run_capture question "$bundled" study trade apple --question --quick --no-plots 
 check "a student's first study builds the studies, once, then studies their file" \
   bash -c "test $(status_of question) -eq 0 && grep -q 'building the studies first, once' question.err &&
            grep -qE '^  3 +ExplicitEuler, fixed step' question.out"
+run_capture nofile "$bundled" study trade apple --quick -o nofile
+run_capture nofile_long "$bundled" study long-run book --quick -o nofile
+check "a study with no file names the student's own, in one line: the bundle has no reference solution" \
+  bash -c "test $(status_of nofile) -eq 2 -a $(status_of nofile_long) -eq 2 &&
+           grep -q 'study your own file with --file (e.g. --file .*/starter/apple/NewtonsApple.cpp)' nofile.err &&
+           grep -q 'follow your own file with --file (e.g. --file .*/starter/book/BookSpin.cpp)' nofile_long.err"
 run_capture again_question "$bundled" study trade apple --question --quick --no-plots -o question --file finished.cpp
 check "  and the next builds nothing" bash -c "test $(status_of again_question) -eq 0 && ! grep -q 'building the studies' again_question.err"
 run_capture all "$bundled" check apple finished.cpp --all
