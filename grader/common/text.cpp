@@ -138,9 +138,12 @@ std::string markdownText(const std::string& text) {
         // written, for the student who reads the file as text.
         const bool reference =
             i + 1 < shown.size() && (std::isalnum(static_cast<unsigned char>(shown[i + 1])) || shown[i + 1] == '#');
+        // '<' starts a tag, a comment or an autolink only before a letter, '/', '!' or '?': "i < n" and a student's
+        // "p->x" stay as written; '>' means nothing inline (a quote's marker only at a line's start, below).
+        const bool markup = i + 1 < shown.size() && (std::isalpha(static_cast<unsigned char>(shown[i + 1])) ||
+                                                     std::string_view("/!?").find(shown[i + 1]) != std::string_view::npos);
         switch (c) {
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
+            case '<': out += markup ? "&lt;" : "<"; break;
             case '&':
                 out += reference ? "&amp;" : "&";
                 break;
@@ -155,7 +158,7 @@ std::string markdownText(const std::string& text) {
     // or, after four spaces, an indented code block).
     const std::size_t digits = out.find_first_not_of("0123456789");
     if (!out.empty() && out[0] == ' ') out.replace(0, 1, "&#32;");
-    else if (!out.empty() && std::string_view("#+-=~").find(out[0]) != std::string::npos) out.insert(0, 1, '\\');
+    else if (!out.empty() && std::string_view("#+-=~>").find(out[0]) != std::string::npos) out.insert(0, 1, '\\');
     else if (digits != 0 && digits != std::string::npos && (out[digits] == '.' || out[digits] == ')')) {
         out.insert(digits, 1, '\\');
     }

@@ -49,10 +49,12 @@ std::string csvCellValue(const std::string& cell);
 /// Inline Markdown text for a table cell, a heading or a line after a label ("- " + markdownText(x)): printable on
 /// one line (a newline shows as "\n": in Markdown it would end the cell or start a block), then escaped so it
 /// renders as the same characters and cannot change the document's structure: '\', '`', '|', '*', '_', '[' and
-/// ']' get a backslash, and '<', '>', '&' become "&lt;", "&gt;", "&amp;". So "a|b" is "a\|b", "<script>" is
-/// "&lt;script&gt;" and a student's "\|" is "\\\|". In case the text starts a line, a first character that would
-/// begin a block ('#', '+', '-', '=', '~', or digits then '.' or ')') gets a backslash and a first space becomes
-/// "&#32;" (no indented code block). For multi-line text, indent printable(text, true) as a code block instead.
+/// ']' get a backslash, a '<' that could start a tag or an autolink (before a letter, '/', '!' or '?') becomes
+/// "&lt;", and a '&' that could start a character reference "&amp;"; the rest stays as written, for a reader of the
+/// file as text. So "a|b" is "a\|b", "<script>" is "&lt;script>", "p->x" and "i < n" stay, and a student's "\|" is
+/// "\\\|". In case the text starts a line, a first character that would begin a block ('#', '+', '-', '=', '~', '>',
+/// or digits then '.' or ')') gets a backslash and a first space becomes "&#32;" (no indented code block). For
+/// multi-line text, indent printable(text, true) as a code block instead.
 std::string markdownText(const std::string& text);
 
 /// Text for XML 1.0 content or a double- or single-quoted attribute (JUnit): validUtf8, '&', '<', '>', '"' and '\''
