@@ -202,6 +202,12 @@ endfunction()
 #   SOLUTION <file>          the reference solution (default: the course tree's solutions/<id>/<SOURCE>); a
 #                            folder of a lab without one (a student bundle's) has none
 #   WORKED_EXAMPLE           the solution is handed out with the student bundle as a worked example: no secret
+#   EXAMPLE <name>           the worked example's name: its programs' (<name>, <name>-study) and the one
+#                            `simlab project new --from <name>` starts from; optional
+#   PROJECTS                 each student makes a project of their own from the starter (`simlab project new`):
+#                            each project's trade question is its own, and the lab's study is the worked example's
+#   LONG_RUN                 its study follows the reference over a long time (`simlab study long-run`)
+#   CORPUS <folder>          its sample submissions with their scores (default: corpus/ in its folder)
 #   PROGRAM <name>           the runnable lab program (course main + student file)
 #   CONTRACT <header>        the header the student implements, the only one of the assignment they may include
 #   PRECOMPILED <header>     the end of the assignment's precompiled header: includes the contract, and names the
@@ -216,7 +222,8 @@ endfunction()
 #                            (trade_question.inc); optional
 #   HIDDEN_TRADE <file>)     its hidden variants (trade_hidden.inc); absent from the student bundle, so optional
 function(simlab_add_assignment id)
-  cmake_parse_arguments(A "WORKED_EXAMPLE" "TITLE;SOURCE;STARTER;SOLUTION;PROGRAM;RUBRIC;CONTRACT;PRECOMPILED;TRADE;HIDDEN_TRADE"
+  cmake_parse_arguments(A "WORKED_EXAMPLE;PROJECTS;LONG_RUN"
+                        "TITLE;SOURCE;STARTER;SOLUTION;PROGRAM;RUBRIC;CONTRACT;PRECOMPILED;TRADE;HIDDEN_TRADE;EXAMPLE;CORPUS"
                         "MAIN;PROBE;TESTS;HIDDEN_TESTS;STUDY" ${ARGN})
   foreach(required TITLE SOURCE PROGRAM RUBRIC CONTRACT MAIN PROBE TESTS)
     if(NOT A_${required})
@@ -312,6 +319,9 @@ function(simlab_add_assignment id)
     simlab_compile_submission(${object} ${solution} ${id})
     add_executable(${A_PROGRAM}-reference $<TARGET_OBJECTS:${id}_program_main> ${object})
     target_link_libraries(${A_PROGRAM}-reference PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
+    if(A_EXAMPLE)
+      set_target_properties(${A_PROGRAM}-reference PROPERTIES OUTPUT_NAME ${A_EXAMPLE})
+    endif()
     set(reference_program $<TARGET_FILE:${A_PROGRAM}-reference>)
   else()
     set(solution "")
@@ -334,6 +344,9 @@ function(simlab_add_assignment id)
       add_executable(${A_PROGRAM}-study $<TARGET_OBJECTS:${id}_study_main> ${CMAKE_CURRENT_BINARY_DIR}/${A_PROGRAM}_reference.o)
       target_link_libraries(${A_PROGRAM}-study PRIVATE simlab_study simlab_program simlab_support ${Simbody_LIBRARIES})
       simlab_study_target(${A_PROGRAM}-study)
+      if(A_EXAMPLE)
+        set_target_properties(${A_PROGRAM}-study PROPERTIES OUTPUT_NAME ${A_EXAMPLE}-study)
+      endif()
       set(study_program $<TARGET_FILE:${A_PROGRAM}-study>)
     endif()
   endif()
@@ -400,11 +413,23 @@ function(simlab_add_assignment id)
   simlab_json_set_string(json precompiled_header "${pch_header}")
   simlab_json_set_string(json starter "${starter}")
   simlab_json_set_string(json solution "${solution}")
-  if(A_WORKED_EXAMPLE)
-    string(JSON json SET "${json}" solution_shipped true)
-  else()
-    string(JSON json SET "${json}" solution_shipped false)
+  foreach(flag WORKED_EXAMPLE PROJECTS LONG_RUN)
+    string(TOLOWER ${flag} key)
+    if(key STREQUAL "worked_example")
+      set(key solution_shipped)
+    endif()
+    if(A_${flag})
+      string(JSON json SET "${json}" ${key} true)
+    else()
+      string(JSON json SET "${json}" ${key} false)
+    endif()
+  endforeach()
+  simlab_json_set_string(json example "${A_EXAMPLE}")
+  set(corpus ${dir}/corpus)
+  if(A_CORPUS)
+    get_filename_component(corpus ${A_CORPUS} ABSOLUTE BASE_DIR ${dir})
   endif()
+  simlab_json_set_string(json corpus "${corpus}")
   simlab_json_set_string(json judge "$<TARGET_FILE:${id}-judge>")
   string(JSON json SET "${json}" hidden_tests_built ${hidden_built})
   simlab_json_set_list(json compile ${compile})

@@ -86,6 +86,10 @@ Assignment readAssignment(const nlohmann::json& a) {
     x.starter = a.at("starter");
     x.solution = a.at("solution");
     x.solutionShipped = a.value("solution_shipped", false);
+    x.example = a.value("example", "");
+    x.projects = a.value("projects", false);
+    x.longRun = a.value("long_run", false);
+    x.corpus = a.value("corpus", x.dir + "/corpus");
     x.hiddenTestsBuilt = a.at("hidden_tests_built");
     x.hiddenTests = a.at("hidden_tests").get<std::vector<std::string>>();
     x.contractInclude = a.at("contract_include");
@@ -173,6 +177,10 @@ const Assignment& Manifest::find(const std::string& id) const {
         std::any_of(assignments.begin(), assignments.end(), [&](const Assignment& a) { return a.id == id; });
     if (isLabFolder(id) || (!known && fs::is_regular_file(fs::path(id) / "CMakeLists.txt", error))) {
         const std::string dir = fs::canonical(id, error).string();
+        for (const Assignment& a : assignments) {  // one of the course's own, by its folder
+            std::error_code other;
+            if (!error && fs::canonical(a.dir, other).string() == dir && !other) return a;
+        }
         for (const auto& lab : labs) {
             if (!error && lab->dir == dir) return *lab;  // built once a run
         }
@@ -209,6 +217,21 @@ std::vector<std::string> Manifest::ids() const {
     std::vector<std::string> out;
     for (const Assignment& a : assignments) out.push_back(a.id);
     return out;
+}
+
+std::vector<std::string> Manifest::ids(bool (*has)(const Assignment&)) const {
+    std::vector<std::string> out;
+    for (const Assignment& a : assignments) {
+        if (has(a)) out.push_back(a.id);
+    }
+    return out;
+}
+
+const Assignment* Manifest::projectsLab() const {
+    for (const Assignment& a : assignments) {
+        if (a.projects) return &a;
+    }
+    return nullptr;
 }
 
 Manifest loadManifest() {

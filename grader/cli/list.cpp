@@ -11,7 +11,7 @@
 namespace simlab::cli {
 
 void addList(CLI::App& app) {
-    CLI::App* list = app.add_subcommand("list", "List the assignments, their files and points.");
+    CLI::App* list = app.add_subcommand("list", "List the assignments, their files and points, and what else each offers.");
     auto secrets = std::make_shared<bool>(false);
     list->add_flag("--secrets", *secrets,
                    "list instead, one per line, what no student may have - every assignment's hidden tests, "
@@ -34,6 +34,12 @@ void addList(CLI::App& app) {
             std::printf("%-12s %-28s %-24s %2zu tests (%d visible), %g points", a.id.c_str(), a.title.c_str(),
                         a.source.c_str(), rubric.tests.size(), visible, rubric.totalPoints());
             if (!rubric.manual.empty()) std::printf(" + %g graded by hand", rubric.manualPoints());
+            // What the lab's declaration offers beyond checking and grading.
+            if (a.projects) {
+                std::printf("; projects of one's own (simlab project new%s)",
+                            a.example.empty() ? "" : (", --from " + a.example).c_str());
+            }
+            if (a.longRun) std::printf("; a long-run view (simlab study long-run %s)", a.id.c_str());
             std::printf("\n");
         }
     });

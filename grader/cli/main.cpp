@@ -12,8 +12,9 @@ int main(int argc, char** argv) {
     // Everything simlab starts inherits the mask (the judges and probes get it from childEnvironment).
     simlab::useReproducibleMath(argv);
     CLI::App app{"simlab: Simbody labs and their autograder.\n"
-                 "Students: `simlab check apple` grades your starter/apple/NewtonsApple.cpp on the visible tests.\n"
-                 "Instructors: `simlab grade apple SUBMISSIONS` grades a class on every test.",
+                 "Students: `simlab check LAB` grades your file in starter/LAB/ on the visible tests (`simlab list` "
+                 "names the labs).\n"
+                 "Instructors: `simlab grade LAB SUBMISSIONS` grades a class on every test.",
                  "simlab"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "simlab " SIMLAB_VERSION, "print simlab's version and exit");

@@ -42,7 +42,7 @@ void addPlot(CLI::App& app) {
     auto options = std::make_shared<PlotOptions>();
     CLI::App* plot = app.add_subcommand(
         "plot", "Draw a lab program's results file over the exact solution, as the program's --plot draws a run: "
-                "`simlab plot book BookSpinResults-max.txt -- --spin max`. Options after -- are the run's own "
+                "`simlab plot LAB RESULTS.txt -- OPTIONS`. Options after -- are the run's own "
                 "(its scene); the file must start where that scene does.");
     plot->add_option("assignment", options->assignment, "which assignment's program wrote the file")->required();
     plot->add_option("results", options->results, "the results file")->required();

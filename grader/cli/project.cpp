@@ -67,13 +67,18 @@ void requireProjectName(const std::string& name) {
 void runNew(const ProjectOptions& o) {
     requireProjectName(o.name);
     const engine::Manifest manifest = engine::loadManifest();
-    const engine::Assignment& biosim = manifest.find("biosim");
+    const engine::Assignment* lab = manifest.projectsLab();
+    if (!lab) throw engine::UsageError("this copy of simlab has no lab that students make projects from");
+    const std::string example = lab->example;
     fs::path source;
     if (o.from == "template") {
-        source = fs::path(biosim.starter).parent_path();
+        source = fs::path(lab->starter).parent_path();
+    } else if (o.from != example || example.empty()) {
+        throw engine::UsageError("--from is template" + (example.empty() ? "" : " or " + example) + ", not '" +
+                                 engine::printable(o.from) + "'");
     } else {
-        if (biosim.solution.empty()) throw engine::UsageError("this copy of simlab has no worked example");
-        source = fs::path(biosim.solution).parent_path();
+        if (lab->solution.empty()) throw engine::UsageError("this copy of simlab has no worked example");
+        source = fs::path(lab->solution).parent_path();
     }
     if (!fs::is_directory(o.dir)) throw engine::UsageError("no folder " + engine::printable(o.dir));
     const fs::path folder = fs::absolute(fs::path(o.dir) / o.name).lexically_normal();
@@ -94,11 +99,11 @@ void runNew(const ProjectOptions& o) {
         code = replaceAll(code, "build/bin/simlab ", simlab + " ");
         description = replaceAll(description, "build/bin/simlab ", simlab + " ");
     } else {
-        code = replaceAll(code, "d.program = \"babyboot\";", "d.program = \"" + o.name + "\";");
-        description = replaceAll(description, "name = \"babyboot\"", "name = \"" + o.name + "\"");
+        code = replaceAll(code, "d.program = \"" + example + "\";", "d.program = \"" + o.name + "\";");
+        description = replaceAll(description, "name = \"" + example + "\"", "name = \"" + o.name + "\"");
         // The copy's program is ./build/NAME, and it names its drawings after itself.
-        description = replaceAll(description, "`babyboot --", "`./build/" + o.name + " --");
-        description = replaceAll(description, "(babyboot-", "(" + o.name + "-");
+        description = replaceAll(description, "`" + example + " --", "`./build/" + o.name + " --");
+        description = replaceAll(description, "(" + example + "-", "(" + o.name + "-");
     }
     engine::writeFileAtomically((folder / "Project.cpp").string(), code);
     engine::writeFileAtomically((folder / "project.toml").string(), description);
@@ -115,13 +120,13 @@ void runNew(const ProjectOptions& o) {
     engine::writeFileAtomically((folder / ".gitignore").string(), "build/\n*Results.txt\n");
 
     const std::string shown = engine::printable(folder.string());
-    std::cout << "Made " << shown << " from the " << (o.from == "template" ? "project template" : "baby boot")
+    std::cout << "Made " << shown << " from the " << (o.from == "template" ? "project template" : "worked example, " + example)
               << ": Project.cpp, project.toml, CMakeLists.txt.\n"
               << "Next:\n"
               << "  cd " << shown << "\n"
               << "  cmake -S . -B build && cmake --build build     # build the lab program ./build/" << o.name << "\n"
               << "  ./build/" << o.name << " --help\n"
-              << "  " << simlab << " check biosim Project.cpp\n"
+              << "  " << simlab << " check " << lab->id << " Project.cpp\n"
               << "      (what is done, and what to do next)\n";
 }
 
@@ -164,23 +169,21 @@ std::string cmakeKit(const engine::Manifest& manifest) {
     return out + "endfunction()\n";
 }
 
-// What simlab's CMake package (cmake/simlabConfig.cmake.in) reads: what a lab of one's own builds against, and, where
-// this simlab has the biosim lab, how a project builds (its compile command, with its precompiled header made if
-// this is an installed simlab, and the lab program's link). A Gradescope archive of one lab has no biosim lab:
-// simlab_project() then stops in one line.
+// What simlab's CMake package (cmake/simlabConfig.cmake.in) reads: what a lab of one's own builds against, and,
+// where this simlab has a lab students make projects from, how a project builds (its compile command, with its
+// precompiled header made if this is an installed simlab, and the lab program's link). A Gradescope archive of one
+// other lab has none: simlab_project() then stops in one line.
 void runCMakeConfig(const ProjectOptions& o) {
     const engine::Manifest manifest = engine::loadManifest();
-    const std::vector<std::string> ids = manifest.ids();
     std::string project = "set(SIMLAB_PROJECT_COMPILE)\n";
-    if (std::find(ids.begin(), ids.end(), "biosim") != ids.end()) {
-        const engine::Assignment& biosim = manifest.find("biosim");
-        engine::ensurePrecompiledHeader(manifest, biosim);
+    if (const engine::Assignment* lab = manifest.projectsLab()) {
+        engine::ensurePrecompiledHeader(manifest, *lab);
         const std::vector<std::string> linkOptions(manifest.link.begin() + (manifest.link.empty() ? 0 : 1),
                                                    manifest.link.end());
-        project = "set(SIMLAB_PROJECT_COMPILE" + cmakeList(biosim.compile) + ")\n"
-                  "set(SIMLAB_PROJECT_CONTRACT" + cmakeList({biosim.contractInclude}) + ")\n"
+        project = "set(SIMLAB_PROJECT_COMPILE" + cmakeList(lab->compile) + ")\n"
+                  "set(SIMLAB_PROJECT_CONTRACT" + cmakeList({lab->contractInclude}) + ")\n"
                   "set(SIMLAB_PROJECT_LINK_OPTIONS" + cmakeList(linkOptions) + ")\n"
-                  "set(SIMLAB_PROJECT_OBJECTS" + cmakeList(biosim.programObjects) + ")\n"
+                  "set(SIMLAB_PROJECT_OBJECTS" + cmakeList(lab->programObjects) + ")\n"
                   "set(SIMLAB_PROJECT_LIBRARIES" + cmakeList(manifest.programLibraries) + ")\n";
     }
     engine::writeFileAtomically(o.output, "# Written by " + selfPath() +
@@ -199,8 +202,7 @@ void addProject(CLI::App& app) {
                "description) and a CMakeLists.txt that builds its lab program ./build/NAME.");
     make->add_option("name", options->name, "the project's name, which is also its program's")->required();
     make->add_option("dir", options->dir, "the folder to make it in")->capture_default_str();
-    make->add_option("--from", options->from, "template, or babyboot: start from the worked example")
-        ->check(CLI::IsMember({"template", "babyboot"}))
+    make->add_option("--from", options->from, "template, or the worked example's name (the handout gives it): start from it")
         ->capture_default_str();
     make->callback([options] { runNew(*options); });
 

@@ -284,7 +284,7 @@ void addSlurm(CLI::App& app) {
         "Write OUTPUT/slurm/study.sbatch (one array task per lab and integrator unless --tasks says "
         "otherwise, each simlab study trade --shard I/N) and OUTPUT/slurm/assemble.sbatch (--assemble, after "
         "the array: trade.csv and the plots); --submit submits them. Options after -- go to sbatch.");
-    trade->add_option("lab", s->lab, "apple, projectile, book, biosim or all")->required();
+    trade->add_option("lab", s->lab, "the lab's id (simlab list), or all")->required();
     trade->add_option("sbatch", s->sbatch, "after --: options for sbatch");
     trade->add_option("--output,-o", s->out, "folder for the parts, trade.csv and the plots (shared by the nodes)")
         ->capture_default_str();

@@ -30,7 +30,7 @@ void addStudy(CLI::App& app) {
         "Work-precision study of a lab's reference solution: every integrator at accuracies 1e-1 ... "
         "1e-14 and fixed steps, each point under a cost cap; writes trade.csv and plots, prints the "
         "cheapest setting for 4 to 12 digits.");
-    trade->add_option("lab", options->lab, "apple, projectile, book, biosim (the baby boot) or all")->required();
+    trade->add_option("lab", options->lab, "the lab's id (simlab list), or all")->required();
     trade->add_option("--output,-o", options->output, "folder for trade.csv and the plots")->capture_default_str();
     trade->add_flag("--quick", options->quick, "fewer step sizes, one timed repeat, a cap of 2e5 evaluations");
     trade
@@ -79,7 +79,7 @@ void addStudy(CLI::App& app) {
         "mobilizer, say), each model's work-precision curve measured with RungeKuttaMerson at accuracies "
         "1e-1 to 1e-12, and the two read at equal digits (evaluations, and seconds per run timed in "
         "batches).");
-    minimal->add_option("lab", options->lab, "apple, projectile, book or all")->required();
+    minimal->add_option("lab", options->lab, "the lab's id (simlab list), or all")->required();
     minimal->add_option("--output,-o", options->output, "folder for minimal.csv and minimal-points.csv")
         ->capture_default_str();
     minimal->add_option("--repeats", options->repeats, "timed batches per accuracy, the fastest kept (default 3)")
@@ -100,7 +100,7 @@ void addStudy(CLI::App& app) {
         "accurate (with digits; inaccurate below 3), rejected or trouble (with the program's one line). "
         "Exits 1 if any "
         "ends silently or not as the lab promises.");
-    extreme->add_option("lab", extremes->lab, "apple, projectile, book or all")->required();
+    extreme->add_option("lab", extremes->lab, "the lab's id (simlab list), or all")->required();
     extreme->add_option("--output,-o", extremes->output, "folder for extremes.csv")->capture_default_str();
     extreme->add_flag("--quick", extremes->quick, "skip the cases marked slow");
     extreme->add_option("--cap", extremes->cap, "seconds of CPU time one case may take (wall time: five times as many)")

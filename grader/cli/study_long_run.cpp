@@ -14,15 +14,15 @@ void addStudyLongRun(CLI::App& studies) {
     auto options = std::make_shared<study::LongRunOptions>();
     CLI::App* longRun = studies.add_subcommand(
         "long-run",
-        "A long-run view of the book (its spin about the intermediate axis) or the baby boot: RungeKuttaMerson at "
-        "accuracies 1e-6 and 1e-9 and Verlet at a fixed step of 1 ms, each run to the final time (1000 s) and "
-        "sampled 20 times a decade from 0.1 s. It prints, for each setting, the energy's drift |E(t) - E(0)| / "
-        "scale at 1, 10, 100 and 1000 s and the time its trajectory keeps less than 1 digit - against the "
-        "long-double reference for the book, against the same method run tighter (a tenth of the accuracy, half "
-        "the step) for the chaotic boot - and writes LAB-long-run.csv and LAB-long-run.svg (both against time on "
-        "log-log axes). The full view takes a minute or two; --quick, seconds. --file follows a student's own "
-        "book file instead of the reference solution.");
-    longRun->add_option("lab", options->lab, "book or biosim (the baby boot)")->required();
+        "A long-run view of a lab that has one (simlab list says which): RungeKuttaMerson at accuracies 1e-6 and "
+        "1e-9 and Verlet at a fixed step of 1 ms, each run to the final time (1000 s) and sampled 20 times a "
+        "decade from 0.1 s. It prints, for each setting, the energy's drift |E(t) - E(0)| / scale at 1, 10, 100 "
+        "and 1000 s and the time its trajectory keeps less than 1 digit - against the lab's long-double reference "
+        "where it has one, else against the same method run tighter (a tenth of the accuracy, half the step) - "
+        "and writes LAB-long-run.csv and LAB-long-run.svg (both against time on log-log axes). The full view "
+        "takes a minute or two; --quick, seconds. --file follows a student's own file instead of the reference "
+        "solution.");
+    longRun->add_option("lab", options->lab, "the lab's id (simlab list)")->required();
     longRun->add_option("--final-time", options->finalTime, "s, how long each setting runs (default 1000)")
         ->check(simlab::between(1.0, 1e5));
     longRun->add_flag("--quick", options->quick,
@@ -30,7 +30,7 @@ void addStudyLongRun(CLI::App& studies) {
     longRun->add_option("--output,-o", options->output, "folder for the CSV and the figure")->capture_default_str();
     longRun->add_flag("!--no-plots", options->plots, "the CSV and the table only");
     longRun->add_option("--file", options->file,
-                        "follow this student file (the book's) instead of the reference solution: it is built with "
+                        "follow this student file (the lab's) instead of the reference solution: it is built with "
                         "grading's object check and run in grading's sandbox");
     longRun->callback([options] {
         if (!options->file.empty()) {

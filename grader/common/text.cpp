@@ -188,6 +188,15 @@ std::string xmlText(const std::string& text) {
     return out;
 }
 
+std::string spokenList(const std::vector<std::string>& words, const std::string& last) {
+    std::string out;
+    for (std::size_t i = 0; i < words.size(); ++i) {
+        if (i > 0) out += i + 1 == words.size() ? " " + last + " " : ", ";
+        out += words[i];
+    }
+    return out;
+}
+
 std::string shellWord(const std::string& word) {
     if (!word.empty() &&
         word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789/._+-=:,@%") ==

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "simlab/common/files.h"
+#include "simlab/integrators.h"
 #include "simlab/study/study.h"
 
 namespace simlab::study {
@@ -29,10 +30,8 @@ struct SubjectRun {
     std::vector<json> minimal;
 };
 
-/// The integrators a study program may name, in the order a study runs them.
-inline const char* const kIntegrators[] = {"RungeKuttaMerson",   "RungeKutta3",   "RungeKutta2",
-                                           "RungeKuttaFeldberg", "ExplicitEuler", "SemiExplicitEuler",
-                                           "SemiExplicitEuler2", "Verlet",        "CPodes"};
+// The integrators a study program may name, in the order a study runs them: simlab::kIntegrators
+// (simlab/integrators.h).
 
 /// Calls work(0), ..., work(count - 1) on `threads` threads at once (at least one), each thread taking the next
 /// index when it is free, and waits for them all. A thread whose call throws takes no more; the first exception is

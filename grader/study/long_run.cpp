@@ -1,4 +1,4 @@
-// `simlab study long-run`: the book's or the baby boot's long-run view, which the lab's study program
+// `simlab study long-run`: the long-run view of a lab that declares one (LONG_RUN), which the lab's study program
 // (simlab/long_run.h) runs whole: it runs each setting, writes the CSV and the figure, and prints the table. Of the
 // reference solution, the command hands over to the program; of a student's file, the program built from it runs
 // in grading's sandbox, where gnuplot does not run: it writes the CSV and prints the table there, the CSV is read
@@ -23,13 +23,14 @@ namespace simlab::study {
 
 namespace {
 
-/// The lab `o` names, checked: the book or the baby boot.
+/// The lab `o` names, checked: one with a long-run view.
 const engine::Assignment& longRunLab(const engine::Manifest& manifest, const LongRunOptions& o) {
-    if (o.lab != "book" && o.lab != "biosim") {
-        throw engine::UsageError("the long-run view is the book's or the baby boot's: book or biosim, not '" +
-                                 engine::printable(o.lab) + "'");
+    const engine::Assignment& a = manifest.find(o.lab);
+    if (!a.longRun) {
+        throw engine::UsageError("no long-run view of " + engine::printable(o.lab) + ": the labs with one are " +
+                                 engine::spokenList(manifest.ids([](const engine::Assignment& x) { return x.longRun; })));
     }
-    return manifest.find(o.lab);
+    return a;
 }
 
 /// The view's own options, after the program and `long-run`.
@@ -99,7 +100,7 @@ std::vector<Curve> readLongRunCsv(const std::string& text, std::string& why) {
             why = "line " + std::to_string(r + 1) + " is not one the view writes";
             return {};
         }
-        if (std::find(std::begin(kIntegrators), std::end(kIntegrators), row[integrator]) == std::end(kIntegrators)) {
+        if (!isIntegratorName(row[integrator])) {
             why = "line " + std::to_string(r + 1) + " names no integrator";
             return {};
         }
@@ -196,9 +197,9 @@ std::vector<std::string> longRunCommand(const LongRunOptions& o, int cores) {
 int runLongRunOfFile(const LongRunOptions& o, const CommandLine& command) {
     const engine::Manifest manifest = engine::loadManifest();
     const engine::Assignment& a = longRunLab(manifest, o);
-    if (a.id == "biosim") {
-        throw engine::UsageError("--file follows the book's file: biosim's long-run view is the baby boot's (simlab "
-                                 "study long-run biosim)");
+    if (a.projects) {
+        throw engine::UsageError("--file follows a lab's file: " + a.id + "'s long-run view is its worked example's (simlab "
+                                 "study long-run " + a.id + ")");
     }
     if (a.studyObjects.empty()) throw engine::UsageError("this copy of simlab has no long-run view of " + a.id);
     ensureStudiesBuilt(manifest, {&a}, true, command.cores);

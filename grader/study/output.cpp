@@ -77,7 +77,7 @@ std::vector<std::string> plot(const fs::path& dir, const SubjectRun& run) {
     for (const char* mode : {"accuracy", "fixed step"}) {
         for (int i = 0; i < static_cast<int>(std::size(kIntegrators)); ++i) {
             const bool measured = std::any_of(run.points.begin(), run.points.end(), [&](const json& p) {
-                return text(p["integrator"]) == kIntegrators[i] && text(p["mode"]) == mode && text(p["status"]) == "ok";
+                return text(p["integrator"]) == kIntegrators[i].name && text(p["mode"]) == mode && text(p["status"]) == "ok";
             });
             if (measured) curves.push_back({i + 1, mode});
         }
@@ -101,7 +101,7 @@ std::vector<std::string> plot(const fs::path& dir, const SubjectRun& run) {
                 subject + "-" + axis + (std::string(format).rfind("svg", 0) == 0 ? ".svg" : ".png");
             gp << "set terminal " << format << "\nset output '" << file << "'\nplot ";
             for (std::size_t c = 0; c < curves.size(); ++c) {
-                const std::string integrator = kIntegrators[curves[c].integrator - 1];
+                const std::string integrator = kIntegrators[curves[c].integrator - 1].name;
                 const bool fixed = std::string(curves[c].mode) == "fixed step";
                 gp << (c ? ", \\\n     " : "") << "'trade.csv' every ::1 using (ok('" << curves[c].mode << "', '"
                    << integrator << "') ? $" << column << " : NaN):10 with linespoints lt " << curves[c].integrator

@@ -137,8 +137,8 @@ void runTradeInParts(const StudyOptions& o, const std::vector<const engine::Assi
     std::vector<Part> parts;
     for (const engine::Assignment* a : labs) {
         std::size_t k = 0;
-        for (const char* name : kIntegrators) {
-            parts.push_back({a, name, k++, partsDir / (a->id + "." + name + ".json")});
+        for (const IntegratorKind& kind : kIntegrators) {
+            parts.push_back({a, kind.name, k++, partsDir / (a->id + "." + kind.name + ".json")});
         }
     }
     std::vector<std::size_t> mine;

@@ -61,7 +61,7 @@ std::optional<json> wellFormedLine(const json& line, std::string& why) {
     }
     const std::string integrator =
         line.contains("integrator") && line["integrator"].is_string() ? line["integrator"].get<std::string>() : "";
-    if (std::find(std::begin(kIntegrators), std::end(kIntegrators), integrator) == std::end(kIntegrators)) {
+    if (!isIntegratorName(integrator)) {
         return fail("an integrator named '" + engine::printable(integrator.substr(0, 80)) + "'");
     }
     out["integrator"] = integrator;

@@ -301,16 +301,21 @@ void describeQuestion(const StudyOptions& o, const engine::Assignment& a) {
     }
 }
 
+/// The labs whose study is of a student's own file: those with a study that no project makes its own.
+std::vector<std::string> studiedFiles(const engine::Manifest& manifest) {
+    return manifest.ids([](const engine::Assignment& a) { return !a.projects && !a.studyObjects.empty(); });
+}
+
 /// A student's file built into a study program of its own (buildStudyOfFile), for `study trade` and `study
-/// minimal`: one lab's file, of a lab whose study is of the student's model (not biosim's, the baby boot's); empty
+/// minimal`: one lab's file, of a lab whose study is of the student's model (not a projects lab's, whose study is
+/// its worked example's); empty
 /// for a study of the reference solution.
 StudyProgram studyProgramOf(const StudyOptions& o, const engine::Manifest& manifest,
                             const std::vector<const engine::Assignment*>& labs, const CommandLine& command) {
     if (o.file.empty()) return {};
-    if (o.lab == "all" || labs.front()->id == "biosim") {
-        throw engine::UsageError(
-            "--file studies one lab's file: apple, projectile or book (biosim's study is the "
-            "baby boot's)");
+    if (o.lab == "all" || labs.front()->projects) {
+        throw engine::UsageError("--file studies one lab's file: " + engine::spokenList(studiedFiles(manifest)) +
+                                 (o.lab == "all" ? "" : " (" + o.lab + "'s study is its worked example's)"));
     }
     return buildStudyOfFile(manifest, *labs.front(), o.file, command);
 }
@@ -393,10 +398,11 @@ void studyLabs(const StudyOptions& o, const std::vector<const engine::Assignment
 void runTrade(const StudyOptions& o, const CommandLine& command) {
     const engine::Manifest manifest = engine::loadManifest();
     const std::vector<const engine::Assignment*> labs = studiedLabs(manifest, o);
-    if ((o.question || o.fronts) && labs.front()->id == "biosim") {
-        throw engine::UsageError("biosim has no trade question: each project's is its own");
+    if ((o.question || o.fronts) && labs.front()->projects) {
+        throw engine::UsageError(labs.front()->id + " has no trade question: each project's is its own");
     }
-    if (o.question && o.lab == "all") throw engine::UsageError("--question studies one lab: apple, projectile or book");
+    if (o.question && o.lab == "all")
+        throw engine::UsageError("--question studies one lab: " + engine::spokenList(studiedFiles(manifest)));
     if (!o.student.empty() && !o.question) throw engine::UsageError("--student goes with --question");
     if (o.fronts && !o.file.empty()) throw engine::UsageError("--fronts measures the reference solution, not --file");
     if (o.question) describeQuestion(o, *labs.front());
@@ -416,7 +422,7 @@ void runTrade(const StudyOptions& o, const CommandLine& command) {
     if (o.fronts) {
         std::vector<const engine::Assignment*> withQuestions;
         for (const engine::Assignment* a : labs) {
-            if (a->id != "biosim" && !a->studyProgramPath.empty()) withQuestions.push_back(a);
+            if (!a->projects && !a->studyProgramPath.empty()) withQuestions.push_back(a);
         }
         writeFronts(o, withQuestions);
         return;

@@ -1,5 +1,6 @@
 #include "simlab/integrators.h"
 
+#include <cstdio>
 #include <stdexcept>
 
 #include "Simbody.h"
@@ -7,10 +8,23 @@
 namespace simlab {
 
 const std::vector<std::string>& integratorNames() {
-    static const std::vector<std::string> names = {
-        "RungeKuttaMerson", "RungeKutta3", "RungeKutta2",        "RungeKuttaFeldberg", "ExplicitEuler",
-        "SemiExplicitEuler", "SemiExplicitEuler2", "Verlet", "CPodes"};
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> out;
+        for (const IntegratorKind& kind : kIntegrators) out.emplace_back(kind.name);
+        return out;
+    }();
     return names;
+}
+
+std::string integratorTable() {
+    std::string out = "integrator          error control  what the accuracy means\n";
+    char line[320];
+    for (const IntegratorKind& kind : kIntegrators) {
+        std::snprintf(line, sizeof line, "%-19s %-13s  %s\n", kind.name, kind.errorControl ? "yes" : "no (fixed)",
+                      kind.accuracy);
+        out += line;
+    }
+    return out;
 }
 
 void requireIntegratorName(const std::string& name) {
@@ -24,7 +38,10 @@ void requireIntegratorName(const std::string& name) {
 
 bool hasErrorControl(const std::string& name) {
     requireIntegratorName(name);
-    return name != "SemiExplicitEuler";
+    for (const IntegratorKind& kind : kIntegrators) {
+        if (name == kind.name) return kind.errorControl;
+    }
+    return false;
 }
 
 std::unique_ptr<SimTK::Integrator> integratorNamed(const std::string& name, const SimTK::System& system,

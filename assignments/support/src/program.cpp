@@ -36,7 +36,14 @@ void addProgramOptions(CLI::App& app, ProgramOptions& options) {
     std::string names;
     for (const std::string& n : integratorNames()) names += (names.empty() ? "" : ", ") + n;
 
-    app.add_option("--integrator", run.integrator, "Simbody integrator: " + names)
+    app.add_flag_callback(
+        "--integrators",
+        [] {
+            std::cout << integratorTable();
+            throw CLI::Success();
+        },
+        "list the integrators, whether each controls its error, and what the accuracy means for it; then exit");
+    app.add_option("--integrator", run.integrator, "Simbody integrator (--integrators lists them): " + names)
         ->check([](const std::string& name) {
             try {
                 requireIntegratorName(name);

@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace SimTK {
@@ -12,10 +13,40 @@ class System;
 
 namespace simlab {
 
-/// Every integrator Simbody 3.7 ships, by the name the lab programs accept:
-/// RungeKuttaMerson, RungeKutta3, RungeKutta2, RungeKuttaFeldberg, ExplicitEuler,
-/// SemiExplicitEuler, SemiExplicitEuler2, Verlet, CPodes.
+/// One of Simbody 3.7's integrators, as the lab programs, the studies, the harness and the docs know it: the one
+/// table of them (kIntegrators), in the order a study runs them.
+struct IntegratorKind {
+    const char* name;       ///< what --integrator takes
+    bool errorControl;      ///< estimates its error and adapts its step to the accuracy
+    const char* accuracy;   ///< what the accuracy means for it, at adaptive steps and at fixed steps
+};
+
+inline constexpr IntegratorKind kIntegrators[] = {
+    {"RungeKuttaMerson", true, "local error per step; at fixed steps, where events are found"},
+    {"RungeKutta3", true, "local error per step; at fixed steps, where events are found"},
+    {"RungeKutta2", true, "local error per step; at fixed steps, where events are found"},
+    {"RungeKuttaFeldberg", true, "local error per step; at fixed steps, where events are found"},
+    {"ExplicitEuler", true, "local error per step; at fixed steps, where events are found"},
+    {"SemiExplicitEuler", false, "none for its steps, always fixed; where events are found"},
+    {"SemiExplicitEuler2", true, "local error per step; at fixed steps, where events are found"},
+    {"Verlet", true, "local error per step; at fixed steps, where events are found and its implicit step's "
+                     "tolerance, min(1e-4, accuracy/10)"},
+    {"CPodes", true, "local error per step; at fixed steps, where events are found"},
+};
+
+/// True if `name` is one of kIntegrators'.
+inline bool isIntegratorName(std::string_view name) {
+    for (const IntegratorKind& kind : kIntegrators) {
+        if (name == kind.name) return true;
+    }
+    return false;
+}
+
+/// The names of kIntegrators, in its order.
 const std::vector<std::string>& integratorNames();
+
+/// kIntegrators as a table a person reads: name, error control, what the accuracy means.
+std::string integratorTable();
 
 /// Throws std::invalid_argument("unknown integrator 'X'; choose one of: ...") unless `name` is one of
 /// integratorNames().

@@ -25,6 +25,11 @@ struct Assignment {
     std::string solution;          ///< empty in the student bundle
     bool solutionShipped = false;  ///< the solution is handed out as a worked example (simlab_add_assignment's
                                    ///< WORKED_EXAMPLE): in the student bundle, and no secret
+    std::string example;           ///< the worked example's name (simlab_add_assignment's EXAMPLE), "" without one
+    bool projects = false;         ///< each student makes a project of their own from the starter (PROJECTS):
+                                   ///< `simlab project new`; each project's trade question is its own
+    bool longRun = false;          ///< its study follows the reference over a long time (LONG_RUN)
+    std::string corpus;            ///< the folder of its sample submissions with their scores (CORPUS; <dir>/corpus)
     bool hiddenTestsBuilt = false;
     std::vector<std::string> hiddenTests;  ///< the hidden tests' source files (absent from the student bundle)
     std::string judge;                     ///< the tests' program, which decides every verdict
@@ -87,6 +92,10 @@ struct Manifest {
     const Assignment& find(const std::string& id) const;
     mutable std::vector<std::unique_ptr<Assignment>> labs;
     std::vector<std::string> ids() const;
+    /// The ids of the course's labs that `has` holds for, in the manifest's order.
+    std::vector<std::string> ids(bool (*has)(const Assignment&)) const;
+    /// The lab students make projects of their own from (simlab_add_assignment's PROJECTS); nullptr if none.
+    const Assignment* projectsLab() const;
 };
 
 /// The assignments a lab built out of the tree declares (its build's simlab-lab.json).

@@ -6,6 +6,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 namespace simlab::engine {
 
@@ -62,6 +63,9 @@ std::string markdownText(const std::string& text);
 /// of a reader turning them into spaces); the characters XML 1.0 forbids (other C0 controls, U+FFFE, U+FFFF) as
 /// U+FFFD. Everything else, C1 and bidirectional controls included, is kept.
 std::string xmlText(const std::string& text);
+
+/// Words as a sentence lists them: "a", "a or b", "a, b or c" (`last` the joining word); "" for none.
+std::string spokenList(const std::vector<std::string>& words, const std::string& last = "or");
 
 /// `word` as a POSIX shell reads it back as one word: as it is where that is safe, else in single quotes.
 std::string shellWord(const std::string& word);
