@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -15,6 +16,7 @@
 #include "simlab/isolation/process.h"
 #include "simlab/grading/report.h"
 #include "simlab/common/text.h"
+#include "simlab/course/policy.h"
 #include "simlab/rubric/rubric.h"
 #include "simlab/writers/html.h"
 
@@ -587,6 +589,28 @@ PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignm
         "  <pl-external-grader-results></pl-external-grader-results>\n"
         "  <pl-file-preview></pl-file-preview>\n"
         "</pl-submission-panel>\n");
+    // The course's cap on graded submissions (course.toml beside the rubric): PrairieLearn limits grading by a rate,
+    // set on the question's entry in the assessment (infoAssessment.json), which the question cannot set itself.
+    const std::string course = (fs::path(assignment.rubric).parent_path() / "course.toml").string();
+    if (fs::is_regular_file(course)) {
+        const SubmissionCap cap = loadLatePolicy(course, assignment.id, {}).cap;
+        if (cap.max > 0 && cap.windowHours > 0) {
+            const int minutes = static_cast<int>(std::ceil(cap.windowHours * 60 / cap.max - 1e-9));
+            const nlohmann::json entry = {{"id", fs::path(outDir).lexically_normal().filename().string()},
+                                          {"gradeRateMinutes", minutes}};
+            writeFileAtomically(outDir + "/infoAssessment-entry.json", entry.dump(4) + "\n");
+            ++summary.files;
+            summary.made.push_back(
+                "infoAssessment-entry.json: the question's entry for the assessment's zones, "
+                "gradeRateMinutes " +
+                std::to_string(minutes) + " (max_submissions = " + std::to_string(cap.max) + " each " +
+                points(cap.windowHours) + " h in " + printable(course) + ")");
+        } else if (cap.max > 0) {
+            summary.left.push_back("max_submissions = " + std::to_string(cap.max) + " in " + printable(course) +
+                                   ": PrairieLearn limits grading by a rate, not a count; give the course a "
+                                   "submission_window_hours for its gradeRateMinutes");
+        }
+    }
     if (!options.upload) {
         fs::copy_file(assignment.starter, outDir + "/" + assignment.source);
         ++summary.files;

@@ -398,6 +398,26 @@ std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, 
                                 "gradebook.csv has each one's raw score and penalty)")
             << ".</p>\n";
     }
+    // The course's bank of slip days: what this lab spent of it, and who has none left.
+    int bank = 0, spent = 0;
+    std::size_t spenders = 0, emptied = 0;
+    for (const StudentRecord& r : records) {
+        const StudentRecord::Lateness::Slip& s = r.late.slip;
+        if (s.ledger.empty()) continue;
+        bank = s.bank;
+        spent += s.used;
+        spenders += s.used > 0;
+        emptied += s.had == s.used;
+    }
+    if (bank > 0) {
+        out << "<p>Slip days (course.toml: " << bank
+            << " for each student, spent in the order of the labs' due dates): "
+            << (spenders == 0 ? std::string("nobody spent any on this lab")
+                              : plural(spenders, "student", "students") + " spent " + std::to_string(spent) +
+                                    (spent == 1 ? " day" : " days") + " on this lab")
+            << "; " << plural(emptied, "student has", "students have") << " none left after it (gradebook.csv has "
+            << "each one's ledger).</p>\n";
+    }
     // What the times the lateness was measured from are worth: whose word, and where the sources disagree.
     for (const std::string& line : result.handIns) out << "<p>Hand-in times: " << htmlText(line) << ".</p>\n";
     // The sandboxes the students' code ran in (one, unless the class was graded in parts on other machines).
