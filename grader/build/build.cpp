@@ -658,6 +658,7 @@ BuildResult Builder::buildProbe(const Assignment& assignment, const std::string&
                                 const std::string& workDir, const std::string& binary, bool checkObject) const {
     std::string object;
     BuildResult result = compile(assignment, name, text, workDir, &object);
+    if (result.ok) result.object = object;
     if (!result.ok || (checkObject && refusedObject(assignment, object, name, result))) return result;
     // The course's objects first and whole: an inline function both define keeps the course's copy, and a
     // definition of anything the course defines is an error rather than a replacement.

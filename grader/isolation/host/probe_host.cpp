@@ -17,7 +17,8 @@
 //
 // Descriptors (host_protocol.h): 3 events to the engine, 4 the judge's requests, 5 the answers; the server reads
 // the engine's requests on 7. What the server says of a probe (that it started, how it ended) comes from the
-// kernel (waitpid), never from the probe.
+// kernel (waitpid), never from the probe. Where the student's code was when a test fails, the host's watches tell on
+// 3, as data (failure_sites.cpp).
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <ftw.h>
@@ -38,6 +39,7 @@
 #include <cstring>
 #include <vector>
 
+#include "failure_sites.h"
 #include "simlab/isolation/filter.h"
 #include "simlab/isolation/host_protocol.h"
 
@@ -92,15 +94,9 @@ void onRefusedCall(int, siginfo_t* info, void* context) {
 #endif
     append(line, sizeof line, used, "\"}\n");
     (void)!::write(host::kEventFd, line, used);
+    host::tellFailureSite(SIGSYS);
     // Then as SIGSYS would: the engine sees the signal.
-    struct sigaction plain {};
-    plain.sa_handler = SIG_DFL;
-    ::sigaction(SIGSYS, &plain, nullptr);
-    sigset_t only;
-    ::sigemptyset(&only);
-    ::sigaddset(&only, SIGSYS);
-    ::sigprocmask(SIG_UNBLOCK, &only, nullptr);
-    ::syscall(SYS_tgkill, ::getpid(), ::syscall(SYS_gettid), SIGSYS);
+    host::endAs(SIGSYS);
     ::_exit(128 + SIGSYS);
 }
 
@@ -112,6 +108,7 @@ void onRefusedCall(int, siginfo_t* info, void* context) {
     refused.sa_flags = SA_SIGINFO;
     ::sigemptyset(&refused.sa_mask);
     ::sigaction(SIGSYS, &refused, nullptr);
+    host::watchFailureSites(probe);
     const std::string& program = filter::studentProgram(false);
     if (!program.empty() && !filter::install(program)) cannot("simlab: cannot load the probe's system-call filter");
     void* loaded = ::dlopen(probe, RTLD_NOW | RTLD_LOCAL);
