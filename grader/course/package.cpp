@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -594,16 +593,15 @@ PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignm
     const std::string course = (fs::path(assignment.rubric).parent_path() / "course.toml").string();
     if (fs::is_regular_file(course)) {
         const SubmissionCap cap = loadLatePolicy(course, assignment.id, {}).cap;
-        if (cap.max > 0 && cap.windowHours > 0) {
-            const int minutes = static_cast<int>(std::ceil(cap.windowHours * 60 / cap.max - 1e-9));
+        if (const std::optional<int> minutes = gradeRateMinutes(cap)) {
             const nlohmann::json entry = {{"id", fs::path(outDir).lexically_normal().filename().string()},
-                                          {"gradeRateMinutes", minutes}};
+                                          {"gradeRateMinutes", *minutes}};
             writeFileAtomically(outDir + "/infoAssessment-entry.json", entry.dump(4) + "\n");
             ++summary.files;
             summary.made.push_back(
                 "infoAssessment-entry.json: the question's entry for the assessment's zones, "
                 "gradeRateMinutes " +
-                std::to_string(minutes) + " (max_submissions = " + std::to_string(cap.max) + " each " +
+                std::to_string(*minutes) + " (max_submissions = " + std::to_string(cap.max) + " each " +
                 points(cap.windowHours) + " h in " + printable(course) + ")");
         } else if (cap.max > 0) {
             summary.left.push_back("max_submissions = " + std::to_string(cap.max) + " in " + printable(course) +

@@ -754,4 +754,11 @@ CapStanding capStanding(const SubmissionCap& cap, std::time_t at, const std::vec
     return s;
 }
 
+std::optional<int> gradeRateMinutes(const SubmissionCap& cap) {
+    if (cap.max <= 0 || cap.windowHours <= 0) return std::nullopt;
+    // Spaced R minutes apart, a window of W minutes holds at most ceil(W / R) of them: no more than the cap when
+    // R >= W / max.
+    return static_cast<int>(std::ceil(cap.windowHours * 60 / cap.max - 1e-9));
+}
+
 }  // namespace simlab::engine

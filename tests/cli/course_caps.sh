@@ -135,6 +135,14 @@ check "the ledger in the gradebook, the feedback, results.json and the report" \
   results grades/projectile/students/ada/results.json \
     'd["score"] == 90 and d["extra_data"]["late"]["slip_days"] == {"used": 1, "left": 0, "bank": 3}'
 
+# Canvas's gradebook gets the score after the penalty, and the export says who spent days.
+printf 'Student,ID,SIS User ID,SIS Login ID,Section,simlab id\n"Lovelace, Ada",101,s1,ada,A,ada\n"B, Bob",102,s2,bob,A,bob\n' \
+  >canvas-roster.csv
+run_capture export "$SIMLAB" export canvas projectile --grades grades/projectile --roster canvas-roster.csv -o upload.csv
+check "the Canvas export: 90 and 100, and the students who spent slip days counted" \
+  bash -c "test $(status_of export) -eq 0 && grep -q '^2 spent slip days on this lab (gradebook.csv and each one.s feedback give the ledger' export.out &&
+           python3 -c 'import csv; r = list(csv.reader(open(\"upload.csv\"))); print(r[2][-1], r[3][-1])' | grep -qx '90 100'"
+
 # The apple graded again with ada on time: no code runs, and the run names the lab whose days it moved; the
 # projectile graded again (no code runs either) gives ada the whole bank.
 printf 'student,submitted\nada,2026-10-03T06:00:00Z\nbob,2026-10-03T06:00:00Z\n' >apple-times.csv

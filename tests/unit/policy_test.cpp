@@ -167,6 +167,13 @@ TEST_CASE("A cap per window counts the submissions within any window of its hour
           "counts from 2026-10-02T20:00:00Z");
 }
 
+TEST_CASE("PrairieLearn's rate of grading lets no more than the cap through in any window", "[policy][cap]") {
+    CHECK(gradeRateMinutes({3, 24}) == std::optional<int>(480));
+    CHECK(gradeRateMinutes({7, 1}) == std::optional<int>(9));  // 8.57 min rounded up: 7 an hour at most, not 8
+    CHECK_FALSE(gradeRateMinutes({3, 0}));                      // a count over the whole assignment: no rate says it
+    CHECK_FALSE(gradeRateMinutes({0, 0}));
+}
+
 // --- A bank of slip days ---------------------------------------------------------------------------------------------
 
 TEST_CASE("3 slip days cover 2 days late on the apple and 1 of 2 on the projectile", "[policy][slip]") {

@@ -203,6 +203,11 @@ struct CapStanding {
 };
 CapStanding capStanding(const SubmissionCap& cap, std::time_t at, const std::vector<PriorSubmission>& prior);
 
+/// PrairieLearn's gradeRateMinutes for `cap`: the fewest minutes between graded submissions that let no more than
+/// cap.max through in any window of its hours. None without a window: PrairieLearn limits grading by a rate, not a
+/// count.
+std::optional<int> gradeRateMinutes(const SubmissionCap& cap);
+
 /// What the run says of the class's hand-in times before any is graded, one line each naming the students: the
 /// platform's flags and the times disagree; every time is one (a copied download's: those times are dropped, and
 /// say how late no one is); the times are the files' own, which no platform vouches for.
