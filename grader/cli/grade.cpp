@@ -213,8 +213,7 @@ std::string gradesRoot(const std::string& out) {
 // The course file of a grading: --course, or course.toml beside the rubric.
 std::string courseFile(const GradeCommandOptions& o, const engine::Assignment& assignment) {
     const std::string rubricPath = o.rubric.empty() ? assignment.rubric : o.rubric;
-    const std::string path =
-        !o.course.empty() ? o.course : (fs::path(rubricPath).parent_path() / "course.toml").string();
+    std::string path = !o.course.empty() ? o.course : (fs::path(rubricPath).parent_path() / "course.toml").string();
     if (!o.course.empty() && !fs::is_regular_file(path))
         throw engine::UsageError("no course file " + engine::printable(path));
     return path;
