@@ -23,7 +23,7 @@ meta() {
 import json, sys
 created, previous = sys.argv[1], sys.argv[2]
 earlier = lambda t, score, first: {
-    "submission_time": t, "score": score, "autograder_error": False,
+    "submission_time": t, "score": score,
     "results": {"score": float(score), "output": "", "stdout_visibility": "hidden",
                 "tests": [{"name": "the apple falls", "score": float(score), "max_score": 100.0, "status": "passed" if first else "failed"}],
                 "extra_data": {}}}
