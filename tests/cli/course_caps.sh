@@ -86,6 +86,13 @@ check "autograde: a negative cap is refused in one line naming the file, exit 2"
            grep -q 'negative.toml \[apple\]: max_submissions must be a whole number from 1 to 1000' negative-auto.err" &&
   results gs/results/results.json 'd["score"] == 0 and d["extra_data"] == {"graded": False}'  # a cap does not count it
 
+# simlab check cannot know how many are left: it says the cap, and that a self-check is none of them.
+mkdir check && cp "$SOURCE_DIR/assignments/apple/grading/rubric.toml" check/ &&
+  printf '[apple]\nmax_submissions = 3\nsubmission_window_hours = 24\n' >check/course.toml
+run_capture self-check "$SIMLAB" check apple gs/submission/NewtonsApple.cpp --rubric check/rubric.toml
+check "simlab check says the cap beside the rubric, and that a check is none of the counted submissions" \
+  grep -qx 'Graded submissions: the course counts 3 each 24 h on its platform; this check is none of them, and the platform.s results say how many you have left' self-check.out
+
 # --- A bank of 3 slip days across the apple and the projectile ---------------------------------------------------------
 # ada is 2 days late on the apple (47 h) and 2 on the projectile (36 h): the bank covers the apple's and one of the
 # projectile's, 10 % off it. bob is on time on the apple: the bank covers his 2 days on the projectile.
