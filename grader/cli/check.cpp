@@ -18,6 +18,7 @@
 #include "simlab/build/manifest.h"
 #include "simlab/grading/report.h"
 #include "simlab/common/text.h"
+#include "simlab/course/policy.h"
 #include "simlab/writers/writers.h"
 #include "simlab/rubric/rubric.h"
 #include "simlab/trade_question.h"
@@ -57,6 +58,24 @@ std::string tradeSceneLine(const engine::Assignment& assignment, const Rubric& r
     char time[32];
     std::snprintf(time, sizeof time, "%g", s.finalTime);
     return whose + ": " + s.name + ": " + s.scene.dump() + " to " + time + " s";
+}
+
+// What the course's cap on graded submissions (course.toml beside the rubric) means for a self-check: a check counts
+// for nothing; how many are left is the platform's to say, in its results. Empty without a cap.
+std::string capLine(const engine::Assignment& assignment, const std::string& rubricPath) {
+    using namespace simlab::engine;
+    const std::string path = (std::filesystem::path(rubricPath).parent_path() / "course.toml").string();
+    if (!std::filesystem::is_regular_file(path)) return "";
+    try {
+        const SubmissionCap cap = loadLatePolicy(path, assignment.id, {}).cap;
+        if (cap.max <= 0) return "";
+        return "Graded submissions: the course counts " + std::to_string(cap.max) +
+               (cap.windowHours > 0 ? " each " + points(cap.windowHours) + " h" : std::string()) +
+               " on its platform; this check is none of them, and the platform's results say how many you have left";
+    } catch (const std::exception& e) {
+        std::cerr << "simlab: warning: " << printable(e.what()) << '\n';
+        return "";
+    }
 }
 
 void runCheck(const CheckOptions& o) {
@@ -163,6 +182,10 @@ void runCheck(const CheckOptions& o) {
         std::cout << classroomJson(report);
     } else {
         std::cout << renderText(report);
+        if (const std::string cap = capLine(assignment, o.rubric.empty() ? assignment.rubric : o.rubric);
+            !cap.empty()) {
+            std::cout << cap << '\n';
+        }
         if (!written.empty()) {
             std::cout << "Drawn from your model:";
             for (const std::string& name : written) std::cout << ' ' << printable(folder + "/" + name);

@@ -170,6 +170,13 @@ void runCanvas(const CanvasOptions& o) {
     const int late = static_cast<int>(
         std::count_if(records.begin(), records.end(), [](const StudentRecord& r) { return r.late.percent > 0; }));
     if (late > 0) std::cout << late << " with a late penalty taken from their score (gradebook.csv says how much).\n";
+    // The bank of slip days: what this lab spent, the ledger in each one's feedback (the comments zip carries it).
+    const int slipped = static_cast<int>(
+        std::count_if(records.begin(), records.end(), [](const StudentRecord& r) { return r.late.slip.used > 0; }));
+    if (slipped > 0) {
+        std::cout << slipped << " spent slip days on this lab (gradebook.csv and each one's feedback give the ledger"
+                  << (o.comments.empty() ? "; --comments carries the feedback to Canvas" : "") << ").\n";
+    }
     if (!o.comments.empty()) {
         std::vector<std::string> without;
         const int commented = writeCanvasComments(o.comments, grades, roster, without);

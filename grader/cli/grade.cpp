@@ -203,20 +203,71 @@ engine::HandIns handIns(const GradeCommandOptions& o, const std::string& out, co
     return all;
 }
 
+// The folder the labs are graded side by side in (OUT's parent): where a bank of slip days is kept.
+std::string gradesRoot(const std::string& out) {
+    const fs::path path = fs::path(out).lexically_normal();
+    const fs::path folder = path.has_filename() ? path : path.parent_path();
+    return folder.parent_path().empty() ? "." : folder.parent_path().string();
+}
+
+// The course file of a grading: --course, or course.toml beside the rubric.
+std::string courseFile(const GradeCommandOptions& o, const engine::Assignment& assignment) {
+    const std::string rubricPath = o.rubric.empty() ? assignment.rubric : o.rubric;
+    std::string path = !o.course.empty() ? o.course : (fs::path(rubricPath).parent_path() / "course.toml").string();
+    if (!o.course.empty() && !fs::is_regular_file(path))
+        throw engine::UsageError("no course file " + engine::printable(path));
+    return path;
+}
+
+// The course's rules read before anything is written: a mistake in them stops simlab with the grades as they were.
+// A bank of slip days is kept across the labs graded side by side, each in a folder named after it.
+void checkCourseRules(const GradeCommandOptions& o, const engine::Assignment& assignment, const std::string& out) {
+    using namespace simlab::engine;
+    const LatePolicy p = loadLatePolicy(courseFile(o, assignment), assignment.id, {});
+    if (!p.active || p.slipDays == 0) return;
+    const fs::path path = fs::path(out).lexically_normal();
+    const std::string name = (path.has_filename() ? path : path.parent_path()).filename().string();
+    if (name != assignment.id) {
+        throw UsageError(
+            "the course keeps a bank of slip days, spent across the labs graded side by side, each in a "
+            "folder named after it (grades/" +
+            assignment.id + ", grades/...): grade into a folder named " + assignment.id + ", not " + printable(out));
+    }
+}
+
+// The course's bank of slip days: each student's account for this lab from the records of the labs graded beside
+// it (the days they left it), said in one line. OUT must be named after the lab, as its neighbours are.
+void slipDays(const engine::Assignment& assignment, const std::string& out, engine::LatePolicy& p) {
+    using namespace simlab::engine;
+    const std::string root = gradesRoot(out);
+    const SlipLedger ledger = readSlipLedger(root);
+    p.slipKnown = true;
+    for (const SlipLedger::Lab& lab : ledger.labs) {
+        for (const auto& [id, slip] : lab.students) {
+            if (!p.slip.count(id)) p.slip[id] = slipAccount(ledger, p.slipDays, assignment.id, p.due, id);
+        }
+    }
+    std::string before;
+    for (const SlipLedger::Lab& lab : ledger.labs) {
+        if (std::tie(lab.due, lab.id) < std::tie(p.due, assignment.id)) before += (before.empty() ? "" : ", ") + lab.id;
+    }
+    std::printf("Slip days: %d for each student, spent in the order of the labs' due dates across %s (before %s: %s)\n",
+                p.slipDays, printable(root).c_str(), assignment.id.c_str(),
+                before.empty() ? "no lab graded" : printable(before).c_str());
+}
+
 // The course's late policy (course.toml: --course, or beside the rubric), its extensions matched through the
 // platform's ids, and each student's hand-in as the platform gave it; what the run says of those times.
 void latePolicy(const GradeCommandOptions& o, const engine::Assignment& assignment, const Rubric& rubric,
                 const std::string& out, const std::string& root, const std::vector<engine::IntakeStudent>& taken,
                 engine::ClassOptions& options) {
     using namespace simlab::engine;
-    const std::string rubricPath = o.rubric.empty() ? assignment.rubric : o.rubric;
-    const std::string path =
-        !o.course.empty() ? o.course : (fs::path(rubricPath).parent_path() / "course.toml").string();
-    if (!o.course.empty() && !fs::is_regular_file(path)) throw UsageError("no course file " + printable(path));
+    const std::string path = courseFile(o, assignment);
     const StudentIds ids = classIds(out, root, taken);
     options.submitted = handIns(o, out, root, rubric, taken, ids);
     options.late = loadLatePolicy(path, assignment.id, ids);
     if (!options.late.active) return;
+    if (options.late.slipDays > 0) slipDays(assignment, out, options.late);
     const LatePolicy& p = options.late;
     std::printf("Late policy of %s: due %s, %s %% per %s (at most %s %%)%s%s, %zu extension%s\n",
                 printable(path).c_str(), utcText(p.due).c_str(), points(p.penaltyPercent).c_str(),
@@ -335,6 +386,7 @@ void runGrade(const GradeCommandOptions& o) {
     if (!o.submittedTimes.empty() && !fs::is_regular_file(o.submittedTimes)) {
         throw UsageError("no submission times file " + printable(o.submittedTimes));
     }
+    if (!shard.second) checkCourseRules(o, assignment, out);
     // Then the lock, before the download is taken in: a second simlab on the same folder stops before it writes.
     // (A shard shares the folder with the other shards, and takes its own lock as it grades.)
     std::optional<OutputLock> lock;
@@ -385,6 +437,12 @@ void runGrade(const GradeCommandOptions& o) {
     }
     if (live) std::fprintf(stderr, "\r\x1b[K");
     reportClass(o, shard.second != 0, out, assignment, rubric, result);
+    // The labs graded beside this one whose slip days it moved (or that were graded before the bank): named.
+    if (options.late.slipKnown) {
+        const std::string root = gradesRoot(out);
+        const std::string stale = staleSlipLine(staleSlipLabs(readSlipLedger(root), options.late.slipDays), root);
+        if (!stale.empty()) std::cout << "Slip days: " << printable(stale) << "\n";
+    }
 }
 
 }  // namespace

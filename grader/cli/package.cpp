@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -80,18 +82,24 @@ std::optional<std::time_t> metadataTime(const nlohmann::json& j, const std::vect
     return at->is_string() ? engine::parseTime(at->get<std::string>()) : std::nullopt;
 }
 
-// The course's late policy (--course, else course.toml beside the rubric) applied to the record from Gradescope's
-// metadata: created_at is when it was handed in; the due date is course.toml's for the assignment, else the
-// student's own in the metadata (an extension given in Gradescope included), else the assignment's, with its late
-// due date as the cutoff.
-void applyAutogradeLate(const AutogradeOptions& o, const engine::Assignment& assignment, const nlohmann::json& metadata,
-                        engine::StudentRecord& r) {
+// The course's rules (--course, else course.toml beside the rubric, if there is one): its late policy, its cap on
+// graded submissions, its bank of slip days. None without a file.
+std::optional<engine::LatePolicy> courseRules(const AutogradeOptions& o, const engine::Assignment& assignment) {
     using namespace simlab::engine;
     const std::string path =
         !o.course.empty() ? o.course : (fs::path(assignment.rubric).parent_path() / "course.toml").string();
     if (!o.course.empty() && !fs::is_regular_file(path)) throw UsageError("no course file " + printable(path));
-    if (!fs::is_regular_file(path) || metadata.is_null()) return;
-    LatePolicy policy = loadLatePolicy(path, assignment.id, {});
+    if (!fs::is_regular_file(path)) return std::nullopt;
+    return loadLatePolicy(path, assignment.id, {});
+}
+
+// The course's late policy applied to the record from Gradescope's metadata: created_at is when it was handed in;
+// the due date is course.toml's for the assignment, else the student's own in the metadata (an extension given in
+// Gradescope included), else the assignment's, with its late due date as the cutoff. A bank of slip days is the
+// labs' together, which one submission does not show: the lateness is said, and left to simlab grade.
+void applyAutogradeLate(engine::LatePolicy policy, const nlohmann::json& metadata, engine::StudentRecord& r) {
+    using namespace simlab::engine;
+    if (metadata.is_null()) return;
     if (!policy.active) {
         const std::optional<std::time_t> own = metadataTime(metadata, {"users", "0", "assignment", "due_date"});
         const std::optional<std::time_t> due = own ? own : metadataTime(metadata, {"assignment", "due_date"});
@@ -105,6 +113,74 @@ void applyAutogradeLate(const AutogradeOptions& o, const engine::Assignment& ass
         r.submittedFrom = "Gradescope's created_at";
     }
     applyLatePolicy(r, policy);
+}
+
+// Where this submission stands against the course's cap, from Gradescope's metadata: its created_at, and
+// previous_submissions, each with its submission_time, score and results. A submission past the cap keeps the
+// results of the last counted one (`kept`). One the metadata gives nothing to check against is graded and counted,
+// and says so: a platform's missing record never costs a student a grade.
+struct CapCheck {
+    engine::SubmissionsNote note;
+    std::optional<nlohmann::json> kept;
+    double keptScore = 0;
+};
+
+CapCheck checkCap(const engine::SubmissionCap& cap, const nlohmann::json& metadata) {
+    using namespace simlab::engine;
+    CapCheck check;
+    check.note.max = cap.max;
+    check.note.windowHours = cap.windowHours;
+    const std::string counts = std::to_string(cap.max) + " graded submission" + (cap.max == 1 ? "" : "s") +
+                               (cap.windowHours > 0 ? " each " + points(cap.windowHours) + " h" : "");
+    auto unchecked = [&](const std::string& why) {
+        check.note.checked = false;
+        check.note.line = "the course counts " + counts + ", but this one cannot be checked against them: " + why +
+                          "; graded, and counted";
+        return check;
+    };
+    if (metadata.is_null()) return unchecked("there is no submission_metadata.json");
+    const std::optional<std::time_t> at = metadataTime(metadata, {"created_at"});
+    if (!at) return unchecked("submission_metadata.json has no created_at");
+    if (!metadata.contains("previous_submissions"))
+        return unchecked("submission_metadata.json has no previous_submissions");
+    const nlohmann::json& previous = metadata["previous_submissions"];
+    if (!previous.is_array()) return unchecked("previous_submissions in submission_metadata.json is not a list");
+    std::vector<PriorSubmission> prior;
+    for (std::size_t i = 0; i < previous.size(); ++i) {
+        const nlohmann::json& p = previous[i];
+        const std::string which = "previous_submissions[" + std::to_string(i) + "]";
+        const std::optional<std::time_t> time = metadataTime(p, {"submission_time"});
+        if (!time) return unchecked(which + " has no submission_time");
+        PriorSubmission s;
+        s.at = *time;
+        const nlohmann::json score = p.is_object() ? p.value("score", nlohmann::json()) : nlohmann::json();
+        if (score.is_number()) s.score = score.get<double>();
+        if (score.is_string()) {
+            const std::string text = score.get<std::string>();
+            char* end = nullptr;
+            const double value = std::strtod(text.c_str(), &end);
+            if (!text.empty() && *end == '\0' && std::isfinite(value)) s.score = value;
+        }
+        // One the autograder could not grade (its results say so) is no graded submission of the student's.
+        const nlohmann::json results = p.is_object() ? p.value("results", nlohmann::json()) : nlohmann::json();
+        s.graded = !(results.is_object() && results.contains("extra_data") && results["extra_data"].is_object() &&
+                     results["extra_data"].value("graded", true) == false);
+        prior.push_back(s);
+    }
+    const CapStanding standing = capStanding(cap, *at, prior);
+    if (!standing.counted && !prior[*standing.kept].score) {
+        return unchecked("the submission of " + utcText(prior[*standing.kept].at) +
+                         ", whose score it would keep, has none in submission_metadata.json");
+    }
+    check.note.line = standing.line;
+    check.note.counted = standing.counted;
+    check.note.number = standing.number;
+    check.note.left = standing.left;
+    if (!standing.counted) {
+        check.kept = previous[*standing.kept].value("results", nlohmann::json());
+        check.keptScore = *prior[*standing.kept].score;
+    }
+    return check;
 }
 
 // The student Gradescope's metadata names (users[0]'s sid, else their email): empty where it names nobody.
@@ -146,6 +222,19 @@ void runAutograde(const AutogradeOptions& o) {
         const nlohmann::json metadata = metadataOf(o);
         options.student = o.student.empty() ? studentOfMetadata(metadata) : o.student;
         requireStudentId(options.student);
+        // PrairieLearn keeps its own dates and rate of grading; on Gradescope, the course's rules.
+        const std::optional<LatePolicy> course = o.format == "prairielearn" ? std::nullopt : courseRules(o, assignment);
+        const bool capped = course && course->cap.max > 0;
+        CapCheck cap;
+        if (capped) {
+            // Past the cap, nothing runs: the score stays the last counted one's, and says why.
+            cap = checkCap(course->cap, metadata);
+            if (cap.kept) {
+                writeFileAtomically(o.results, keptResultsJson(*cap.kept, cap.keptScore, cap.note));
+                std::cout << "Submissions: " << printable(cap.note.line) << "\n";
+                return;
+            }
+        }
         const GradeReport report =
             gradeFolder(Builder(manifest), assignment, rubric, o.submission, /*recursive=*/true, /*followFolder=*/true,
                         options);
@@ -154,9 +243,10 @@ void runAutograde(const AutogradeOptions& o) {
         } else {
             StudentRecord record = recordOf(report);
             record.id = options.student;
-            applyAutogradeLate(o, assignment, metadata, record);
-            writeFileAtomically(o.results, resultsJson(record));
+            if (course) applyAutogradeLate(*course, metadata, record);
+            writeFileAtomically(o.results, capped ? resultsJson(record, cap.note) : resultsJson(record));
             if (!record.late.line.empty()) std::cout << "Lateness: " << printable(record.late.line) << "\n";
+            if (capped) std::cout << "Submissions: " << printable(cap.note.line) << "\n";
         }
         std::cout << renderText(report);
     } catch (const std::exception& e) {
@@ -167,7 +257,9 @@ void runAutograde(const AutogradeOptions& o) {
         const nlohmann::json failed = {
             {"score", 0},
             {"output", std::string("The autograder could not grade this submission: ") + printable(e.what())},
-            {"tests", nlohmann::json::array()}};
+            {"tests", nlohmann::json::array()},
+            // Not graded: a cap on graded submissions does not count it (checkCap).
+            {"extra_data", {{"graded", false}}}};
         writeFileAtomically(o.results, failed.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
         throw;
     }

@@ -356,10 +356,10 @@ void refreshKeptRecords(const Assignment& assignment, const Rubric& rubric, cons
                         ClassPlan& plan) {
     for (auto& [id, r] : plan.records) {
         applyManual(r, sheet, rubric);
-        const std::string before = r.submitted, lateBefore = r.late.line;
+        // The time, the lateness and the slip days the bank gives now (what the labs due before it spent).
+        const std::string before = recordJson(r);
         stampLateness(r, submissionsDir, options);
-        if (r.submitted != before || r.late.line != lateBefore)
-            writeOutputDurably(outDir + "/students/" + id + "/record.json", recordJson(r));
+        if (recordJson(r) != before) writeOutputDurably(outDir + "/students/" + id + "/record.json", recordJson(r));
         const bool moved = std::count(plan.rescored.begin(), plan.rescored.end(), id) > 0;
         const std::string dir = outDir + "/students/" + id;
         writeOutputAtomically(dir + "/results.json", resultsJson(r));

@@ -15,6 +15,7 @@
 #include "simlab/isolation/process.h"
 #include "simlab/grading/report.h"
 #include "simlab/common/text.h"
+#include "simlab/course/policy.h"
 #include "simlab/rubric/rubric.h"
 #include "simlab/writers/html.h"
 
@@ -453,6 +454,34 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
     return summary;
 }
 
+namespace {
+
+// The course's cap on graded submissions (course.toml beside the rubric) for PrairieLearn, which limits grading by a
+// rate set on the question's entry in the assessment (infoAssessment.json): a question cannot set it itself.
+void gradeRate(const Assignment& assignment, const std::string& outDir, PackageSummary& summary) {
+    const std::string course = (fs::path(assignment.rubric).parent_path() / "course.toml").string();
+    if (fs::is_regular_file(course)) {
+        const SubmissionCap cap = loadLatePolicy(course, assignment.id, {}).cap;
+        if (const std::optional<int> minutes = gradeRateMinutes(cap)) {
+            const nlohmann::json entry = {{"id", fs::path(outDir).lexically_normal().filename().string()},
+                                          {"gradeRateMinutes", *minutes}};
+            writeFileAtomically(outDir + "/infoAssessment-entry.json", entry.dump(4) + "\n");
+            ++summary.files;
+            summary.made.push_back(
+                "infoAssessment-entry.json: the question's entry for the assessment's zones, "
+                "gradeRateMinutes " +
+                std::to_string(*minutes) + " (max_submissions = " + std::to_string(cap.max) + " each " +
+                points(cap.windowHours) + " h in " + printable(course) + ")");
+        } else if (cap.max > 0) {
+            summary.left.push_back("max_submissions = " + std::to_string(cap.max) + " in " + printable(course) +
+                                   ": PrairieLearn limits grading by a rate, not a count; give the course a "
+                                   "submission_window_hours for its gradeRateMinutes");
+        }
+    }
+}
+
+}  // namespace
+
 const char* const kPrairieLearnOwnLab =
     "a PrairieLearn question is made for the course's labs; a lab of one's own goes to Gradescope (package "
     "gradescope), GitHub Classroom (package github-classroom) or students (package student) for now";
@@ -543,6 +572,7 @@ PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignm
         "  <pl-external-grader-results></pl-external-grader-results>\n"
         "  <pl-file-preview></pl-file-preview>\n"
         "</pl-submission-panel>\n");
+    gradeRate(assignment, outDir, summary);
     if (!options.upload) {
         fs::copy_file(assignment.starter, outDir + "/" + assignment.source);
         ++summary.files;

@@ -14,6 +14,7 @@
 #include "simlab/common/text.h"
 #include "simlab/grading/report.h"
 #include "simlab/writers/roster.h"
+#include "simlab/writers/writers.h"
 
 namespace fs = std::filesystem;
 
@@ -67,6 +68,60 @@ void readRules(const toml::table& table, LatePolicy& p, const std::string& where
         if (!unit || (*unit != "day" && *unit != "hour")) throw UsageError(where + ": per must be \"day\" or \"hour\"");
         p.periodHours = *unit == "day" ? 24 : 1;
     }
+}
+
+// A whole number `key` of `table` from `low` to `high`; `fallback` when it is not there.
+int wholeNumber(const toml::table& table, const std::string& key, int fallback, int low, int high,
+                const std::string& where, const std::string& hint) {
+    const toml::node* node = table.get(key);
+    if (!node) return fallback;
+    const std::optional<std::int64_t> value = node->is_integer() ? node->value<std::int64_t>() : std::nullopt;
+    if (!value || *value < low || *value > high) {
+        throw UsageError(where + ": " + key + " must be a whole number from " + std::to_string(low) + " to " +
+                         std::to_string(high) + hint);
+    }
+    return static_cast<int>(*value);
+}
+
+// The course's bank of slip days ([late] slip_days), kept against due dates: a course whose labs have none has
+// nothing to spend it on. A key of the course's in an assignment's table, or of an assignment's in [late], is
+// refused rather than left unread.
+void readCourseRules(const toml::table& file, LatePolicy& p, const std::string& path) {
+    const toml::table* late = file["late"].as_table();
+    const std::string where = printable(path) + " [late]";
+    if (late) {
+        p.slipDays = wholeNumber(*late, "slip_days", 0, 0, 365, where, "");
+        for (const char* own : {"max_submissions", "submission_window_hours", "due", "cutoff", "extensions"}) {
+            if (late->get(own)) throw UsageError(where + ": " + own + " is an assignment's: set it in its [id]");
+        }
+    }
+    bool dated = false;
+    for (const auto& [key, value] : file) {
+        if (key.str() == "late" || !value.is_table()) continue;
+        const toml::table& lab = *value.as_table();
+        dated = dated || lab.get("due");
+        if (lab.get("slip_days")) {
+            throw UsageError(printable(path) + " [" + printable(std::string(key.str())) +
+                             "]: slip_days is the course's bank, for every lab: set it in [late]");
+        }
+    }
+    if (p.slipDays > 0 && !dated) {
+        throw UsageError(where + ": slip_days = " + std::to_string(p.slipDays) +
+                         ", but no assignment has a due date: the days are spent past each lab's due (give each lab "
+                         "its due = 2026-10-02T23:59:00-07:00)");
+    }
+}
+
+// An assignment's cap on graded submissions (max_submissions, submission_window_hours).
+SubmissionCap readCap(const toml::table& own, const std::string& where) {
+    SubmissionCap cap;
+    cap.max = wholeNumber(own, "max_submissions", 0, 1, 1000, where,
+                          " (graded submissions that count; leave it out for no cap)");
+    cap.windowHours = number(own, "submission_window_hours", 0, 1, 24 * 366, where);
+    if (cap.windowHours > 0 && cap.max == 0) {
+        throw UsageError(where + ": submission_window_hours needs max_submissions, the submissions each window counts");
+    }
+    return cap;
 }
 
 // The index of the column `name` in a CSV's first row; npos when it has none.
@@ -182,6 +237,7 @@ std::string utcText(std::time_t t) {
 LatePolicy loadLatePolicy(const std::string& path, const std::string& assignment, const StudentIds& ids) {
     LatePolicy p;
     p.source = path;
+    p.assignment = assignment;
     if (path.empty() || !fs::exists(path)) return p;
     toml::table file;
     try {
@@ -198,10 +254,12 @@ LatePolicy loadLatePolicy(const std::string& path, const std::string& assignment
         }
     }
     if (const toml::table* late = file["late"].as_table()) readRules(*late, p, printable(path) + " [late]");
+    readCourseRules(file, p, path);
     const toml::table* own = file[assignment].as_table();
     if (!own) return p;
     const std::string where = printable(path) + " [" + assignment + "]";
     readRules(*own, p, where);
+    p.cap = readCap(*own, where);
     if (!own->get("due")) return p;  // the rules, but no due date: nothing is late
     p.due = tomlTime(own->get("due"), where + " due");
     if (own->get("cutoff")) p.cutoff = tomlTime(own->get("cutoff"), where + " cutoff");
@@ -373,9 +431,23 @@ HandIns readSubmittedTimes(const std::string& path, const StudentIds& ids) {
     return times;
 }
 
-void applyLatePolicy(StudentRecord& r, const LatePolicy& p, const HandIn& handIn) {
-    r.late = {};
-    if (!p.active || r.status == "missing file") return;
+namespace {
+
+std::string daysText(int days) { return std::to_string(days) + (days == 1 ? " slip day" : " slip days"); }
+
+// The ledger of the bank after this lab: what each lab spent, this one included, and what is left.
+std::string ledgerLine(const LatePolicy& p, const SlipAccount& account, int used) {
+    std::string spent;
+    for (const auto& [lab, days] : account.spent)
+        spent += (spent.empty() ? "" : ", ") + std::to_string(days) + " on " + lab;
+    if (used > 0) spent += (spent.empty() ? "" : ", ") + std::to_string(used) + " on " + p.assignment + " (this lab)";
+    return (spent.empty() ? std::string("none spent") : spent) + "; " + std::to_string(account.had - used) + " of " +
+           std::to_string(p.slipDays) + " left";
+}
+
+// The lateness of `r` under `p`, the bank of slip days spent first where the course keeps one (r.late.slip.needed
+// and .used say how many days).
+void chargeLateness(StudentRecord& r, const LatePolicy& p, const HandIn& handIn, const SlipAccount& account) {
     const auto own = p.dueFor.find(r.id);
     const std::time_t due = own != p.dueFor.end() ? own->second : p.due;
     const std::optional<std::time_t> handed = parseTime(r.submitted);
@@ -395,9 +467,10 @@ void applyLatePolicy(StudentRecord& r, const LatePolicy& p, const HandIn& handIn
         return;
     }
     const double past = std::difftime(*handed, due) / 3600;
+    // A cutoff is the course's last word: no slip day reaches past it.
     if (p.cutoff && *handed > *p.cutoff && own == p.dueFor.end()) {
-        r.late = {past, 100,
-                  "handed in " + hoursText(past) + " late, after the cutoff " + utcText(*p.cutoff) + ": no credit"};
+        const std::string line = "handed in " + hoursText(past) + " late, after the cutoff " + utcText(*p.cutoff);
+        r.late = {past, 100, line + ": no credit", {}};
         return;
     }
     if (past <= 0) {
@@ -408,20 +481,61 @@ void applyLatePolicy(StudentRecord& r, const LatePolicy& p, const HandIn& handIn
         }
         return;
     }
-    const double charged = past - p.graceHours;
+    double charged = past - p.graceHours;
     const std::string days = points(p.graceHours / 24) + " grace day" + (p.graceHours == 24 ? "" : "s");
-    const std::string grace = p.graceHours > 0 ? ", " + days : "";
+    std::string grace = p.graceHours > 0 ? ", " + days : "";
     if (charged <= 0) {
-        r.late = {past, 0,
-                  "handed in " + hoursText(past) + " late" + extended + ", within the " + days + ": no penalty"};
+        const std::string line = "handed in " + hoursText(past) + " late" + extended + ", within the " + days;
+        r.late = {past, 0, line + ": no penalty", {}};
         return;
+    }
+    if (p.slipDays > 0) {
+        // Whole days, rounded up, from the bank before any penalty.
+        r.late.slip.needed = static_cast<int>(std::ceil(charged / 24 - 1e-9));
+        if (!p.slipKnown) {
+            r.late = {past, 0,
+                      "handed in " + hoursText(past) + " late" + extended + grace +
+                          ": the course's slip days decide it where its labs are graded together (simlab grade), so "
+                          "no penalty is taken here",
+                      r.late.slip};
+            return;
+        }
+        r.late.slip.used = std::min(r.late.slip.needed, account.had);
+        charged -= r.late.slip.used * 24.0;
+        if (r.late.slip.used > 0) grace += ", " + daysText(r.late.slip.used) + " spent";
+        if (charged <= 0) {
+            r.late = {past, 0, "handed in " + hoursText(past) + " late" + extended + grace + ": no penalty",
+                      r.late.slip};
+            return;
+        }
+        grace += r.late.slip.used < account.had ? "" : account.had == 0 ? " (no slip day left)" : " (none left)";
     }
     const double periods = std::ceil(charged / p.periodHours - 1e-9);
     const double percent = std::min(p.maxPercent, periods * p.penaltyPercent);
     r.late = {past, percent,
               "handed in " + hoursText(past) + " late" + extended + grace + ": " + points(percent) +
                   " % of the score taken (" + points(p.penaltyPercent) + " % per " +
-                  (p.periodHours == 24 ? "day" : "hour") + ")"};
+                  (p.periodHours == 24 ? "day" : "hour") + ")",
+              r.late.slip};
+}
+
+}  // namespace
+
+void applyLatePolicy(StudentRecord& r, const LatePolicy& p, const HandIn& handIn) {
+    r.late = {};
+    if (!p.active || r.status == "missing file") return;
+    SlipAccount account;
+    account.had = p.slipDays;
+    if (const auto found = p.slip.find(r.id); found != p.slip.end()) account = found->second;
+    chargeLateness(r, p, handIn, account);
+    if (p.slipDays == 0) return;
+    // What the record keeps of the bank: enough for the labs due after this one to know what it left them.
+    StudentRecord::Lateness::Slip& slip = r.late.slip;
+    slip.bank = p.slipDays;
+    slip.due = utcText(p.due);
+    if (!p.slipKnown) return;
+    slip.had = account.had;
+    slip.ledger = ledgerLine(p, account, slip.used);
 }
 
 namespace {
@@ -488,6 +602,163 @@ std::vector<std::string> checkHandIns(HandIns& handIns, const LatePolicy& p) {
                         named(unvouched) + "; --submitted FILE gives the platform's times");
     }
     return lines;
+}
+
+// --- The bank of slip days across the labs graded side by side ---------------------------------------------------
+
+SlipLedger readSlipLedger(const std::string& gradesRoot) {
+    SlipLedger ledger;
+    if (!fs::is_directory(gradesRoot)) return ledger;
+    for (const FolderEntry& folder : listFolder(gradesRoot, /*followFolder=*/true)) {
+        if (folder.type != EntryType::Directory || folder.name[0] == '.') continue;
+        const std::string students = gradesRoot + "/" + folder.name + "/students";
+        if (!fs::is_directory(students)) continue;
+        SlipLedger::Lab lab;
+        lab.id = folder.name;
+        bool dated = false;
+        std::map<std::string, int> dues;  // the due date each record gives: the most given is the lab's
+        for (const FolderEntry& e : listFolder(students, /*followFolder=*/true)) {
+            if (e.type != EntryType::Directory) continue;
+            const std::string path = students + "/" + e.name + "/record.json";
+            if (!fs::is_regular_file(path)) continue;
+            std::optional<StudentRecord> r;
+            try {
+                r = readRecordJson(readFile(path));
+            } catch (const std::exception&) {
+                continue;  // unreadable: graded again by its lab's next run, said there
+            }
+            // A folder of another lab's grades, or of a record that is none of a lab's: not this lab's days.
+            if (!r || r->assignment != folder.name) continue;
+            dated = dated || !r->late.line.empty();
+            if (r->late.slip.bank == 0) continue;
+            if (const std::optional<std::time_t> due = parseTime(r->late.slip.due)) ++dues[utcText(*due)];
+            lab.students[e.name] = r->late.slip;
+        }
+        if (lab.students.empty()) {
+            if (dated) ledger.withoutBank.push_back(lab.id);
+            continue;
+        }
+        const auto most = std::max_element(dues.begin(), dues.end(),
+                                           [](const auto& a, const auto& b) { return a.second < b.second; });
+        lab.due = most == dues.end() ? 0 : *parseTime(most->first);
+        ledger.labs.push_back(std::move(lab));
+    }
+    std::sort(ledger.labs.begin(), ledger.labs.end(), [](const SlipLedger::Lab& a, const SlipLedger::Lab& b) {
+        return std::tie(a.due, a.id) < std::tie(b.due, b.id);
+    });
+    return ledger;
+}
+
+SlipAccount slipAccount(const SlipLedger& ledger, int bank, const std::string& lab, std::time_t due,
+                        const std::string& student) {
+    SlipAccount account;
+    account.had = bank;
+    for (const SlipLedger::Lab& before : ledger.labs) {
+        if (std::tie(before.due, before.id) >= std::tie(due, lab)) break;
+        const auto found = before.students.find(student);
+        if (found == before.students.end()) continue;
+        const int used = std::min(found->second.needed, account.had);
+        if (used > 0) account.spent.emplace_back(before.id, used);
+        account.had -= used;
+    }
+    return account;
+}
+
+std::vector<std::pair<std::string, std::vector<std::string>>> staleSlipLabs(const SlipLedger& ledger, int bank) {
+    std::vector<std::pair<std::string, std::vector<std::string>>> stale;
+    for (const SlipLedger::Lab& lab : ledger.labs) {
+        std::vector<std::string> differ;
+        for (const auto& [id, slip] : lab.students) {
+            const SlipAccount account = slipAccount(ledger, bank, lab.id, lab.due, id);
+            const int used = std::min(slip.needed, account.had);
+            if (slip.bank != bank || slip.had != account.had || slip.used != used) differ.push_back(id);
+        }
+        if (!differ.empty()) stale.emplace_back(lab.id, differ);
+    }
+    for (const std::string& lab : ledger.withoutBank) stale.emplace_back(lab, std::vector<std::string>{});
+    return stale;
+}
+
+std::string staleSlipLine(const std::vector<std::pair<std::string, std::vector<std::string>>>& stale,
+                          const std::string& gradesRoot) {
+    if (stale.empty()) return "";
+    std::string labs, commands;
+    for (std::size_t i = 0; i < stale.size(); ++i) {
+        const auto& [lab, students] = stale[i];
+        const char* separator = i == 0 ? "" : i + 1 == stale.size() ? " and " : ", ";
+        labs += separator + printable(lab) + " (" +
+                (students.empty() ? std::string("graded before the course kept the bank")
+                                  : studentsText(students.size()) + ": " + named(students, 4)) +
+                ")";
+        commands += (i == 0 ? "" : "; ") + std::string("simlab grade ") + printable(lab) + " ... -o " +
+                    printable((fs::path(gradesRoot) / lab).string());
+    }
+    return "the slip days spent on " + labs + " are not what the bank now gives them (a lab due before was graded " +
+           "again, or the bank changed): grade " + (stale.size() == 1 ? "it" : "each") +
+           " again, which runs no code (" + commands + "), then export " + (stale.size() == 1 ? "it" : "each") +
+           " again";
+}
+
+// --- A cap on graded submissions ------------------------------------------------------------------------------------
+
+CapStanding capStanding(const SubmissionCap& cap, std::time_t at, const std::vector<PriorSubmission>& prior) {
+    CapStanding s;
+    if (cap.max <= 0) return s;
+    // The earlier submissions in the order they were made; each counted when the window (or the assignment) held
+    // fewer counted ones than the cap, as this one is.
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < prior.size(); ++i) {
+        if (prior[i].at < at) order.push_back(i);  // a regrade's metadata may list later ones: not before this one
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return prior[a].at < prior[b].at; });
+    const double window = cap.windowHours * 3600;
+    std::vector<std::pair<std::time_t, std::size_t>> counted;  // (time, index) of the counted ones
+    auto within = [&](std::time_t t) {
+        std::vector<std::pair<std::time_t, std::size_t>> in;
+        for (const auto& c : counted) {
+            if (window <= 0 || std::difftime(t, c.first) < window) in.push_back(c);
+        }
+        return in;
+    };
+    for (const std::size_t i : order) {
+        if (prior[i].graded && static_cast<int>(within(prior[i].at).size()) < cap.max)
+            counted.emplace_back(prior[i].at, i);
+    }
+    const std::vector<std::pair<std::time_t, std::size_t>> in = within(at);
+    const std::string each = window > 0 ? " each " + points(cap.windowHours) + " h" : "";
+    const std::string counts =
+        std::to_string(cap.max) + " graded submission" + (cap.max == 1 ? "" : "s") + " the course counts" + each;
+    // With a window, the next counts once the oldest counted one in it leaves it.
+    auto nextText = [&](const std::vector<std::pair<std::time_t, std::size_t>>& held) {
+        if (window <= 0 || held.empty()) return std::string();
+        s.next = held.front().first + static_cast<std::time_t>(window);
+        return "; the next counts from " + utcText(*s.next);
+    };
+    if (static_cast<int>(in.size()) < cap.max) {
+        s.number = static_cast<int>(in.size()) + 1;
+        s.left = cap.max - s.number;
+        std::vector<std::pair<std::time_t, std::size_t>> held = in;
+        held.emplace_back(at, prior.size());
+        s.line = "graded submission " + std::to_string(s.number) + " of the " + counts + ": " +
+                 (s.left == 0 ? "none" : std::to_string(s.left)) + " left" + (s.left == 0 ? nextText(held) : "");
+        return s;
+    }
+    s.counted = false;
+    s.number = static_cast<int>(in.size());
+    s.kept = counted.back().second;
+    const PriorSubmission& kept = prior[*s.kept];
+    s.line = "not graded: past the " + counts + "; your score stays " +
+             (kept.score ? points(*kept.score) : std::string("that")) + ", from your submission of " +
+             utcText(kept.at) + nextText(in);
+    return s;
+}
+
+std::optional<int> gradeRateMinutes(const SubmissionCap& cap) {
+    if (cap.max <= 0 || cap.windowHours <= 0) return std::nullopt;
+    // Spaced R minutes apart, a window of W minutes holds at most ceil(W / R) of them: no more than the cap when
+    // R >= W / max.
+    return static_cast<int>(std::ceil(cap.windowHours * 60 / cap.max - 1e-9));
 }
 
 }  // namespace simlab::engine

@@ -224,6 +224,11 @@ nlohmann::json toGradescope(const StudentRecord& r) {
     if (!r.late.line.empty()) {
         output += "Lateness: " + printable(r.late.line) + "\n";
         extra["late"] = {{"submitted", r.submitted}, {"hours", r.late.hours}, {"percent", r.late.percent}};
+        // The course's bank of slip days: what this lab spent, and what is left after it.
+        if (const StudentRecord::Lateness::Slip& s = r.late.slip; !s.ledger.empty()) {
+            output += "Slip days: " + printable(s.ledger) + "\n";
+            extra["late"]["slip_days"] = {{"used", s.used}, {"left", s.had - s.used}, {"bank", s.bank}};
+        }
     }
     const double score = roundScore(r.score * (1 - r.late.percent / 100));
     // Everything is plain text (never HTML or Markdown a student's bytes could shape), valid UTF-8.

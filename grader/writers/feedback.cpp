@@ -20,6 +20,7 @@ Feedback feedbackOf(const Assignment& assignment, const StudentRecord& r, const 
     if (r.late.percent > 0) {
         f.late += ": " + points(r.latePoints()) + " points off the " + points(r.rawTotal()) + " earned";
     }
+    f.slip = r.late.slip.ledger;
     f.sandbox = r.sandbox;
     if (!r.compiler.empty()) {
         f.compilerTitle = r.status == "did not compile" ? "The compiler's message:"

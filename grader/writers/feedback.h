@@ -29,6 +29,7 @@ struct Feedback {
     std::string status;         ///< the record's status when it is not "graded"; else empty
     std::string note;
     std::string late;           ///< the late policy's line, with the points it took; empty without a policy
+    std::string slip;           ///< the course's bank of slip days after this lab; empty where it keeps none
     std::string compilerTitle;  ///< "The compiler's message:", ...; empty when there is no message
     std::string compiler;       ///< the message, printable with its newlines
     std::vector<FeedbackTest> tests;

@@ -43,6 +43,7 @@ std::string feedbackHtml(const Assignment& assignment, const StudentRecord& reco
     out << "</p>\n";
     if (!f.note.empty()) out << "<p>" << htmlText(f.note) << ".</p>\n";
     if (!f.late.empty()) out << "<p class=\"late\">Lateness: " << htmlText(f.late) << ".</p>\n";
+    if (!f.slip.empty()) out << "<p class=\"late\">Slip days: " << htmlText(f.slip) << ".</p>\n";
     out << "</header>\n";
 
     if (!f.compilerTitle.empty()) {

@@ -20,6 +20,7 @@ std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& 
     out << "\n\n";
     if (!f.note.empty()) out << markdownText(f.note) << ".\n\n";
     if (!f.late.empty()) out << "Lateness: " << markdownText(f.late) << ".\n\n";
+    if (!f.slip.empty()) out << "Slip days: " << markdownText(f.slip) << ".\n\n";
     if (!f.compilerTitle.empty()) {
         // An indented block: shown as the compiler wrote it (escaped), and nothing in it can end the block.
         out << f.compilerTitle << "\n\n";

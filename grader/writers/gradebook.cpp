@@ -14,8 +14,12 @@ std::string gradebookCsv(const Rubric& rubric, const std::vector<StudentRecord>&
     // With a late policy (course.toml): the score before it, the points it took, when and how late.
     const bool late =
         std::any_of(records.begin(), records.end(), [](const StudentRecord& r) { return !r.late.line.empty(); });
+    // With a bank of slip days: the days this lab spent and those left after it.
+    const bool slip =
+        std::any_of(records.begin(), records.end(), [](const StudentRecord& r) { return !r.late.slip.ledger.empty(); });
     out << "student,score,max,status";
     if (late) out << ",raw score,late penalty,submitted,lateness";
+    if (slip) out << ",slip days used,slip days left,slip days";
     for (const RubricTest& t : rubric.tests) out << "," << csvCell(t.name);
     // Items a person grades: a column each, "pending" until the instructor fills in the points.
     for (const ManualItem& m : rubric.manual) out << "," << csvCell("manual (" + points(m.points) + "): " + m.name);
@@ -25,6 +29,12 @@ std::string gradebookCsv(const Rubric& rubric, const std::vector<StudentRecord>&
         if (late) {
             out << "," << points(r.rawTotal()) << "," << points(r.latePoints()) << "," << csvCell(r.submitted) << ","
                 << csvCell(r.late.line);
+        }
+        if (slip) {
+            const StudentRecord::Lateness::Slip& s = r.late.slip;
+            out << ",";
+            if (!s.ledger.empty()) out << s.used << "," << s.had - s.used << "," << csvCell(s.ledger);
+            else out << ",,";
         }
         for (const RubricTest& t : rubric.tests) {
             const auto found = std::find_if(r.tests.begin(), r.tests.end(),

@@ -19,6 +19,11 @@ std::string recordJson(const StudentRecord& r) {
         }
         tests.push_back(j);
     }
+    nlohmann::json late = {{"hours", r.late.hours}, {"percent", r.late.percent}, {"line", r.late.line}};
+    if (const StudentRecord::Lateness::Slip& s = r.late.slip; s.bank > 0) {
+        late["slip"] = {{"bank", s.bank}, {"due", s.due},   {"needed", s.needed},
+                        {"had", s.had},   {"used", s.used}, {"ledger", s.ledger}};
+    }
     const nlohmann::json record = {
         {"id", r.id},
         {"key", r.key},
@@ -39,7 +44,7 @@ std::string recordJson(const StudentRecord& r) {
         {"not_run_points", r.notRunPoints},
         {"submitted", r.submitted},
         {"submitted_from", r.submittedFrom},
-        {"late", {{"hours", r.late.hours}, {"percent", r.late.percent}, {"line", r.late.line}}},
+        {"late", late},
         {"tests", tests}};
     return writers::jsonText(record);
 }
@@ -73,6 +78,21 @@ std::optional<StudentRecord> readRecordJson(const std::string& text) {
             r.late.percent = j["late"].at("percent");
             r.late.line = j["late"].at("line");
             if (!(r.late.percent >= 0 && r.late.percent <= 100)) return std::nullopt;
+            if (j["late"].contains("slip")) {
+                const nlohmann::json& s = j["late"]["slip"];
+                StudentRecord::Lateness::Slip& slip = r.late.slip;
+                slip.bank = s.at("bank");
+                slip.due = s.at("due");
+                slip.needed = s.at("needed");
+                slip.had = s.at("had");
+                slip.used = s.at("used");
+                slip.ledger = s.at("ledger");
+                // The days a bank could hold and a lab spend of it; anything else is a damaged record.
+                if (slip.bank < 1 || slip.bank > 365 || slip.needed < 0 || slip.had < 0 || slip.had > slip.bank ||
+                    slip.used < 0 || slip.used > slip.had || slip.used > slip.needed) {
+                    return std::nullopt;
+                }
+            }
         }
         for (const nlohmann::json& t : j.at("tests")) {
             TestResult x;

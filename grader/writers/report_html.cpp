@@ -344,6 +344,40 @@ std::string earlierFileSection(const std::vector<StudentRecord>& records) {
            rows.str() + "</tbody>\n</table>\n</section>\n";
 }
 
+// The course's late policy (course.toml): who lost points to it, gradebook.csv having each one's figures; its bank of
+// slip days: what this lab spent of it, and who has none left. Empty without a policy.
+std::string lateWork(const std::vector<StudentRecord>& records) {
+    std::string text;
+    const auto late =
+        std::count_if(records.begin(), records.end(), [](const StudentRecord& r) { return r.late.percent > 0; });
+    if (std::any_of(records.begin(), records.end(), [](const StudentRecord& r) { return !r.late.line.empty(); })) {
+        text = "<p>Late work (course.toml): " +
+               (late == 0 ? std::string("nobody lost points to lateness")
+                          : plural(static_cast<std::size_t>(late), "student", "students") +
+                                " lost points to it (the scores here are after it; "
+                                "gradebook.csv has each one's raw score and penalty)") +
+               ".</p>\n";
+    }
+    int bank = 0, spent = 0;
+    std::size_t spenders = 0, emptied = 0;
+    for (const StudentRecord& r : records) {
+        const StudentRecord::Lateness::Slip& s = r.late.slip;
+        if (s.ledger.empty()) continue;
+        bank = s.bank;
+        spent += s.used;
+        spenders += s.used > 0;
+        emptied += s.had == s.used;
+    }
+    if (bank == 0) return text;
+    return text + "<p>Slip days (course.toml: " + std::to_string(bank) +
+           " for each student, spent in the order of the labs' due dates): " +
+           (spenders == 0 ? std::string("nobody spent any on this lab")
+                          : plural(spenders, "student", "students") + " spent " + std::to_string(spent) +
+                                (spent == 1 ? " day" : " days") + " on this lab") +
+           "; " + plural(emptied, "student has", "students have") +
+           " none left after it (gradebook.csv has each one's ledger).</p>\n";
+}
+
 }  // namespace
 
 std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, const ClassResult& result) {
@@ -387,17 +421,7 @@ std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, 
                                                                 "points given so far)")
             << ".</p>\n";
     }
-    // The course's late policy (course.toml): who lost points to it; gradebook.csv has each one's figures.
-    const auto late =
-        std::count_if(records.begin(), records.end(), [](const StudentRecord& r) { return r.late.percent > 0; });
-    if (std::any_of(records.begin(), records.end(), [](const StudentRecord& r) { return !r.late.line.empty(); })) {
-        out << "<p>Late work (course.toml): "
-            << (late == 0 ? std::string("nobody lost points to lateness")
-                          : plural(static_cast<std::size_t>(late), "student", "students") +
-                                " lost points to it (the scores here are after it; "
-                                "gradebook.csv has each one's raw score and penalty)")
-            << ".</p>\n";
-    }
+    out << lateWork(records);
     // What the times the lateness was measured from are worth: whose word, and where the sources disagree.
     for (const std::string& line : result.handIns) out << "<p>Hand-in times: " << htmlText(line) << ".</p>\n";
     // The sandboxes the students' code ran in (one, unless the class was graded in parts on other machines).

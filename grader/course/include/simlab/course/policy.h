@@ -11,6 +11,20 @@
 //     cutoff = 2026-10-09T23:59:00-07:00       # optional: handed in after it earns nothing
 //     extensions = "apple-extensions.csv"      # optional: per student, beside this file
 //
+// Two more rules a course may keep:
+//
+//     [late]
+//     slip_days = 3                            # a bank of days each student spends across the course's labs
+//
+//     [projectile]
+//     due = 2026-10-16T23:59:00-07:00
+//     max_submissions = 3                      # graded submissions that count (Gradescope, PrairieLearn)
+//     submission_window_hours = 24             # optional: 3 in any 24 h, rather than 3 in all
+//
+// The bank is spent in whole days, rounded up, before any penalty, in the order of the labs' due dates: each lab's
+// record keeps the days it could use and those it had, so that the labs graded side by side (GRADES/<lab>, as
+// simlab grade lays them out) say what each spent and which must be graded again when one before them changes.
+//
 // The extensions file is a CSV with a `student` column (simlab's id, or any id the platform gives them: Canvas's ID,
 // the SIS User ID, the login, the e-mail, Gradescope's SID; never a name, which a student chooses) and `due` (a new
 // due date, as above) or `days` (days added). A row that names no student, a student twice or an id two students
@@ -35,7 +49,21 @@
 
 namespace simlab::engine {
 
+/// A cap on an assignment's graded submissions (max_submissions, submission_window_hours).
+struct SubmissionCap {
+    int max = 0;             ///< graded submissions that count; 0: no cap
+    double windowHours = 0;  ///< they count within any window of this many hours; 0: over the whole assignment
+};
+
+/// What the bank of slip days holds for one student on one lab: the days left after the labs due before it, and
+/// what those spent (the labs that spent some, with their days), as their records keep it (readSlipLedger).
+struct SlipAccount {
+    int had = 0;
+    std::vector<std::pair<std::string, int>> spent;
+};
+
 struct LatePolicy {
+    std::string assignment;  ///< the assignment's id
     bool active = false;  ///< a due date is set for the assignment
     std::string source;   ///< the file it was read from
     std::time_t due = 0;  ///< UTC seconds
@@ -45,6 +73,14 @@ struct LatePolicy {
     double maxPercent = 100;
     double graceHours = 0;
     std::map<std::string, std::time_t> dueFor;  ///< extensions, by simlab id
+    /// [late] slip_days: the days each student may be late across the course's labs before a penalty; 0: none.
+    int slipDays = 0;
+    /// Each student's account of the bank for this assignment, by simlab id (one not in it has the whole bank),
+    /// where the other labs' records are at hand (`slipKnown`: simlab grade). Without them (a platform's autograder,
+    /// which sees one submission) lateness is said and not charged: the bank decides it where the labs are graded.
+    std::map<std::string, SlipAccount> slip;
+    bool slipKnown = false;
+    SubmissionCap cap;
 };
 
 /// Who is who: each id the platform vouches for (Canvas's ID, the SIS User ID, the login, the e-mail, Gradescope's
@@ -83,8 +119,10 @@ std::optional<std::time_t> parseTime(const std::string& text);
 std::string utcText(std::time_t t);
 
 /// The policy of `assignment` in the course file `path` (none: inactive), its extensions matched to the class's
-/// students through `ids` (where `ids` is empty, as on a platform's autograder, an extension keeps the id it names).
-/// Throws UsageError in one line naming the file, and the row of the extensions file, and what is wrong.
+/// students through `ids` (where `ids` is empty, as on a platform's autograder, an extension keeps the id it names),
+/// its cap on submissions and the course's bank of slip days. Throws UsageError in one line naming the file, and
+/// the row of the extensions file, and what is wrong: a cap that is not a whole number from 1, slip days on a course
+/// whose labs have no due date among them.
 LatePolicy loadLatePolicy(const std::string& path, const std::string& assignment, const StudentIds& ids);
 
 /// The hand-in times of `path` named by the instructor (--submitted), by simlab id: Canvas's submissions as its API
@@ -115,6 +153,60 @@ HandIn handInOf(const std::string& time, const std::string& from, std::optional<
 /// and a line that says so. Nothing without a policy; a student with no known time is not penalized, and the line
 /// says that the time is unknown; nor is one the platform flags late whose time says otherwise.
 void applyLatePolicy(StudentRecord& r, const LatePolicy& policy, const HandIn& handIn = {});
+
+/// The records of the labs graded side by side under `gradesRoot` (GRADES/<lab>, as simlab grade lays them out, each
+/// folder named after its lab) that spent a bank of slip days: each lab's due date and each student's days as
+/// graded. A lab graded under a due date before the course kept a bank is listed apart: it must be graded again.
+struct SlipLedger {
+    struct Lab {
+        std::string id;
+        std::time_t due = 0;
+        std::map<std::string, StudentRecord::Lateness::Slip> students;  ///< by simlab id
+    };
+    std::vector<Lab> labs;                 ///< in the order they spend the bank: by due date, then id
+    std::vector<std::string> withoutBank;  ///< graded with a due date but not the bank
+};
+SlipLedger readSlipLedger(const std::string& gradesRoot);
+
+/// What the labs of `ledger` due before `lab` (due `due`: by due date, then id) left `student` of `bank` days; the
+/// records of `lab` itself are not read.
+SlipAccount slipAccount(const SlipLedger& ledger, int bank, const std::string& lab, std::time_t due,
+                        const std::string& student);
+
+/// The labs of `ledger` whose records no longer say what the bank gives them (a lab due before one was graded again
+/// and spends other days, or the bank changed), each with the students whose days differ; then those graded without
+/// the bank, with none named.
+std::vector<std::pair<std::string, std::vector<std::string>>> staleSlipLabs(const SlipLedger& ledger, int bank);
+
+/// One line naming the labs under `gradesRoot` to grade again (and export again) for the bank to be right: empty
+/// when none.
+std::string staleSlipLine(const std::vector<std::pair<std::string, std::vector<std::string>>>& stale,
+                          const std::string& gradesRoot);
+
+/// A submission the platform lists before the one graded now: its time, whether the autograder graded it (one it
+/// could not grade is not counted against the student) and its score, where the platform gives it.
+struct PriorSubmission {
+    std::time_t at = 0;
+    bool graded = true;
+    std::optional<double> score;
+};
+
+/// Where a submission made at `at` stands against `cap`, after `prior`: counted (the how-manieth within the window,
+/// and how many are left), or past the cap, keeping the last counted one's score (`kept`, an index of `prior`).
+struct CapStanding {
+    bool counted = true;
+    int number = 0;                   ///< counted within the window, this one included when counted
+    int left = 0;                     ///< counted submissions left after this one
+    std::optional<std::size_t> kept;  ///< past the cap: the submission whose score stays
+    std::optional<std::time_t> next;  ///< with a window and none left: when the next one counts
+    std::string line;                 ///< one line for the student: counted and how many are left, or why not
+};
+CapStanding capStanding(const SubmissionCap& cap, std::time_t at, const std::vector<PriorSubmission>& prior);
+
+/// PrairieLearn's gradeRateMinutes for `cap`: the fewest minutes between graded submissions that let no more than
+/// cap.max through in any window of its hours. None without a window: PrairieLearn limits grading by a rate, not a
+/// count.
+std::optional<int> gradeRateMinutes(const SubmissionCap& cap);
 
 /// What the run says of the class's hand-in times before any is graded, one line each naming the students: the
 /// platform's flags and the times disagree; every time is one (a copied download's: those times are dropped, and

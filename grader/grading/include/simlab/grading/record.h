@@ -52,6 +52,16 @@ struct StudentRecord {
         double hours = 0;    ///< past the student's due date (after grace)
         double percent = 0;  ///< of the raw score taken
         std::string line;    ///< "handed in 26 h late (1 grace day): 20 % taken"; empty without a policy
+        /// The course's bank of slip days (course.toml's [late] slip_days) as this lab spent it; bank 0: the course
+        /// keeps none. The labs graded side by side spend each student's bank in the order of their due dates.
+        struct Slip {
+            int bank = 0;        ///< days each student has for the whole course
+            std::string due;     ///< the lab's due date (UTC): where it stands in that order
+            int needed = 0;      ///< whole days past the student's due date, after grace, that days could cover
+            int had = 0;         ///< days the bank held for this lab, after the labs due before it
+            int used = 0;        ///< days this lab spent: the fewer of needed and had
+            std::string ledger;  ///< "2 on apple, 1 on projectile (this lab); 0 of 3 left"
+        } slip;
     } late;
 
     /// The tests' points and the manual points given so far, less the late penalty: the score.

@@ -71,6 +71,25 @@ std::string resultsJson(const StudentRecord& record);
 /// resultsJson(recordOf(report)).
 std::string resultsJson(const GradeReport& report);
 
+/// What results.json says of a submission against the course's cap on graded submissions (course.toml's
+/// max_submissions): `line` first in its output, and extra_data.submissions (counted, number, max, window_hours,
+/// left; checked false where the platform gave nothing to check the cap against).
+struct SubmissionsNote {
+    std::string line;
+    bool checked = true;
+    bool counted = true;
+    int number = 0;
+    int max = 0;
+    int left = 0;
+    double windowHours = 0;
+};
+/// resultsJson(record), with the note.
+std::string resultsJson(const StudentRecord& record, const SubmissionsNote& note);
+/// results.json of a submission past the cap, not graded: the results of the earlier one whose score it keeps, as
+/// the platform kept them (`earlier`: Gradescope's previous_submissions[].results, its tests and leaderboard; an
+/// object, else none), with that `score`, and the note.
+std::string keptResultsJson(const nlohmann::json& earlier, double score, const SubmissionsNote& note);
+
 /// record.json: the record as simlab keeps it to resume a class.
 std::string recordJson(const StudentRecord& record);
 /// The record that `text` holds; empty if it is damaged or from another version (the student is regraded).
