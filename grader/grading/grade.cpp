@@ -28,6 +28,7 @@
 #include "simlab/isolation/process.h"
 #include "simlab/protocol/verdict.h"
 #include "simlab/grading/record.h"
+#include "simlab/common/text.h"
 
 namespace fs = std::filesystem;
 
