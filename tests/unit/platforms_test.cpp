@@ -354,6 +354,14 @@ TEST_CASE("manual.csv: rows for every student and item, what a person typed kept
     const std::string merged = manualCsv(sheet, {"ada", "bob", "cy"}, rubric);
     CHECK_THAT(merged, Catch::Contains("ada,the schematic,8,\"no axis, no joint\",\n"));
     CHECK_THAT(merged, Catch::Contains("gone,the schematic,3,kept,\n"));
+    // Points as typed, to the last digit (found by fuzz-manual: 0.125 was kept as 0.13, 9.999 as 10).
+    const ManualSheet fine = readManualCsv("student,item,points\nada,the schematic,0.125\nbob,the schematic,9.999\n"
+                                           "gone,gone,123456789012345678901234567890\n",
+                                           "manual.csv", rubric);
+    const ManualSheet kept = readManualCsv(manualCsv(fine, {}, rubric), "manual.csv", rubric);
+    CHECK(*kept.entries.at({"ada", "the schematic"}).points == 0.125);
+    CHECK(*kept.entries.at({"bob", "the schematic"}).points == 9.999);
+    CHECK(*kept.entries.at({"gone", "gone"}).points == 123456789012345678901234567890.0);
     CHECK_THAT(merged, Catch::Contains("cy,the schematic,,,\ncy,\"'=the paragraph\",,,\n"));
     // A student's grade from the sheet.
     StudentRecord ada;
