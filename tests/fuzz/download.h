@@ -57,9 +57,9 @@ inline std::set<std::string> contents(const std::string& folder) {
 }
 
 /// A student id as a class folder's name: what intake's safeId makes (letters, digits, '.', '_', '-'; '+' joining
-/// a group's), no '.' or '-' first.
+/// a group's), no '.' or '-' first, and a name a file system holds.
 inline bool plainId(const std::string& id) {
-    return !id.empty() && id[0] != '.' && id[0] != '-' && id.size() < 4096 &&
+    return !id.empty() && id[0] != '.' && id[0] != '-' && id.size() <= 255 &&
            std::all_of(id.begin(), id.end(), [](char c) {
                return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-' || c == '+';
            });
