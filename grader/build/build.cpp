@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -15,6 +16,7 @@
 #include <mutex>
 #include <set>
 #include <sstream>
+#include <cstring>
 
 #include "simlab/isolation/elf.h"
 #include "simlab/common/files.h"
@@ -147,9 +149,21 @@ std::vector<std::string> courseFiles(const Manifest& manifest, const Assignment&
 }  // namespace
 
 Builder::Builder(const Manifest& manifest) : manifest_(manifest), cacheDir_(manifest.cacheDir + "/objects") {
+    // Made once, here, before any job writes into it: each folder of the path in turn, one another simlab made
+    // meanwhile taken as made (create_directories may report such a race as a failure, and a job would then find
+    // no folder to write its object into). Every student's source and object is kept in it: simlab's alone (the
+    // linker gets a copy of the one it needs).
+    fs::path made;
+    for (const fs::path& part : fs::absolute(cacheDir_).lexically_normal()) {
+        made /= part;
+        if (::mkdir(made.c_str(), 0755) != 0 && errno != EEXIST) {
+            throw std::runtime_error("cannot make the object cache's folder " + made.string() + ": " +
+                                     std::strerror(errno));
+        }
+    }
     std::error_code ignored;
-    fs::create_directories(cacheDir_, ignored);
-    // Every student's source and object is kept here: simlab's alone (the linker gets a copy of the one it needs).
+    if (!fs::is_directory(cacheDir_, ignored))
+        throw std::runtime_error("the object cache " + cacheDir_ + " is not a folder");
     fs::permissions(cacheDir_, fs::perms::owner_all, ignored);
     if (!manifest.installed) checkPrecompiledHeader();  // before anything is built or said to be
     trimObjectCache(cacheDir_);
@@ -337,7 +351,7 @@ const isolation::CourseSymbols& Builder::courseSymbols(const Assignment& assignm
                 (s.inLibraries ? '1' : '0') + (s.required ? '1' : '0') + (s.referenced ? '1' : '0') + "\t" + name +
                 "\t" + s.from + "\n";
     }
-    writeFileAtomically(cached, text);
+    writePrivateAtomically(cached, text);
     return symbols;
 }
 
@@ -644,6 +658,7 @@ BuildResult Builder::buildProbe(const Assignment& assignment, const std::string&
                                 const std::string& workDir, const std::string& binary, bool checkObject) const {
     std::string object;
     BuildResult result = compile(assignment, name, text, workDir, &object);
+    if (result.ok) result.object = object;
     if (!result.ok || (checkObject && refusedObject(assignment, object, name, result))) return result;
     // The course's objects first and whole: an inline function both define keeps the course's copy, and a
     // definition of anything the course defines is an error rather than a replacement.

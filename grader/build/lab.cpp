@@ -99,6 +99,21 @@ std::string labBuildFolder(const Manifest& manifest, const std::string& dir) {
            sha256Hex(canonical.string()).substr(0, 12);
 }
 
+std::vector<std::string> labsBuilt(const Manifest& manifest) {
+    std::vector<std::string> labs;
+    std::error_code error;
+    for (auto it = fs::directory_iterator(manifest.cacheDir + "/labs", error); !error && it != fs::directory_iterator();
+         it.increment(error)) {
+        // Each build's CMakeLists.txt names its lab's folder (buildLab writes it), in brackets.
+        std::ifstream in(it->path() / "project" / "CMakeLists.txt");
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::size_t at = text.find("simlab_add_lab([==[");
+        const std::size_t end = at == std::string::npos ? at : text.find("]==])", at);
+        if (end != std::string::npos) labs.push_back(text.substr(at + 19, end - at - 19));
+    }
+    return labs;
+}
+
 Assignment buildLab(const Manifest& manifest, const std::string& dir) {
     std::error_code error;
     if (!fs::is_directory(dir, error)) throw UsageError("no lab folder " + printable(dir));

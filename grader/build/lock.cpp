@@ -94,6 +94,7 @@ LockSummary lockPlaces(const Manifest& manifest, const std::vector<std::string>&
         for (const char* place : {"/lib/simlab", "/share/simlab"}) places.push_back(manifest.prefix + place);
     }
     for (const Assignment& a : manifest.assignments) places.push_back(a.dir);
+    for (const std::string& lab : labsBuilt(manifest)) places.push_back(lab);  // every lab it built, named or not
     LockSummary summary;
     std::error_code error;
     const std::size_t course = places.size();

@@ -262,6 +262,8 @@ Manifest loadManifest(const std::string& path) {
         for (const char* place : {"/lib/simlab", "/share/simlab"}) places.push_back(m.prefix + place);
     }
     for (const Assignment& a : m.assignments) places.push_back(a.dir);
+    // Every lab built against this simlab before, wherever it lies, and whether this run names it or not.
+    for (const std::string& lab : labsBuilt(m)) places.push_back(lab);
     isolation::addPlaces(places);
     isolation::useProbeHost(m.probeHost);
     return m;

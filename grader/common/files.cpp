@@ -106,13 +106,30 @@ std::string readFile(const std::string& path) {
 
 namespace {
 
-void writeFileThenRename(const std::string& path, const std::string& text, bool durable) {
+// How a written file may be read: `Fixed`, 0644 whatever the umask (what a sandbox's user reads); `Shared`, an output
+// people share (writeOutputAtomically).
+enum class Access { Fixed, Shared, Private };
+
+void writeFileThenRename(const std::string& path, const std::string& text, bool durable,
+                         Access access = Access::Fixed) {
     const std::string temporary = path + ".tmp." + std::to_string(::getpid());
     {
+        // A shared output replacing a file keeps that file's mode and group (a TA's group write on manual.csv);
+        // a new one has the umask's mode and the folder's group (the kernel gives a setgid folder's).
+        struct stat before {};
+        const bool replacing =
+            access == Access::Shared && ::stat(path.c_str(), &before) == 0 && S_ISREG(before.st_mode);
+        const mode_t mode = access == Access::Fixed ? 0644 : access == Access::Private || replacing ? 0600 : 0666;
         // Close-on-exec: a process another thread starts meanwhile must not keep the file open for writing (a
         // program being written would be busy, ETXTBSY, when it is run).
-        const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+        const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, mode);
         if (fd < 0) throw std::runtime_error("cannot write " + temporary + ": " + std::strerror(errno));
+        if (replacing) {
+            // The group first (it may clear setgid bits), then the mode; either may be refused (a group the writer
+            // is not in): the file is written all the same.
+            (void)!::fchown(fd, static_cast<uid_t>(-1), before.st_gid);
+            (void)!::fchmod(fd, before.st_mode & 0777);
+        }
         std::size_t done = 0;
         while (done < text.size()) {
             const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
@@ -180,6 +197,30 @@ void closeToOthers(const std::string& path) {
 void writeFileAtomically(const std::string& path, const std::string& text) { writeFileThenRename(path, text, false); }
 
 void writeFileDurably(const std::string& path, const std::string& text) { writeFileThenRename(path, text, true); }
+
+void writeOutputAtomically(const std::string& path, const std::string& text) {
+    writeFileThenRename(path, text, false, Access::Shared);
+}
+
+void writeOutputDurably(const std::string& path, const std::string& text) {
+    writeFileThenRename(path, text, true, Access::Shared);
+}
+
+void writePrivateAtomically(const std::string& path, const std::string& text) {
+    writeFileThenRename(path, text, false, Access::Private);
+    ::chmod(path.c_str(), 0600);  // a file it replaced may have had another mode
+}
+
+void createOutputFolder(const std::string& path) {
+    std::error_code error;
+    if (fs::is_directory(path, error)) return;
+    const fs::path parent = fs::absolute(path, error).lexically_normal().parent_path();
+    if (!parent.empty()) fs::create_directories(parent, error);
+    // Grades are the course's staff's: the owner's and the group's (a setgid parent's), never every user's.
+    if (::mkdir(path.c_str(), 0770) != 0 && errno != EEXIST) {
+        throw std::runtime_error("cannot create the folder " + path + ": " + std::strerror(errno));
+    }
+}
 
 OutputLock::OutputLock(const std::string& folder, const std::string& shard) {
     const std::string path = folder + "/.simlab-lock";

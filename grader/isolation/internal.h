@@ -57,11 +57,13 @@ int endProcessesOf(uid_t uid);
 
 /// What a run's processes use together: the tree under `root` (0: none), and every process of `uid` (when not 0)
 /// wherever it went. CPU time counts what each has used and what its reaped children used; memory is resident
-/// anonymous and shared memory (what they allocated), not the libraries every process maps.
+/// anonymous and shared memory (what they allocated), not the libraries every process maps; and the disk their
+/// open files take that no folder names any more (a file unlinked after it was written).
 struct Usage {
     double cpuSeconds = 0;
     long residentKiB = 0;
     int processes = 0;
+    std::uintmax_t unlinkedBytes = 0;  ///< on disk, in files they hold open that no folder names any more
 };
 Usage usageOf(pid_t root, uid_t uid);
 

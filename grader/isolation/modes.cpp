@@ -156,7 +156,7 @@ std::vector<std::string> bubblewrapArguments(const std::string& bwrap, const Pro
         else if (fs::is_directory(dir, error)) a.insert(a.end(), {"--ro-bind", dir, dir});
     }
     // What simlab hides, where a system folder holds it: an empty folder (or file) in its place.
-    const std::vector<std::string> hiddenPaths = places();
+    const std::vector<std::string> hiddenPaths = outOfReach();
     std::vector<std::string> masked;
     for (const std::string& path : hiddenPaths) {
         std::error_code error;
@@ -225,7 +225,7 @@ std::vector<std::string> bubblewrapArguments(const std::string& bwrap, const Pro
 
 landlock::FileRules fileRulesFor(const ProcessRequest& r) {
     landlock::FileRules rules;
-    const std::vector<std::string> hiddenPaths = places();
+    const std::vector<std::string> hiddenPaths = outOfReach();
     rules.readable = readableSystem(hiddenPaths);
     for (const std::string& file : systemFiles()) {
         if (!hidden(resolved(file), hiddenPaths)) rules.readable.push_back(file);
@@ -284,7 +284,8 @@ const SandboxSupport& sandboxSupport() {
         }
         // SIMLAB_NO_LANDLOCK=1 tries the last fallback on a machine that has Landlock.
         const char* noLandlock = std::getenv("SIMLAB_NO_LANDLOCK");
-        if (!support.bubblewrap && landlock::abi() > 0 && !(noLandlock && std::string(noLandlock) == "1")) {
+        const bool noLandlockWanted = noLandlock && std::string(noLandlock) == "1";
+        if (!support.bubblewrap && landlock::abi() > 0 && !noLandlockWanted) {
             Launch launch;
             launch.uid = support.ownUser ? freshUser() : 0;
             launch.dropUser = support.ownUser;
@@ -316,12 +317,17 @@ const SandboxSupport& sandboxSupport() {
         } else {
             support.mode = "limits only";
             support.summary = "limits only: CPU, memory, processes, output and files capped; " + user + calls;
-            const std::string why = bwrap.empty() ? "bubblewrap is not installed"
-                                                  : "bubblewrap cannot create namespaces here (as in most containers)";
-            support.warning = why + " and this kernel offers no Landlock: student code " +
+            const bool noBubblewrap = without && std::string(without) == "1";
+            const bool noLandlock = noLandlockWanted && landlock::abi() > 0;
+            const std::string why =
+                (noBubblewrap ? std::string("SIMLAB_NO_BUBBLEWRAP=1 leaves bubblewrap out")
+                 : bwrap.empty() ? std::string("bubblewrap is not installed")
+                                 : std::string("bubblewrap cannot create namespaces here (as in most containers)")) +
+                (noLandlock ? " and SIMLAB_NO_LANDLOCK=1 leaves Landlock out" : " and this kernel offers no Landlock");
+            support.warning = why + ": student code " +
                               (support.ownUser ? "can read every file other users can"
                                                : "runs as you and can read your files") +
-                              " (install bubblewrap, or grade as root with the course's files unreadable to others)";
+                              " (install bubblewrap, or grade as root once simlab lock has closed its places)";
         }
     });
     return support;

@@ -75,6 +75,18 @@ const std::vector<std::string>& systemFiles() {
     return files;
 }
 
+const std::vector<std::string>& notTheSystems() {
+    static const std::vector<std::string> folders = {"/usr/local"};
+    return folders;
+}
+
+std::vector<std::string> outOfReach() {
+    std::vector<std::string> all = places();
+    all.insert(all.end(), notTheSystems().begin(), notTheSystems().end());
+    std::sort(all.begin(), all.end());
+    return all;
+}
+
 const std::vector<std::string>& systemDevices() {
     static const std::vector<std::string> devices = {"/dev/null", "/dev/zero", "/dev/urandom", "/dev/random"};
     return devices;
@@ -111,7 +123,8 @@ std::string placeOf(const std::string& path) {
 }
 
 bool visibleInSandboxes(const std::string& path) {
-    return inSystemFolder(resolved(path)) && placeOf(path).empty();
+    return inSystemFolder(resolved(path)) && placeOf(path).empty() && !underAny(normal(path), notTheSystems()) &&
+           !underAny(resolved(path), notTheSystems());
 }
 
 bool withinReach(const std::string& path, const std::vector<std::string>& lent, const std::string& workDir) {
@@ -120,7 +133,7 @@ bool withinReach(const std::string& path, const std::vector<std::string>& lent, 
     for (const std::string& l : lent) own.push_back(normal(l));
     if (!workDir.empty()) own.push_back(normal(workDir));
     if (underAny(p, own)) return true;
-    if (!placeOf(p).empty()) return false;
+    if (!placeOf(p).empty() || underAny(p, notTheSystems())) return false;
     return underAny(p, systemFolders()) || underAny(p, systemFiles()) || underAny(p, systemDevices());
 }
 
@@ -165,6 +178,18 @@ Exposure exposedPlaces(const std::vector<std::string>& lent) {
     std::sort(files.begin(), files.end());
     files.erase(std::unique(files.begin(), files.end()), files.end());
     exposure.tried = files.size();
+    // A place's folder nothing lent lies below must not be passable either: what simlab writes there later (a
+    // class's grades, as it grades) would be any test's to read, whatever the files' modes.
+    std::vector<std::string> folders;
+    for (const std::string& place : places()) {
+        struct stat info {};
+        if (::lstat(place.c_str(), &info) != 0 || !S_ISDIR(info.st_mode)) continue;
+        if (std::none_of(kept.begin(), kept.end(), [&](const std::string& l) { return isOrUnder(l, place); })) {
+            folders.push_back(place + "/.simlab-passage");
+        }
+    }
+    const std::size_t fileCount = files.size();
+    files.insert(files.end(), folders.begin(), folders.end());
     if (files.empty()) return exposure;
 
     // Tried in a child that is what a test's process is: as root, a user never used before, with no group and no
@@ -190,9 +215,10 @@ Exposure exposedPlaces(const std::vector<std::string>& lent) {
         if (::geteuid() == 0) ::_exit(3);
         char chunk[4096];
         std::size_t used = 0;
-        for (const std::string& file : files) {
-            const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_NOCTTY | O_CLOEXEC);
-            chunk[used++] = fd >= 0 ? 1 : 0;
+        for (std::size_t i = 0; i < files.size(); ++i) {
+            const int fd = ::open(files[i].c_str(), O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_NOCTTY | O_CLOEXEC);
+            // A file that opens; a folder whose names a lookup reaches (a name not there is ENOENT, not EACCES).
+            chunk[used++] = i < fileCount ? fd >= 0 : fd >= 0 || errno == ENOENT;
             if (fd >= 0) ::close(fd);
             if (used == sizeof chunk) {
                 if (::write(results[1], chunk, used) != static_cast<ssize_t>(used)) ::_exit(4);
@@ -223,6 +249,10 @@ Exposure exposedPlaces(const std::vector<std::string>& lent) {
     }
     for (std::size_t i = 0; i < files.size(); ++i) {
         if (!opened[i]) continue;
+        if (i >= fileCount) {
+            exposure.passable.push_back(files[i].substr(0, files[i].size() - std::strlen("/.simlab-passage")));
+            continue;
+        }
         ++exposure.readableCount;
         exposure.readable.push_back(files[i]);
     }

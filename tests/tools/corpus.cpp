@@ -504,6 +504,7 @@ std::string reachLiteral(const Manifest& manifest) {
     for (const auto* list : {&systemFolders(), &systemFiles(), &systemDevices()}) {
         for (const std::string& path : *list) lines.push_back("A" + path);
     }
+    for (const std::string& path : notTheSystems()) lines.push_back("X" + path);
     for (const std::string& place : places()) lines.push_back("P" + place);
     lines.push_back("T" + temporary + "/simlab-");
     if (modesAlone) {

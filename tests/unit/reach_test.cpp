@@ -60,6 +60,10 @@ TEST_CASE("the system's folders are never a place, and a place is out of reach b
     CHECK_FALSE(withinReach("/tmp/work/j1-judge/rubric.toml", {}, "/tmp/work/j1-test3"));
     CHECK(visibleInSandboxes("/usr/bin"));
     CHECK_FALSE(visibleInSandboxes(place));
+    // /usr/local is the machine's own, not the system's: another course's lab there is no test's to read.
+    CHECK_FALSE(withinReach("/usr/local/share/labs/pendulum/.git/objects/96/1492f3", {}, ""));
+    CHECK_FALSE(visibleInSandboxes("/usr/local/lib"));
+    CHECK(withinReach("/usr/local/lib/libSimTKsimbody.so.3.7", {"/usr/local/lib/libSimTKsimbody.so.3.7"}, ""));
 }
 
 TEST_CASE("limits only: every file of the places that opens for a throwaway user, but what is lent", "[reach]") {

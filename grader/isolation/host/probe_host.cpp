@@ -17,9 +17,11 @@
 //
 // Descriptors (host_protocol.h): 3 events to the engine, 4 the judge's requests, 5 the answers; the server reads
 // the engine's requests on 7. What the server says of a probe (that it started, how it ended) comes from the
-// kernel (waitpid), never from the probe.
+// kernel (waitpid), never from the probe. Where the student's code was when a test fails, the host's watches tell on
+// 3, as data (failure_sites.cpp).
 #include <dlfcn.h>
 #include <fcntl.h>
+#include <ftw.h>
 #include <poll.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
@@ -37,6 +39,7 @@
 #include <cstring>
 #include <vector>
 
+#include "failure_sites.h"
 #include "simlab/isolation/filter.h"
 #include "simlab/isolation/host_protocol.h"
 
@@ -91,29 +94,26 @@ void onRefusedCall(int, siginfo_t* info, void* context) {
 #endif
     append(line, sizeof line, used, "\"}\n");
     (void)!::write(host::kEventFd, line, used);
+    host::tellFailureSite(SIGSYS);
     // Then as SIGSYS would: the engine sees the signal.
-    struct sigaction plain {};
-    plain.sa_handler = SIG_DFL;
-    ::sigaction(SIGSYS, &plain, nullptr);
-    sigset_t only;
-    ::sigemptyset(&only);
-    ::sigaddset(&only, SIGSYS);
-    ::sigprocmask(SIG_UNBLOCK, &only, nullptr);
-    ::syscall(SYS_tgkill, ::getpid(), ::syscall(SYS_gettid), SIGSYS);
+    host::endAs(SIGSYS);
     ::_exit(128 + SIGSYS);
 }
 
-// The probe: the students' filter, then the submission's shared object, then its entry point. Never returns.
-[[noreturn]] void runProbe(const char* probe) {
+// The probe: the students' filter, then the submission's shared object, then its entry point. Never returns. A
+// test's own copy (`ownCopy`) goes once it is loaded: the folder's space is the test's.
+[[noreturn]] void runProbe(const char* probe, bool ownCopy) {
     struct sigaction refused {};
     refused.sa_sigaction = onRefusedCall;
     refused.sa_flags = SA_SIGINFO;
     ::sigemptyset(&refused.sa_mask);
     ::sigaction(SIGSYS, &refused, nullptr);
+    host::watchFailureSites(probe);
     const std::string& program = filter::studentProgram(false);
     if (!program.empty() && !filter::install(program)) cannot("simlab: cannot load the probe's system-call filter");
     void* loaded = ::dlopen(probe, RTLD_NOW | RTLD_LOCAL);
     if (!loaded) cannot("simlab: cannot load the probe", ::dlerror());
+    if (ownCopy) ::unlink(probe);
     using Entry = int (*)();
     const auto entry = reinterpret_cast<Entry>(::dlsym(loaded, "simlab_probe_entry"));
     if (!entry) cannot("simlab: the probe has no entry point");
@@ -198,6 +198,22 @@ void becomeTest(const host::StartTest& test, const int (&fds)[5], pid_t server, 
     ::setenv("TMPDIR", here, 1);
 }
 
+// A test's folder, once its probe has ended, removed as the test's own user (the file system's user: setfsuid) -
+// the server holds no capability over files, so nothing a test's process might swap into it while it goes (a
+// link, say) lets this remove more than that user may - and no link followed: the folders the tests share are
+// the space of those still running.
+int removeEntry(const char* path, const struct stat*, int type, struct FTW*) {
+    if (type == FTW_DP) (void)::rmdir(path);
+    else (void)::unlink(path);
+    return 0;  // what cannot go stays; the walk goes on
+}
+void removeFolder(const char* folder, uid_t uid) {
+    if (uid == 0 || !folder[0] || std::strchr(folder, '/') || folder[0] == '.') return;
+    ::syscall(SYS_setfsuid, uid);
+    ::nftw(folder, removeEntry, 16, FTW_DEPTH | FTW_PHYS | FTW_MOUNT);
+    ::syscall(SYS_setfsuid, 0);
+}
+
 // Serves the engine on kServerFd: a test's probe forked for each request, its start and its end told on the
 // test's own socket. Returns only in a test's child, ready to load the probe; the server itself leaves when the
 // engine closes its end.
@@ -208,6 +224,8 @@ void serveTests(int probe) {
     struct Running {
         pid_t pid;
         int pidfd, notify;
+        uid_t uid;
+        char folder[sizeof(StartTest::folder) + 1];
     };
     std::vector<Running> running;
     auto tell = [](int fd, TestEvent event) { (void)!::send(fd, &event, sizeof event, MSG_NOSIGNAL); };
@@ -236,6 +254,7 @@ void serveTests(int probe) {
             tell(running[i].notify, endedEvent(running[i].pid, status, usage));
             ::close(running[i].notify);
             ::close(running[i].pidfd);
+            removeFolder(running[i].folder, running[i].uid);
             running.erase(running.begin() + static_cast<std::ptrdiff_t>(i));
         }
         if (!(watched[0].revents & (POLLIN | POLLHUP | POLLERR))) continue;
@@ -278,9 +297,14 @@ void serveTests(int probe) {
             struct rusage usage {};
             ::wait4(pid, &status, 0, &usage);
             tell(fds[0], endedEvent(pid, status, usage));
+            char folder[sizeof test.folder + 1] = {};
+            std::memcpy(folder, test.folder, sizeof test.folder);
+            removeFolder(folder, test.uid);
         }
         if (pid > 0 && pidfd >= 0) {
-            running.push_back({pid, pidfd, fds[0]});
+            Running r{pid, pidfd, fds[0], test.uid, {}};
+            std::memcpy(r.folder, test.folder, sizeof test.folder);
+            running.push_back(r);
         } else {
             ::close(fds[0]);
         }
@@ -325,5 +349,5 @@ int main(int argc, char** argv) {
         // Run alone, the host is already the test's user: it never loads a student's code with privilege.
         cannot("simlab: a probe runs as a user of its own, never as root or with a capability");
     }
-    runProbe(probe);
+    runProbe(probe, serve);
 }

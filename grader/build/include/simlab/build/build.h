@@ -25,6 +25,7 @@ struct BuildResult {
     double compileSeconds = 0;
     double linkSeconds = 0;
     std::string binary;
+    std::string object;        ///< the student's object, in the object cache, once compiled
 };
 
 /// What a grading's sandboxed processes are lent of simlab's places (isolation/reach.h) beside their own folders:

@@ -43,6 +43,19 @@ void writeFileAtomically(const std::string& path, const std::string& text);
 /// The same, and durable: the file's bytes and then its folder's entry are flushed to the disk (fsync), so that
 /// after a crash or a power cut `path` holds the old text or the new one. For the files that commit a grade.
 void writeFileDurably(const std::string& path, const std::string& text);
+/// The same two for a file people share, an output of grading (the gradebook, manual.csv, the reports, a student's
+/// feedback): its mode as the umask gives (0666 less it) and its group the folder's (a setgid folder's), or, where it
+/// replaces a file, that file's mode and group, so that a TA of the course's group who may edit manual.csv in place
+/// still may after simlab wrote it again.
+void writeOutputAtomically(const std::string& path, const std::string& text);
+void writeOutputDurably(const std::string& path, const std::string& text);
+/// The same for a file of simlab's own (a cache's): its owner's alone (0600), whatever the umask.
+void writePrivateAtomically(const std::string& path, const std::string& text);
+
+/// A folder of grades, made if missing (with the folders above it): its owner's and its group's (0770 less the
+/// umask), never every user's - where files are kept apart by their modes alone, a test's throwaway user must not
+/// reach what simlab writes there later.
+void createOutputFolder(const std::string& path);
 
 /// A hold on a folder simlab writes into (`folder`/.simlab-lock, flock): a second simlab given the same folder
 /// stops with a UsageError naming the first one's process. Released when destroyed or when the process ends.

@@ -20,12 +20,12 @@ namespace simlab::engine {
 
 /// How a test ended. Every outcome has a name in the report.
 enum class Outcome {
-    Passed, Failed, TimedOut, Stalled, OutOfMemory, Crashed, OutputTruncated, BadReport, DidNotFinish,
+    Passed, Failed, TimedOut, Stalled, OutOfMemory, OutOfDisk, Crashed, OutputTruncated, BadReport, DidNotFinish,
     DidNotCompile, Refused, MissingFile
 };
 
-/// "passed", "failed", "timed out", "stalled", "killed for memory", "crashed", "output truncated", "bad report",
-/// "did not finish", "did not compile", "refused", "missing file".
+/// "passed", "failed", "timed out", "stalled", "killed for memory", "killed for disk", "crashed", "output
+/// truncated", "bad report", "did not finish", "did not compile", "refused", "missing file".
 std::string outcomeName(Outcome outcome);
 /// The outcome of that name; throws std::invalid_argument for another.
 Outcome outcomeNamed(const std::string& name);

@@ -1,7 +1,8 @@
 // What a sandboxed process may read: one declaration, which each mode of the sandbox enforces in its own way.
 //
-//   the system         its programs and libraries (systemFolders), the loader's cache, Debian's alternatives, the
-//                      fonts and the time zone (systemFiles), and the harmless devices (systemDevices);
+//   the system         its programs and libraries (systemFolders, less /usr/local: notTheSystems), the loader's
+//                      cache, Debian's alternatives, the fonts and the time zone (systemFiles), and the harmless
+//                      devices (systemDevices);
 //   what it is lent    ProcessRequest::readOnlyPaths: a compile its contract and precompiled header, a link the
 //                      course's objects, a probe its copy of the probe and its host, a judge its own copy;
 //   its own folder     ProcessRequest::workDir (a probe's test: the folder its server makes for it).
@@ -30,6 +31,11 @@ const std::vector<std::string>& systemFolders();
 /// The system's files outside those folders it reads: the loader's cache, Debian's alternatives (BLAS and LAPACK,
 /// which Simbody loads, are chosen there), the fonts (gnuplot, in a judge) and the time zone.
 const std::vector<std::string>& systemFiles();
+/// What lies among the system's folders and is not the system's: /usr/local, the machine's own additions (another
+/// course's lab, a tree installed from source), which no sandbox shows but what it lends from there.
+const std::vector<std::string>& notTheSystems();
+/// simlab's places and notTheSystems(): what bubblewrap covers and Landlock carves out of the system's folders.
+std::vector<std::string> outOfReach();
 /// The devices it may read and write: /dev/null, /dev/zero, /dev/urandom, /dev/random.
 const std::vector<std::string>& systemDevices();
 
@@ -60,10 +66,13 @@ struct Exposure {
     std::size_t tried = 0;              ///< the files tried
     bool bounded = false;               ///< the places hold more than the walk's bound (500,000 entries): the
                                         ///< rest were not tried, and the places count as exposed
+    std::vector<std::string> passable;  ///< places with nothing lent below them that such a user may pass
+                                        ///< through: what simlab writes there later would be readable
     std::string error;                  ///< why nothing could be tried ("" when it was)
-    bool exposed() const { return readableCount > 0 || bounded || !error.empty(); }
+    bool exposed() const { return readableCount > 0 || !passable.empty() || bounded || !error.empty(); }
 };
-/// Every file under the places, less `lent` (files or folders, with what is in them), tried as above.
+/// Every file under the places, less `lent` (files or folders, with what is in them), tried as above; and each
+/// place with nothing lent below it, tried for passage.
 Exposure exposedPlaces(const std::vector<std::string>& lent);
 
 }  // namespace simlab::isolation
