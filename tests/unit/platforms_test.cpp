@@ -531,8 +531,8 @@ TEST_CASE("Classroom: two repositories whose names make one folder name keep a f
 }
 
 TEST_CASE("Gradescope: an id longer than a folder name can be is cut, and told apart by a digest", "[platforms]") {
-    // Found by fuzz-gradescope-yaml: two submissions under one SID of 125 characters made an id past the 255 bytes a
-    // file system's name holds, and the download stopped with "File name too long".
+    // Found by fuzz-gradescope-yaml: an SID (or a group's SIDs joined, or an id told apart by its submission's
+    // name) past the 255 bytes a file system's name holds stopped the download with "File name too long".
     namespace fs = std::filesystem;
     const TempDir dir("simlab-gradescope-test-");
     const std::string download = dir.path() + "/download", sid(300, 's');
