@@ -17,6 +17,7 @@
 #include "simlab/common/errors.h"
 #include "simlab/common/files.h"
 #include "simlab/build/manifest.h"
+#include "simlab/course/metadata.h"
 #include "simlab/course/package.h"
 #include "simlab/course/policy.h"
 #include "simlab/grading/report.h"
@@ -60,26 +61,7 @@ nlohmann::json metadataOf(const AutogradeOptions& o) {
         !o.metadata.empty() ? fs::path(o.metadata)
                             : fs::absolute(o.submission).lexically_normal().parent_path() / "submission_metadata.json";
     if (o.metadata.empty() && !fs::exists(file)) return nullptr;
-    nlohmann::json j = nlohmann::json::parse(engine::readFile(file.string()), nullptr, false);
-    if (j.is_discarded() || !j.is_object()) throw engine::UsageError(engine::printable(file.string()) + " is not JSON");
-    return j;
-}
-
-// A date-time text of the metadata at `path` ("assignment", "due_date"), as UTC seconds; empty where absent.
-std::optional<std::time_t> metadataTime(const nlohmann::json& j, const std::vector<std::string>& path) {
-    const nlohmann::json* at = &j;
-    for (const std::string& key : path) {
-        if (at->is_array() && key.size() == 1 && std::isdigit(static_cast<unsigned char>(key[0]))) {
-            const std::size_t index = static_cast<std::size_t>(key[0] - '0');
-            if (index >= at->size()) return std::nullopt;
-            at = &(*at)[index];
-        } else if (at->is_object() && at->contains(key)) {
-            at = &(*at)[key];
-        } else {
-            return std::nullopt;
-        }
-    }
-    return at->is_string() ? engine::parseTime(at->get<std::string>()) : std::nullopt;
+    return engine::readSubmissionMetadata(engine::readFile(file.string()), file.string());
 }
 
 // The course's rules (--course, else course.toml beside the rubric, if there is one): its late policy, its cap on
@@ -100,14 +82,8 @@ std::optional<engine::LatePolicy> courseRules(const AutogradeOptions& o, const e
 void applyAutogradeLate(engine::LatePolicy policy, const nlohmann::json& metadata, engine::StudentRecord& r) {
     using namespace simlab::engine;
     if (metadata.is_null()) return;
-    if (!policy.active) {
-        const std::optional<std::time_t> own = metadataTime(metadata, {"users", "0", "assignment", "due_date"});
-        const std::optional<std::time_t> due = own ? own : metadataTime(metadata, {"assignment", "due_date"});
-        if (!due) return;
-        policy.due = *due;
-        policy.cutoff = metadataTime(metadata, {"assignment", "late_due_date"});
-        policy.active = true;
-    }
+    policy = metadataLatePolicy(policy, metadata);
+    if (!policy.active) return;
     if (const std::optional<std::time_t> at = metadataTime(metadata, {"created_at"})) {
         r.submitted = utcText(*at);
         r.submittedFrom = "Gradescope's created_at";
@@ -181,19 +157,6 @@ CapCheck checkCap(const engine::SubmissionCap& cap, const nlohmann::json& metada
         check.keptScore = *prior[*standing.kept].score;
     }
     return check;
-}
-
-// The student Gradescope's metadata names (users[0]'s sid, else their email): empty where it names nobody.
-std::string studentOfMetadata(const nlohmann::json& j) {
-    if (j.is_null()) return "";
-    const nlohmann::json users = j.value("users", nlohmann::json::array());
-    if (!users.is_array() || users.empty() || !users[0].is_object()) return "";
-    for (const char* key : {"sid", "email"}) {
-        const nlohmann::json& value = users[0].value(key, nlohmann::json());
-        if (value.is_string() && !value.get<std::string>().empty()) return value.get<std::string>();
-        if (value.is_number_integer()) return value.dump();
-    }
-    return "";
 }
 
 // The platform needs a results.json whatever happens: an error becomes one, with the reason in it.

@@ -112,8 +112,11 @@ std::string trimmed(const std::string& s) {
 
 std::string csvCellValue(const std::string& cell) {
     const std::size_t first = cell.find_first_not_of(' ', 1);
-    const bool neutralized = cell.size() > 1 && cell[0] == '\'' && first != std::string::npos &&
-                             std::string_view("=+-@\t\r").find(cell[first]) != std::string_view::npos;
+    // csvCell neutralizes a tab or a return at the start, and writes it as its escape: "'\t..." is neutralized too.
+    const bool neutralized =
+        cell.size() > 1 && cell[0] == '\'' && first != std::string::npos &&
+        (std::string_view("=+-@\t\r").find(cell[first]) != std::string_view::npos ||
+         cell.compare(first, 2, "\\t") == 0 || cell.compare(first, 2, "\\r") == 0);
     return neutralized ? cell.substr(1) : cell;
 }
 

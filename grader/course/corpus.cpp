@@ -23,6 +23,14 @@ namespace {
     throw std::runtime_error(path + ": " + what);
 }
 
+// A student's folder or file as a case names it (percent escapes decoded): one name in its folder, nothing above it.
+std::string plainName(const std::string& path, const std::string& name, const char* what) {
+    if (name.empty() || name == "." || name == ".." || name.find_first_of(std::string("/\0", 2)) != std::string::npos) {
+        fail(path, std::string(what) + " '" + name + "' is not one plain name (no '/', '.' or '..')");
+    }
+    return name;
+}
+
 }  // namespace
 
 std::string percentDecoded(const std::string& text) {
@@ -60,7 +68,7 @@ CorpusCase loadCorpusCase(const Assignment& assignment, const simlab::Rubric& ru
     }
     CorpusCase c;
     c.name = fs::path(path).stem().string();
-    c.folder = percentDecoded(t["folder"].value_or(c.name));
+    c.folder = plainName(path, percentDecoded(t["folder"].value_or(c.name)), "the folder");
     c.description = t["description"].value_or(std::string());
     c.status = t["status"].value_or(std::string());
     c.skipped = t["skipped"].value_or(false);
@@ -99,14 +107,14 @@ CorpusCase loadCorpusCase(const Assignment& assignment, const simlab::Rubric& ru
             const toml::table* entry = node.as_table();
             const auto name = entry ? (*entry)["name"].value<std::string>() : std::nullopt;
             if (!name) fail(path, "each [[file]] needs a name");
-            const std::string fileName = percentDecoded(*name);
+            const std::string fileName = plainName(path, percentDecoded(*name), "a file's name");
             if ((*entry)["remove"].value_or(false)) {
                 c.files.erase(fileName);
                 continue;
             }
             if (const auto rename = (*entry)["rename"].value<std::string>()) {
                 if (!c.files.count(fileName)) fail(path, "no " + fileName + " to rename");
-                c.files[percentDecoded(*rename)] = c.files[fileName];
+                c.files[plainName(path, percentDecoded(*rename), "a file's new name")] = c.files[fileName];
                 c.files.erase(fileName);
                 continue;
             }

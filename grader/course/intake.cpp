@@ -31,6 +31,12 @@ const std::regex kMoodleFile(R"(^(.+?)_(\d+)_assignsubmission_([a-z]+)_(.+)$)");
 const std::regex kMoodleMark(R"(_(\d+)_assignsubmission_([a-z]+)_)");
 const std::regex kResubmitted(R"(^(.*)-(\d+)(\.[^.]+)$)");  // Canvas's "NewtonsApple-2.cpp"
 
+// A folder name for an id of any length: at most 200 bytes (a file system's names hold 255), a longer id cut and
+// told apart from others cut alike by a digest of the whole.
+std::string bounded(const std::string& id) {
+    return id.size() <= 200 ? id : id.substr(0, 183) + "-" + sha256Hex(id).substr(0, 16);
+}
+
 // A folder name for an id: letters, digits, '.', '_' and '-' kept; anything else becomes '-'.
 std::string safeId(const std::string& text) {
     std::string id;
@@ -40,7 +46,7 @@ std::string safeId(const std::string& text) {
         else if (id.empty() || id.back() != '-') id += '-';
     }
     while (!id.empty() && (id.front() == '.' || id.front() == '-')) id.erase(0, 1);
-    return id.empty() ? "student" : id;
+    return id.empty() ? "student" : bounded(id);
 }
 
 // The modification time of `path` itself (never a link's target), as UTC text; empty when it cannot be read.
@@ -290,6 +296,7 @@ std::vector<IntakeStudent> gradescope(const std::string& folder, const std::stri
             entry.id += (entry.id.empty() ? "" : "+") + safeId(own);
             entry.names += (entry.names.empty() ? "" : ", ") + s.name;
         }
+        entry.id = bounded(entry.id);  // a group's ids joined
         ownIds.insert(entry.id);
         submissions.push_back(std::move(entry));
     }
@@ -304,7 +311,7 @@ std::vector<IntakeStudent> gradescope(const std::string& folder, const std::stri
         // itself, and keeps it): a clash is never two submissions in one folder.
         IntakeStudent first = members.front();
         if (taken.count(id)) {
-            const std::string apart = id + "-" + safeId(submission);
+            const std::string apart = bounded(id + "-" + safeId(submission));
             std::string unique = apart;
             for (int n = 2; taken.count(unique) || ownIds.count(unique); ++n) unique = apart + "-" + std::to_string(n);
             first.note = "the id " + id + " is another submission's too: this one is " + unique;
@@ -493,16 +500,32 @@ std::vector<IntakeStudent> classroom(const std::string& folder, const std::strin
         prefix = prefix.substr(0, prefix.rfind('-') + 1);  // npos + 1 is 0: no common name, no prefix
     }
     std::vector<IntakeStudent> out;
+    // Two repositories whose names make the same folder name ("a b" and "a-b") stay apart, and say so: the second
+    // takes an id no repository has taken or has as its own.
+    const auto loginOf = [&](const std::string& repo) {
+        const std::string login = repo.substr(prefix.size());
+        return login.empty() ? repo : login;
+    };
+    std::set<std::string> ownIds, taken;
+    for (const std::string& repo : repos) ownIds.insert(safeId(loginOf(repo)));
     for (const std::string& repo : repos) {
         IntakeStudent s;
-        s.platformId = repo.substr(prefix.size());
-        if (s.platformId.empty()) s.platformId = repo;
+        s.platformId = loginOf(repo);
         s.name = s.platformId;
         s.id = safeId(s.platformId);
+        if (taken.count(s.id)) {
+            std::string unique;
+            for (int n = 2; unique.empty() || taken.count(unique) || ownIds.count(unique); ++n) {
+                unique = s.id + "-" + std::to_string(n);
+            }
+            s.note = "the id " + s.id + " is another repository's too: this one is " + unique;
+            s.id = unique;
+        }
+        taken.insert(s.id);
         fs::create_directories(classDir + "/" + s.id);
         const Submission found = findSubmission(folder + "/" + repo, handedIn.front(), /*recursive=*/true, false);
         if (found.name.empty()) {
-            s.note = found.note;
+            s.note += (s.note.empty() ? "" : "; ") + found.note;
         } else {
             // The file, and the files the rubric reads beside it (answers, a project description) from its folder.
             takeFile(found.folder, found.name, classDir + "/" + s.id, found.name, limit, s);
@@ -511,7 +534,7 @@ std::vector<IntakeStudent> classroom(const std::string& folder, const std::strin
                     takeFile(found.folder, handedIn[i], classDir + "/" + s.id, handedIn[i], limit, s);
                 }
             }
-            if (found.shown != found.name) s.note = "found at " + found.shown;
+            if (found.shown != found.name) s.note += std::string(s.note.empty() ? "" : "; ") + "found at " + found.shown;
         }
         s.submitted = commitTime(folder + "/" + repo);
         if (!s.submitted.empty()) s.submittedFrom = "the last commit's time";

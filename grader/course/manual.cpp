@@ -1,6 +1,7 @@
 #include "simlab/course/manual.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -35,6 +36,14 @@ bool isFileHash(const std::string& text) {
 }
 
 const std::vector<std::string> kColumns = {"student", "item", "points", "comment", "file"};
+
+// Points as the sheet keeps them: the shortest decimal that reads back as the same number (7.5, 0.125), so that
+// nobody's points change by being kept.
+std::string sheetPoints(double value) {
+    char text[400];  // the largest double written out in full
+    const std::to_chars_result written = std::to_chars(text, text + sizeof text, value, std::chars_format::fixed);
+    return written.ec == std::errc() ? std::string(text, written.ptr) : points(value);
+}
 
 }  // namespace
 
@@ -118,7 +127,7 @@ std::string manualCsv(ManualSheet sheet, const std::vector<std::string>& student
     std::string out = "student,item,points,comment,file\n";
     for (const auto& key : sheet.order) {
         const ManualEntry& e = sheet.entries.at(key);
-        out += csvCell(key.first) + "," + csvCell(key.second) + "," + (e.points ? points(*e.points) : "") + "," +
+        out += csvCell(key.first) + "," + csvCell(key.second) + "," + (e.points ? sheetPoints(*e.points) : "") + "," +
                csvCell(e.comment) + "," + e.file + "\n";
     }
     return out;

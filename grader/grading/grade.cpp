@@ -29,6 +29,7 @@
 #include "simlab/protocol/verdict.h"
 #include "simlab/grading/failure_sites.h"
 #include "simlab/grading/record.h"
+#include "simlab/common/text.h"
 
 namespace fs = std::filesystem;
 

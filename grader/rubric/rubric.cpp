@@ -1,6 +1,8 @@
 #include "simlab/rubric/rubric.h"
 
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -204,9 +206,15 @@ const RubricTest* Rubric::find(const std::string& name) const {
 }
 
 Rubric loadRubric(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw RubricError(path + ": File could not be opened for reading");
+    return readRubric(std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()), path);
+}
+
+Rubric readRubric(const std::string& document, const std::string& path) {
     toml::table root;
     try {
-        root = toml::parse_file(path);
+        root = toml::parse(document, path);
     } catch (const toml::parse_error& e) {
         const std::string what(e.description());
         if (!e.source().begin.line) throw RubricError(path + ": " + what);

@@ -10,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -32,6 +33,13 @@ struct SubjectRun {
 
 // The integrators a study program may name, in the order a study runs them: simlab::kIntegrators
 // (simlab/integrators.h).
+
+/// A study program's line as simlab takes it - the type ("subject", "point", "minimal"), and for each field the
+/// type it must have: what a program built from a student's file prints is data, never trusted. A subject's name
+/// is a plain word (letters, digits, '.', '_', '-'), since it names files and plots; texts are made printable and
+/// cut at 300 bytes; numbers are finite or null; an integrator, a mode and a status are among the known ones.
+/// Empty, with `why` saying what is wrong, for a line no study prints.
+std::optional<json> wellFormedLine(const json& line, std::string& why);
 
 /// Calls work(0), ..., work(count - 1) on `threads` threads at once (at least one), each thread taking the next
 /// index when it is free, and waits for them all. A thread whose call throws takes no more; the first exception is

@@ -18,13 +18,7 @@
 
 namespace simlab::study {
 
-namespace {
-
-/// A study program's line as simlab takes it - the type ("subject", "point", "minimal"), and for each field the
-/// type it must have: what a program built from a student's file prints is data, never trusted. A subject's name
-/// is a plain word (letters, digits, '.', '_', '-'), since it names files and plots; texts are made printable and
-/// cut at 300 bytes; numbers are finite or null; an integrator, a mode and a status are among the known ones.
-/// Empty, with `why` saying what is wrong, for a line no study prints.
+// What a study program printed, made well formed (internal.h).
 std::optional<json> wellFormedLine(const json& line, std::string& why) {
     auto fail = [&](const std::string& what) -> std::optional<json> {
         why = what;
@@ -92,6 +86,8 @@ std::optional<json> wellFormedLine(const json& line, std::string& why) {
     }
     return out;
 }
+
+namespace {
 
 /// Held while a line goes to standard error: the study programs' lines and the progress come from several threads.
 std::mutex stderrLock;

@@ -18,8 +18,12 @@
 //       --out DIR` of the materialized cases) with every case's expectations: outcomes, score, status and text
 //   simlab-corpus invariants <assignment> <case.toml>...               grade each with the object check off, in the
 //       sandbox this machine and environment give, and fail on any record of the witness made as root or with a
-//       capability, on a walk that read a file outside what a test may read (isolation/reach.h), and on an entry
-//       point that did not run where it must (or ran where it must not)
+//       capability, on a walk that read a file outside what a test may read (isolation/reach.h), on an entry
+//       point that did not run where it must (or ran where it must not), on a call the students' filter refuses
+//       that went through (the random calls of tests/corpus/calls.inc: SIMLAB_CALLS calls at most, default 20000,
+//       in SIMLAB_CALLS_MILLIS, default 1500, from SIMLAB_CALLS_SEED, default a new one each run), and on a host
+//       the case changed: a file left in the shared temporary folders, a process of the test's user left, the
+//       bait (a file of its own the calls aim at) or a file of simlab's places changed
 //   simlab-corpus class <assignment> <case.toml>... --simlab PATH     grade them all as one class with
 //       `simlab grade` (--env NAME=VALUE for it, --docker-capabilities to run it with Docker's default capabilities),
 //       while listening on 127.0.0.1:47810, and compare every student; also check that no process a submission
@@ -31,6 +35,7 @@
 #include <CLI/CLI.hpp>
 #include <fcntl.h>
 #include <netinet/in.h>
+#include <dirent.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
@@ -43,6 +48,7 @@
 #include <iostream>
 #include <map>
 #include <optional>
+#include <random>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -56,6 +62,7 @@
 #include "simlab/grading/grade.h"
 #include "simlab/build/lock.h"
 #include "simlab/build/manifest.h"
+#include "simlab/isolation/filter.h"
 #include "simlab/isolation/process.h"
 #include "simlab/grading/report.h"
 #include "simlab/common/text.h"
@@ -68,13 +75,16 @@ namespace {
 
 std::string gSourceDir, gBuildDir;  // this tree's, for {source_dir} and {build_dir}
 std::string gWitness;               // tests/corpus/witness.inc with {reach} written in, for {witness}
+std::string gCalls;                 // tests/corpus/calls.inc with its lists written in, for {calls}
+std::string gBait;                  // the folder of the bait the random calls aim at
 
 using Case = CorpusCase;
 
 // A case with this tree's folders and the witness written into its edits and links.
 Case loadCase(const Assignment& assignment, const simlab::Rubric& rubric, const std::string& path) {
     return loadCorpusCase(assignment, rubric, path,
-                          {{"{source_dir}", gSourceDir}, {"{build_dir}", gBuildDir}, {"{witness}", gWitness}});
+                          {{"{source_dir}", gSourceDir}, {"{build_dir}", gBuildDir}, {"{witness}", gWitness},
+                           {"{calls}", gCalls}});
 }
 
 void writeCase(const Case& c, const fs::path& dir, const std::string& classDir) { writeCorpusCase(c, dir.string(), classDir); }
@@ -514,34 +524,205 @@ std::string reachLiteral(const Manifest& manifest) {
     return literal + "\"";
 }
 
-// The walk's record, R{d=FOLDERS;f=FILES;o=OUTSIDE;b=BOUNDED;p=PATH|PATH...}, if the report holds one.
+// The walks' records, R{d=FOLDERS;f=FILES;o=OUTSIDE;b=BOUNDED;p=PATH|PATH...}, that the report holds, in its order
+// (a case of random calls has two: the walk of a process of the calls', and the test's own).
 struct Walk {
     unsigned long folders = 0, files = 0, outside = 0;
     bool bounded = false;
     std::vector<std::string> first;
 };
 
-std::optional<Walk> walkRecord(const std::string& text) {
-    const std::size_t at = text.find("R{d=");
-    if (at == std::string::npos) return std::nullopt;
-    const std::size_t end = text.find('}', at);
-    if (end == std::string::npos) return std::nullopt;
-    Walk w;
-    std::istringstream fields(text.substr(at + 2, end - at - 2));
-    for (std::string field; std::getline(fields, field, ';');) {
-        const std::size_t eq = field.find('=');
-        if (eq == std::string::npos) continue;
-        const std::string key = field.substr(0, eq), value = field.substr(eq + 1);
-        if (key == "d") w.folders = std::stoul(value);
-        if (key == "f") w.files = std::stoul(value);
-        if (key == "o") w.outside = std::stoul(value);
-        if (key == "b") w.bounded = value == "1";
-        if (key == "p") {
-            std::istringstream paths(value);
-            for (std::string path; std::getline(paths, path, '|');) w.first.push_back(path);
+std::vector<Walk> walkRecords(const std::string& text) {
+    std::vector<Walk> walks;
+    for (std::size_t at = text.find("R{d="); at != std::string::npos; at = text.find("R{d=", at + 4)) {
+        // A record the report cut (a test's reason is at most 400 bytes) ends with its line: its counts came first.
+        const std::size_t end = std::min(text.find_first_of("}\n", at), text.size());
+        Walk w;
+        std::istringstream fields(text.substr(at + 2, end - at - 2));
+        for (std::string field; std::getline(fields, field, ';');) {
+            const std::size_t eq = field.find('=');
+            if (eq == std::string::npos) continue;
+            const std::string key = field.substr(0, eq), value = field.substr(eq + 1);
+            if (key == "d") w.folders = std::stoul(value);
+            if (key == "f") w.files = std::stoul(value);
+            if (key == "o") w.outside = std::stoul(value);
+            if (key == "b") w.bounded = value == "1";
+            if (key == "p") {
+                std::istringstream paths(value);
+                for (std::string path; std::getline(paths, path, '|');) w.first.push_back(path);
+            }
+        }
+        walks.push_back(w);
+    }
+    return walks;
+}
+
+// ---- random system calls (tests/corpus/calls.inc) -------------------------------------------------------------------
+
+// A folder of the corpus's own in the shared temporary folder, with a file in it, that the random calls aim at: both
+// readable by all, neither writable but by their owner. Removed when it goes.
+class Bait {
+public:
+    Bait() {
+        const char* tmp = std::getenv("TMPDIR");
+        std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/fzbait-XXXXXX";
+        if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot make the bait folder in " + pattern);
+        folder_ = pattern;
+        ::chmod(folder_.c_str(), 0755);
+        writeFileAtomically(folder_ + "/bait", "the corpus's bait: random calls must leave it as it is\n");
+        ::chmod((folder_ + "/bait").c_str(), 0644);
+    }
+    ~Bait() {
+        std::error_code ignored;
+        fs::remove_all(folder_, ignored);
+    }
+    const std::string& folder() const { return folder_; }
+
+private:
+    std::string folder_;
+};
+
+// A positive number from the environment variable `name`, else `fallback`.
+unsigned long long setting(const char* name, unsigned long long fallback) {
+    const char* value = std::getenv(name);
+    const unsigned long long n = value ? std::strtoull(value, nullptr, 10) : 0;
+    return n > 0 ? n : fallback;
+}
+
+// The paths the random calls aim at: where a test may write (its folder), the machine's shared temporary folders and
+// the bait (named fzcall-N, to be looked for after), simlab's places and the system's secrets.
+std::vector<std::string> callPaths(const Manifest& manifest, const Assignment& assignment, const std::string& bait) {
+    std::vector<std::string> paths = {"fzcall-1", "./fzcall-2", "../fzcall-3", "/tmp/fzcall-4", "/var/tmp/fzcall-5",
+                                      "/dev/shm/fzcall-6", "/run/lock/fzcall-7", bait + "/fzcall-8", bait,
+                                      bait + "/bait", ".", "..", "", "/", "/etc/passwd", "/etc/shadow", "/etc",
+                                      "/proc/self/mem", "/proc/1/root", "/dev/kmsg", "/dev/tty", "/dev/null", "/root",
+                                      "/home", assignment.rubric, assignment.solution, assignment.judge, manifest.path,
+                                      manifest.sourceDir, manifest.buildDir};
+    if (!assignment.hiddenTests.empty()) paths.push_back(assignment.hiddenTests.front());
+    if (const char* home = std::getenv("HOME")) paths.push_back(std::string(home) + "/fzcall-9");
+    return paths;
+}
+
+// tests/corpus/calls.inc with its lists written in: the students' filter's calls by number, the paths, the draw.
+std::string callsCode(const Manifest& manifest, const Assignment& assignment, const std::string& bait,
+                      unsigned long long seed) {
+    std::string code = readFile(SIMLAB_CORPUS_DIR "/calls.inc");
+    filter::prepareCallNames();
+    const std::vector<std::string> allowedNames = filter::allowedCalls();
+    const std::vector<std::string> refusedNames = filter::refusedCalls();
+    std::string allowed, refused;
+    for (long n = 0; n < 1024; ++n) {
+        const char* name = filter::callName(n);
+        if (!name) continue;
+        if (std::count(allowedNames.begin(), allowedNames.end(), name)) allowed += (allowed.empty() ? "" : ", ") + std::to_string(n);
+        if (std::count(refusedNames.begin(), refusedNames.end(), name)) refused += (refused.empty() ? "" : ", ") + std::to_string(n);
+    }
+    std::string paths;
+    for (const std::string& path : callPaths(manifest, assignment, bait)) {
+        paths += paths.empty() ? "\"" : ", \"";
+        for (const char c : path) {
+            if (c == '"' || c == '\\') paths += '\\';
+            paths += c;
+        }
+        paths += '"';
+    }
+    const std::map<std::string, std::string> values = {
+        {"{allowed}", allowed}, {"{refused}", refused}, {"{paths}", paths}, {"{seed}", std::to_string(seed)},
+        {"{count}", std::to_string(setting("SIMLAB_CALLS", 20000))},
+        {"{millis}", std::to_string(setting("SIMLAB_CALLS_MILLIS", 1500))}};
+    for (const auto& [name, value] : values) {
+        for (std::size_t at = code.find(name); at != std::string::npos; at = code.find(name, at + value.size())) {
+            code.replace(at, name.size(), value);
         }
     }
-    return w;
+    return code;
+}
+
+// The random calls' record, C{n=...;a=...;...;seed=...}: each field's text by its name.
+std::map<std::string, std::string> callsRecord(const std::string& text) {
+    std::map<std::string, std::string> fields;
+    const std::size_t at = text.find("C{n=");
+    const std::size_t end = at == std::string::npos ? at : text.find('}', at);
+    if (end == std::string::npos) return fields;
+    std::istringstream in(text.substr(at + 2, end - at - 2));
+    for (std::string field; std::getline(in, field, ';');) {
+        const std::size_t eq = field.find('=');
+        if (eq != std::string::npos) fields[field.substr(0, eq)] = field.substr(eq + 1);
+    }
+    return fields;
+}
+
+// What of the host a case's code could change: the entries of the shared temporary folders (by owner), the
+// processes (by real user), the machine's name, and the files the calls aim at (their kind, owner, mode, size,
+// time and bytes).
+struct HostState {
+    std::map<std::string, uid_t> shared;
+    std::map<pid_t, uid_t> processes;
+    std::string machine;
+    std::map<std::string, std::string> files;
+};
+
+std::string fileState(const std::string& path) {
+    struct stat info {};
+    if (::lstat(path.c_str(), &info) != 0) return "(none)";
+    std::string state = std::to_string(info.st_mode) + " " + std::to_string(info.st_uid) + ":" +
+                        std::to_string(info.st_gid) + " " + std::to_string(info.st_size) + " " +
+                        std::to_string(info.st_mtim.tv_sec) + "." + std::to_string(info.st_mtim.tv_nsec);
+    if (S_ISREG(info.st_mode) && info.st_size < (1 << 24)) state += " " + sha256Hex(readFile(path));
+    return state;
+}
+
+HostState hostState(const std::vector<std::string>& files) {
+    HostState h;
+    for (const char* folder : {"/tmp", "/var/tmp", "/dev/shm", "/run/lock"}) {
+        std::error_code error;
+        for (auto it = fs::directory_iterator(folder, error); !error && it != fs::directory_iterator(); it.increment(error)) {
+            struct stat info {};
+            if (::lstat(it->path().c_str(), &info) == 0) h.shared[it->path().string()] = info.st_uid;
+        }
+    }
+    if (DIR* proc = ::opendir("/proc")) {
+        while (const struct dirent* e = ::readdir(proc)) {
+            if (e->d_name[0] < '0' || e->d_name[0] > '9') continue;
+            std::ifstream status(std::string("/proc/") + e->d_name + "/status");
+            for (std::string line; std::getline(status, line);) {
+                if (line.rfind("Uid:", 0) == 0) {
+                    h.processes[static_cast<pid_t>(std::atol(e->d_name))] = static_cast<uid_t>(std::stoul(line.substr(4)));
+                    break;
+                }
+            }
+        }
+        ::closedir(proc);
+    }
+    char name[256] = {};
+    ::gethostname(name, sizeof name - 1);
+    h.machine = name;
+    for (const std::string& file : files) h.files[file] = fileState(file);
+    return h;
+}
+
+// What changed on the host between `before` and `after` that a test's code did: a file a call made (fzcall-N) or
+// the test's users (`users`: those its processes ran as, neither root nor simlab's own) left in a shared temporary
+// folder, a process of theirs left, another machine name, a watched file changed.
+std::vector<std::string> hostChanges(const HostState& before, const HostState& after, const std::set<uid_t>& users) {
+    std::vector<std::string> changes;
+    for (const auto& [path, owner] : after.shared) {
+        const bool made = fs::path(path).filename().string().rfind("fzcall-", 0) == 0;
+        if (!before.shared.count(path) && (made || users.count(owner))) {
+            changes.push_back("left on the host: " + path + " (uid " + std::to_string(owner) + ")");
+        }
+    }
+    for (const auto& [pid, owner] : after.processes) {
+        if (users.count(owner)) {
+            changes.push_back("a process of the test's user (uid " + std::to_string(owner) + ") is left: " +
+                              std::to_string(pid));
+        }
+    }
+    if (after.machine != before.machine) changes.push_back("the machine's name changed to " + printable(after.machine));
+    for (const auto& [file, state] : before.files) {
+        if (after.files.at(file) != state) changes.push_back("changed on the host: " + file);
+    }
+    return changes;
 }
 
 // One record of the witness: W{e=ENTRY,ENTRY...;u=UID/EUID;c=EFF/PRM/INH/AMB/BND;nnp=N} (capabilities in
@@ -614,6 +795,19 @@ int invariants(const Manifest& manifest, const Assignment& assignment, const sim
     int failures = 0;
     for (const std::string& path : paths) {
         const Case c = loadCase(assignment, rubric, path);
+        const auto source = c.files.find(assignment.source);
+        const bool calls = source != c.files.end() && source->second.text.find("simlab_calls::tryCalls") != std::string::npos;
+        // Where a test runs as the user who started simlab with files kept apart by their modes alone, a call at
+        // random could change that user's files: not tried there.
+        if (calls && !root && !sandbox.bubblewrap && !sandbox.landlock) {
+            std::cout << "skipped  " << c.name << ": random calls where a test runs as you, its files kept apart by "
+                                                  "their modes alone (they could change your files)\n";
+            continue;
+        }
+        const std::vector<std::string> watched = {gBait, gBait + "/bait", assignment.rubric, assignment.solution,
+                                                  assignment.hiddenTests.empty() ? manifest.path : assignment.hiddenTests.front(),
+                                                  manifest.path};
+        const HostState before = hostState(watched);
         TempDir dir("simlab-invariant-");
         writeCase(c, dir.path() + "/student", dir.path());
         GradeOptions options;
@@ -625,11 +819,15 @@ int invariants(const Manifest& manifest, const Assignment& assignment, const sim
         std::vector<std::string> problems;
         const std::vector<Record> made = records(text);
         bool entryRan = false;
+        std::set<uid_t> users;  // the test's own users (none where it runs as simlab's)
         for (const Record& r : made) {
             entryRan = entryRan || std::find(r.entries.begin(), r.entries.end(), c.invariantEntry) != r.entries.end();
             std::string where;
             for (const std::string& e : r.entries) where += (where.empty() ? "'" : ", '") + e + "'";
             if (r.uid == 0 || r.euid == 0) problems.push_back(where + " ran as root");
+            for (const unsigned long uid : {r.uid, r.euid}) {
+                if (uid != 0 && uid != ::geteuid()) users.insert(static_cast<uid_t>(uid));
+            }
             for (const auto& [set, bits] : r.caps) {
                 // The bounding set is a user's own business when simlab does not run as root.
                 if (bits != 0 && (set != "bounding" || root)) {
@@ -639,18 +837,40 @@ int invariants(const Manifest& manifest, const Assignment& assignment, const sim
                 }
             }
         }
-        const std::optional<Walk> walked = walkRecord(text);
         std::string walkLine;
-        if (walked) {
-            walkLine = "walk: " + std::to_string(walked->folders) + " folders listed, " + std::to_string(walked->files) +
-                       " files readable, " + std::to_string(walked->outside) + " outside what a test may read";
+        for (const Walk& walked : walkRecords(text)) {
+            std::string line = "walk: " + std::to_string(walked.folders) + " folders listed, " +
+                               std::to_string(walked.files) + " files readable, " + std::to_string(walked.outside) +
+                               " outside what a test may read";
             std::string first;
-            for (const std::string& f : walked->first) first += (first.empty() ? "" : ", ") + f;
-            if (walked->folders == 0 || walked->files == 0) problems.push_back("the walk read nothing: " + walkLine);
-            if (walked->bounded) problems.push_back("the walk stopped at its bound: " + walkLine);
-            if (walked->outside > 0 && refusal.empty()) problems.push_back(walkLine + ": " + first);
-            if (walked->outside > 0 && !refusal.empty()) walkLine += " (simlab refuses hidden tests here: " + first + ")";
+            for (const std::string& f : walked.first) first += (first.empty() ? "" : ", ") + f;
+            if (walked.folders == 0 || walked.files == 0) problems.push_back("the walk read nothing: " + line);
+            if (walked.bounded) problems.push_back("the walk stopped at its bound: " + line);
+            if (walked.outside > 0 && refusal.empty()) problems.push_back(line + ": " + first);
+            if (walked.outside > 0 && !refusal.empty()) {
+                line += " (simlab refuses hidden tests here" + (first.empty() ? "" : ": " + first) + ")";
+            }
+            walkLine += (walkLine.empty() ? "" : "; ") + line;
         }
+        if (calls) {
+            const std::map<std::string, std::string> tally = callsRecord(text);
+            const auto field = [&](const char* key) {
+                const auto found = tally.find(key);
+                return found == tally.end() ? std::string("?") : found->second;
+            };
+            if (tally.empty() || field("n") == "0") problems.push_back("no random call was made");
+            if (field("x") != "0") {
+                problems.push_back("a call the students' filter refuses went through (its number and what it "
+                                   "returned): " + field("x"));
+            }
+            if (walkRecords(text).size() < 2) problems.push_back("no process of the random calls lived to walk after them");
+            walkLine = "random calls: " + field("n") + " tried (" + field("a") + " the filter allows, " + field("r") +
+                       " it refuses, " + field("u") + " of neither list; " + field("ok") + " went through, " +
+                       field("e") + " refused with EPERM, " + field("x") + " otherwise) in " + field("k") +
+                       " processes (" + field("s") + " ended by SIGSYS), " + field("ms") + " ms, seed " + field("seed") +
+                       "; " + walkLine;
+        }
+        for (const std::string& change : hostChanges(before, hostState(watched), users)) problems.push_back(change);
         if (made.empty()) problems.push_back("no record of the witness in the report: " + report.status);
         if (c.invariantRuns && !entryRan) problems.push_back("'" + c.invariantEntry + "' never ran");
         if (!c.invariantRuns && entryRan) problems.push_back("'" + c.invariantEntry + "' ran, and must not");
@@ -723,6 +943,10 @@ int main(int argc, char** argv) {
         gWitness = readFile(SIMLAB_CORPUS_DIR "/witness.inc");
         const std::size_t at = gWitness.find("{reach}");
         if (at != std::string::npos) gWitness.replace(at, 7, reachLiteral(manifest));
+        static const Bait bait;
+        gBait = bait.folder();
+        const unsigned long long seed = setting("SIMLAB_CALLS_SEED", std::random_device{}() | 1ULL);
+        gCalls = callsCode(manifest, assignment, gBait, seed);
         const simlab::Rubric rubric = simlab::loadRubric(assignment.rubric);
         if (materializeCommand->parsed()) return materialize(assignment, rubric, cases, out);
         if (classCommand->parsed()) {

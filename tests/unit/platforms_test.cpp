@@ -374,6 +374,14 @@ TEST_CASE("manual.csv: rows for every student and item, what a person typed kept
     const std::string merged = manualCsv(sheet, {"ada", "bob", "cy"}, rubric);
     CHECK_THAT(merged, Catch::Contains("ada,the schematic,8,\"no axis, no joint\",\n"));
     CHECK_THAT(merged, Catch::Contains("gone,the schematic,3,kept,\n"));
+    // Points as typed, to the last digit (found by fuzz-manual: 0.125 was kept as 0.13, 9.999 as 10).
+    const ManualSheet fine = readManualCsv("student,item,points\nada,the schematic,0.125\nbob,the schematic,9.999\n"
+                                           "gone,gone,123456789012345678901234567890\n",
+                                           "manual.csv", rubric);
+    const ManualSheet kept = readManualCsv(manualCsv(fine, {}, rubric), "manual.csv", rubric);
+    CHECK(*kept.entries.at({"ada", "the schematic"}).points == 0.125);
+    CHECK(*kept.entries.at({"bob", "the schematic"}).points == 9.999);
+    CHECK(*kept.entries.at({"gone", "gone"}).points == 123456789012345678901234567890.0);
     CHECK_THAT(merged, Catch::Contains("cy,the schematic,,,\ncy,\"'=the paragraph\",,,\n"));
     // A student's grade from the sheet.
     StudentRecord ada;
@@ -494,4 +502,55 @@ TEST_CASE("Gradescope: every submission keeps a folder of its own, whatever SIDs
             if (s.sid == "s42-submission_103") CHECK(s.id == "s42-submission_103");
         }
     }
+}
+
+TEST_CASE("Classroom: two repositories whose names make one folder name keep a folder each", "[platforms]") {
+    // Found by fuzz-intake: "lab-a b" and "lab-a-b" (or a name led by a byte safeId drops) were both "a-b", and the
+    // second repository's file was never taken. The login that has an id as its own keeps it.
+    namespace fs = std::filesystem;
+    const TempDir dir("simlab-classroom-test-");
+    const std::string download = dir.path() + "/lab-submissions";
+    const std::vector<std::string> repos = {"lab-a b", "lab-a-b", "lab-a-b-2"};
+    for (const std::string& repo : repos) {
+        fs::create_directories(download + "/" + repo + "/.git");
+        writeFileAtomically(download + "/" + repo + "/NewtonsApple.cpp", "// " + repo + "\n");
+    }
+    const std::vector<IntakeStudent> students =
+        takeIn("classroom", download, dir.path() + "/class", {"NewtonsApple.cpp"}, 1 << 20);
+    REQUIRE(students.size() == 3);
+    std::set<std::string> ids;
+    for (std::size_t i = 0; i < students.size(); ++i) {
+        ids.insert(students[i].id);
+        CHECK(readFile(dir.path() + "/class/" + students[i].id + "/NewtonsApple.cpp") == "// " + repos[i] + "\n");
+    }
+    CHECK(ids.size() == 3);
+    CHECK(students[0].id == "a-b");
+    CHECK(students[1].id == "a-b-3");
+    CHECK_THAT(students[1].note, Catch::Contains("the id a-b is another repository's too: this one is a-b-3"));
+    CHECK(students[2].id == "a-b-2");
+}
+
+TEST_CASE("Gradescope: an id longer than a folder name can be is cut, and told apart by a digest", "[platforms]") {
+    // Found by fuzz-gradescope-yaml: an SID (or a group's SIDs joined, or an id told apart by its submission's
+    // name) past the 255 bytes a file system's name holds stopped the download with "File name too long".
+    namespace fs = std::filesystem;
+    const TempDir dir("simlab-gradescope-test-");
+    const std::string download = dir.path() + "/download", sid(300, 's');
+    std::string metadata;
+    for (const char* submission : {"submission_1", "submission_2"}) {
+        fs::create_directories(download + "/" + submission);
+        writeFileAtomically(download + "/" + submission + "/NewtonsApple.cpp", std::string("// ") + submission + "\n");
+        metadata += std::string(submission) + ":\n  :submitters:\n  - {\":sid\": \"" + sid + "\"}\n";
+    }
+    writeFileAtomically(download + "/submission_metadata.yml", metadata);
+    const std::vector<IntakeStudent> students =
+        takeIn("gradescope", download, dir.path() + "/class", {"NewtonsApple.cpp"}, 1 << 20);
+    REQUIRE(students.size() == 2);
+    CHECK(students[0].id != students[1].id);
+    for (const IntakeStudent& s : students) {
+        CHECK(s.id.size() <= 200);
+        CHECK(s.id.rfind(std::string(150, 's'), 0) == 0);
+        CHECK(s.sid == sid);  // the roster keeps the SID whole
+    }
+    CHECK(readFile(dir.path() + "/class/" + students[1].id + "/NewtonsApple.cpp") == "// submission_2\n");
 }

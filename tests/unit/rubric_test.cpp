@@ -80,6 +80,16 @@ TEST_CASE("malformed rubrics are refused with the file, line and what is wrong",
     CHECK_THROWS_WITH(simlab::loadRubric("no-such-rubric.toml"), Contains("no-such-rubric.toml"));
 }
 
+TEST_CASE("TOML that toml++ 3.3.0 mishandles in its checks is a one-line error naming the line", "[rubric]") {
+    // Found by the fuzz targets of simlab's TOML readers: a table header broken by a line break stops toml++ at an
+    // assertion where it is built with them, and a non-ASCII letter where whitespace may be reaches code the
+    // library marks unreachable. The library simlab links (Debian's) reports both as the parse errors they are.
+    using Catch::Contains;
+    CHECK_THROWS_WITH(loadText(kHeader + "[\ntest]\n"), Contains("rubric-test.toml:3:"));
+    CHECK_THROWS_WITH(loadText(kHeader + "\xcf\x87 = 1\n"), Contains("rubric-test.toml:3:"));
+    CHECK_THROWS_WITH(loadText(kHeader + "[limits\xc8\xb9 ]\n"), Contains("rubric-test.toml:3:"));
+}
+
 TEST_CASE("the project's rubric grades 75 points and leaves 25 to be graded by hand", "[rubric]") {
     const simlab::Rubric rubric = simlab::loadRubric(SIMLAB_SOURCE_DIR "/assignments/biosim/grading/rubric.toml");
     CHECK(rubric.totalPoints() == 75);

@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 #include <vector>
 
+#include "biosim/grading/description.h"
 #include "biosim/grading/observations.h"
 #include "simlab/digits.h"
 #include "simlab/harness/testing.h"
@@ -259,20 +260,5 @@ inline toml::table description() {
     }
     return {};
 }
-
-/// Words in a text (runs of letters or digits).
-inline int wordCount(const std::string& text) {
-    int words = 0;
-    bool inWord = false;
-    for (const char c : text) {
-        const bool letter = std::isalnum(static_cast<unsigned char>(c)) != 0;
-        if (letter && !inWord) ++words;
-        inWord = letter;
-    }
-    return words;
-}
-
-/// True if a text is still the template's placeholder.
-inline bool isPlaceholder(const std::string& text) { return text.find("TODO") != std::string::npos; }
 
 }  // namespace biosim::testing

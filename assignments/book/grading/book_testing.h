@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "book/contract/BookSpin.h"
+#include "book/grading/answers.h"
 #include "book/program/exact.h"
 #include "book/grading/observations.h"
 #include "book/program/run_plot.h"
@@ -125,28 +126,15 @@ WorstDrift driftOf(const Run& run, F f, const std::string& name, const std::stri
     return drift;
 }
 
-/// The student's answers file, BookAnswers.toml: each section's values as written.
-struct Answers {
-    std::map<std::string, std::string> conserved;  // quantity -> "yes" / "no"
-    std::map<std::string, std::string> stability;  // minimum, intermediate, maximum -> "stable" / ...
-};
-
+/// The student's answers file, BookAnswers.toml: each section's values as written (answers.h).
 inline Answers readAnswers() {
     const std::string path = grading::submissionFile("BookAnswers.toml");
-    toml::table file;
     try {
-        file = toml::parse_file(path);
+        return answersOf(toml::parse_file(path));
     } catch (const toml::parse_error& e) {
         FAIL("BookAnswers.toml is not valid TOML: " << e.description());
     }
-    Answers answers;
-    for (const auto& [section, into] : {std::pair<const char*, std::map<std::string, std::string>*>{"conserved", &answers.conserved},
-                                        {"stability", &answers.stability}}) {
-        if (const toml::table* table = file[section].as_table()) {
-            for (auto&& [key, value] : *table) (*into)[std::string(key.str())] = value.value_or(std::string("(not text)"));
-        }
-    }
-    return answers;
+    return {};
 }
 
 /// "6 of 9 right; no readable answer for Hx, Hy (write yes or no)".

@@ -113,6 +113,8 @@ struct Rubric {
 
 /// Read and check a rubric file. Throws RubricError.
 Rubric loadRubric(const std::string& path);
+/// Read and check the rubric `document`, as the file `path` would hold it (errors name `path`). Throws RubricError.
+Rubric readRubric(const std::string& document, const std::string& path);
 
 /// Characters a test name may not hold: Catch2 reads them as test-spec syntax.
 bool isValidTestName(const std::string& name, std::string* why = nullptr);
