@@ -290,7 +290,6 @@ Progress::~Progress() {
     watch_->thread.join();
 }
 
-namespace {
 std::string duration(double seconds) {
     char text[64];
     if (seconds < 10) std::snprintf(text, sizeof text, "%.1f s", seconds);
@@ -299,7 +298,6 @@ std::string duration(double seconds) {
     else std::snprintf(text, sizeof text, "%.1f h", seconds / 3600);
     return text;
 }
-}  // namespace
 
 void Progress::at(double t) {
     if (program_.empty() || !(t > 0) || !(finalTime_ > 0)) return;
@@ -366,6 +364,9 @@ void printTrade(std::ostream& out, const RunSettings& base, const std::string& f
             std::snprintf(line, sizeof line, "%-20s %10.2f %10d %14d %12.2f\n", name.c_str(), point.digits,
                           point.steps, point.realizations, ms[ms.size() / 2]);
             out << line << std::flush;
+        } catch (const TooCostly& e) {
+            out << name << std::string(name.size() < 20 ? 21 - name.size() : 1, ' ')
+                << "too costly: " << oneLineMessage(e.what()) << '\n' << std::flush;
         } catch (const std::exception& e) {
             out << name << std::string(name.size() < 20 ? 21 - name.size() : 1, ' ')
                 << "failed: " << oneLineMessage(e.what()) << '\n' << std::flush;

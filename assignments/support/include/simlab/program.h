@@ -63,7 +63,7 @@ struct TradePoint {
 
 /// For every integrator, run `once` with `base` changed to that integrator `repeats` times and print one row:
 /// digits of `figure`, steps, evaluations of the equations of motion and the median wall time. An integrator
-/// that fails is listed with its error.
+/// that fails is listed with its error; one whose run throws TooCostly (driver.h) as too costly, with the reason.
 /// Each row is flushed as it is done; when `program` is given and a run takes more than a few seconds, a line on
 /// stderr says how long the rest of the table will take.
 void printTrade(std::ostream& out, const RunSettings& base, const std::string& figure,
@@ -90,6 +90,9 @@ private:
 
 /// Writes one line to the screen's stderr, even while a SolverChatter keeps the solver's.
 void tellUser(const std::string& line);
+
+/// A duration for a person: "4.2 s", "40 s", "3 min", "2.5 h".
+std::string duration(double seconds);
 
 /// Says on stderr how long a long run will take. Call at() with the simulated time as the run goes: once ~0.2 s
 /// of wall time has passed it estimates the whole run from the pace so far, and if that is over a minute prints
