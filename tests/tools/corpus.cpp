@@ -31,7 +31,8 @@
 //       student has one gradebook row, that nobody connected to the listener, that no student's report holds
 //       another student's file, a line of the hidden tests, of the rubric or of /etc/shadow, that no terminal
 //       line or feedback holds a control character, that no spreadsheet cell starts a formula, that every
-//       results.json is valid UTF-8 JSON, and that simlab itself stayed small
+//       results.json is valid UTF-8 JSON, and that simlab itself stayed small; --keep DIR leaves simlab grade's
+//       --out in DIR for a test that reads the same grades rather than grade again
 #include <CLI/CLI.hpp>
 #include <fcntl.h>
 #include <netinet/in.h>
@@ -342,7 +343,7 @@ void compareGraded(const Assignment& assignment, const std::vector<Case>& cases,
 
 int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, const std::vector<std::string>& paths,
                  const std::string& simlab, int jobs, const std::vector<std::string>& environment,
-                 bool dockerCapabilities) {
+                 bool dockerCapabilities, const std::string& keep) {
     std::vector<Case> cases;
     for (const std::string& path : paths) cases.push_back(loadCase(assignment, rubric, path));
     TempDir dir("simlab-class-");
@@ -448,6 +449,12 @@ int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, con
     if (ids.size() != graded) problems.push_back("the gradebook has " + std::to_string(ids.size()) + " rows");
 
     compareGraded(assignment, cases, out, problems);
+    if (!keep.empty() && fs::is_directory(out)) {
+        const fs::path kept = fs::absolute(keep);
+        fs::remove_all(kept);
+        fs::create_directories(kept.parent_path());
+        fs::copy(out, kept, fs::copy_options::recursive | fs::copy_options::copy_symlinks);
+    }
     for (const std::string& p : problems) std::cout << "MISMATCH: " << p << "\n";
     std::cout << (problems.empty() ? "OK: every student as expected\n" : "FAILED\n");
     return problems.empty() ? 0 : 1;
@@ -924,6 +931,8 @@ int main(int argc, char** argv) {
     classCommand->add_option("--env", environment, "NAME=VALUE for simlab grade (SIMLAB_NO_BUBBLEWRAP=1, say)");
     classCommand->add_flag("--docker-capabilities", dockerCapabilities,
                            "run simlab grade as root with Docker's default capabilities only (setpriv)");
+    std::string keep;
+    classCommand->add_option("--keep", keep, "leave the grades (simlab grade's --out) in this folder");
     std::string grades;
     CLI::App* compareCommand = app.add_subcommand("compare", "Compare a class graded into --grades with the cases.");
     compareCommand->add_option("assignment", assignmentId)->required();
@@ -950,7 +959,7 @@ int main(int argc, char** argv) {
         const simlab::Rubric rubric = simlab::loadRubric(assignment.rubric);
         if (materializeCommand->parsed()) return materialize(assignment, rubric, cases, out);
         if (classCommand->parsed()) {
-            return gradeAsClass(assignment, rubric, cases, simlab, jobs, environment, dockerCapabilities);
+            return gradeAsClass(assignment, rubric, cases, simlab, jobs, environment, dockerCapabilities, keep);
         }
         if (invariantsCommand->parsed()) return invariants(manifest, assignment, rubric, cases);
         if (compareCommand->parsed()) return compareClass(assignment, rubric, cases, grades);
