@@ -164,8 +164,7 @@ void drawRequestedPlot(const Declaration& d, const Options& o, const std::string
 int runOnce(const Declaration& d, const Parameters& p, const Options& o) {
     const simlab::RunSettings& run = o.program.run;
     simlab::ResultsTable table(headerOf(d), o.program.output, o.program.quiet ? nullptr : &std::cout);
-    std::printf("%s: %s; %s, accuracy %g, dt %g s, 0 <= t <= %g s\n", d.program.c_str(), d.title.c_str(),
-                run.integrator.c_str(), run.accuracy, run.dt, run.finalTime);
+    std::printf("%s: %s; %s\n", d.program.c_str(), d.title.c_str(), simlab::describeProgramRun(run).c_str());
     std::fflush(stdout);
     biosim::ObserveHooks hooks;
     std::function<void()> finishAnimation;

@@ -278,11 +278,9 @@ int runOnce(const Options& o) {
     const SimTK::Vec3 I = book::exact::principalMoments(o.scene);
     char banner[400];
     std::snprintf(banner, sizeof banner,
-                  "Book: %g kg, %g x %g x %g m (I = %.6g, %.6g, %.6g kg m^2), w0 = (%g, %g, %g) rad/s; %s, accuracy %g, "
-                  "dt %g s, 0 <= t <= %g s",
+                  "Book: %g kg, %g x %g x %g m (I = %.6g, %.6g, %.6g kg m^2), w0 = (%g, %g, %g) rad/s; %s",
                   o.scene.mass, o.scene.dimensions[0], o.scene.dimensions[1], o.scene.dimensions[2], I[0], I[1], I[2],
-                  o.scene.w_B0[0], o.scene.w_B0[1], o.scene.w_B0[2], run.integrator.c_str(), run.accuracy, run.dt,
-                  run.finalTime);
+                  o.scene.w_B0[0], o.scene.w_B0[1], o.scene.w_B0[2], simlab::describeProgramRun(run).c_str());
     simlab::Tabulation<Sample, book::Model> tabulation;
     tabulation.columns = kColumns;
     tabulation.row = resultsRow;

@@ -27,6 +27,11 @@ bool hasErrorControl(const std::string& name) {
     return name != "SemiExplicitEuler";
 }
 
+bool fixedStepUsesAccuracy(const std::string& name) {
+    requireIntegratorName(name);
+    return name == "Verlet";
+}
+
 std::unique_ptr<SimTK::Integrator> integratorNamed(const std::string& name, const SimTK::System& system,
                                                    double fixedStep) {
     using namespace SimTK;
