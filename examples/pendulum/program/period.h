@@ -1,7 +1,7 @@
 // The period a run's samples show: theta' changes sign at every turning point, each half a period after the last.
-// Each sign change is placed between its two samples by linear interpolation (theta'' is zero where theta' is, so
-// the error is of third order in the sampling interval), and the period is twice the mean time between the first
-// and the last turning points found.
+// Each sign change is placed between its two samples by linear interpolation of theta'. The error of that is set by
+// theta' 's curvature, theta''' = -(g / L) cos(theta) theta', which is zero where theta' is: so it is of third order
+// in the sampling interval. The period is twice the mean time between the first and the last turning points found.
 #pragma once
 
 #include <cmath>
