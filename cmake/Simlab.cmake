@@ -201,6 +201,7 @@ endfunction()
 #   STARTER <file>           what students start from (default: the course tree's starter/<id>/<SOURCE>)
 #   SOLUTION <file>          the reference solution (default: the course tree's solutions/<id>/<SOURCE>); a
 #                            folder of a lab without one (a student bundle's) has none
+#   WORKED_EXAMPLE           the solution is handed out with the student bundle as a worked example: no secret
 #   PROGRAM <name>           the runnable lab program (course main + student file)
 #   CONTRACT <header>        the header the student implements, the only one of the assignment they may include
 #   PRECOMPILED <header>     the end of the assignment's precompiled header: includes the contract, and names the
@@ -215,7 +216,7 @@ endfunction()
 #                            (trade_question.inc); optional
 #   HIDDEN_TRADE <file>)     its hidden variants (trade_hidden.inc); absent from the student bundle, so optional
 function(simlab_add_assignment id)
-  cmake_parse_arguments(A "" "TITLE;SOURCE;STARTER;SOLUTION;PROGRAM;RUBRIC;CONTRACT;PRECOMPILED;TRADE;HIDDEN_TRADE"
+  cmake_parse_arguments(A "WORKED_EXAMPLE" "TITLE;SOURCE;STARTER;SOLUTION;PROGRAM;RUBRIC;CONTRACT;PRECOMPILED;TRADE;HIDDEN_TRADE"
                         "MAIN;PROBE;TESTS;HIDDEN_TESTS;STUDY" ${ARGN})
   foreach(required TITLE SOURCE PROGRAM RUBRIC CONTRACT MAIN PROBE TESTS)
     if(NOT A_${required})
@@ -390,6 +391,11 @@ function(simlab_add_assignment id)
   simlab_json_set_string(json precompiled_header "${pch_header}")
   simlab_json_set_string(json starter "${starter}")
   simlab_json_set_string(json solution "${solution}")
+  if(A_WORKED_EXAMPLE)
+    string(JSON json SET "${json}" solution_shipped true)
+  else()
+    string(JSON json SET "${json}" solution_shipped false)
+  endif()
   simlab_json_set_string(json judge "$<TARGET_FILE:${id}-judge>")
   string(JSON json SET "${json}" hidden_tests_built ${hidden_built})
   simlab_json_set_list(json compile ${compile})

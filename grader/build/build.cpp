@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -15,6 +16,7 @@
 #include <mutex>
 #include <set>
 #include <sstream>
+#include <cstring>
 
 #include "simlab/isolation/elf.h"
 #include "simlab/common/files.h"
@@ -147,10 +149,21 @@ std::vector<std::string> courseFiles(const Manifest& manifest, const Assignment&
 }  // namespace
 
 Builder::Builder(const Manifest& manifest) : manifest_(manifest), cacheDir_(manifest.cacheDir + "/objects") {
-    if (const char* dir = std::getenv("SIMLAB_CACHE"); dir && *dir) cacheDir_ = dir;
+    // Made once, here, before any job writes into it: each folder of the path in turn, one another simlab made
+    // meanwhile taken as made (create_directories may report such a race as a failure, and a job would then find
+    // no folder to write its object into). Every student's source and object is kept in it: simlab's alone (the
+    // linker gets a copy of the one it needs).
+    fs::path made;
+    for (const fs::path& part : fs::absolute(cacheDir_).lexically_normal()) {
+        made /= part;
+        if (::mkdir(made.c_str(), 0755) != 0 && errno != EEXIST) {
+            throw std::runtime_error("cannot make the object cache's folder " + made.string() + ": " +
+                                     std::strerror(errno));
+        }
+    }
     std::error_code ignored;
-    fs::create_directories(cacheDir_, ignored);
-    // Every student's source and object is kept here: simlab's alone (the linker gets a copy of the one it needs).
+    if (!fs::is_directory(cacheDir_, ignored))
+        throw std::runtime_error("the object cache " + cacheDir_ + " is not a folder");
     fs::permissions(cacheDir_, fs::perms::owner_all, ignored);
     if (!manifest.installed) checkPrecompiledHeader();  // before anything is built or said to be
     trimObjectCache(cacheDir_);
@@ -286,7 +299,7 @@ const isolation::CourseSymbols& Builder::courseSymbols(const Assignment& assignm
     std::lock_guard<std::mutex> guard(lock);
     if (const auto found = known.find(key); found != known.end()) return found->second;
     isolation::CourseSymbols& symbols = known[key];
-    // Kept with the build (not with the objects, which $SIMLAB_CACHE may move): it depends on the build alone.
+    // Kept in the cache beside the objects' folder, by the build's key: it depends on the build alone.
     const std::string cached = manifest_.cacheDir + "/course-symbols-" + key + ".txt";
     std::error_code ignored;
     fs::create_directories(manifest_.cacheDir, ignored);
@@ -338,7 +351,7 @@ const isolation::CourseSymbols& Builder::courseSymbols(const Assignment& assignm
                 (s.inLibraries ? '1' : '0') + (s.required ? '1' : '0') + (s.referenced ? '1' : '0') + "\t" + name +
                 "\t" + s.from + "\n";
     }
-    writeFileAtomically(cached, text);
+    writePrivateAtomically(cached, text);
     return symbols;
 }
 
@@ -591,19 +604,31 @@ std::string judgeNotYours(const Assignment& assignment) {
            owner + " (sudo), or with a simlab built as yourself";
 }
 
+std::vector<std::string> lentToTools(const Manifest& manifest, const Assignment& assignment) {
+    std::vector<std::string> lent = includeFolders(assignment.compile);
+    lent.push_back(assignment.contractInclude);
+    lent.insert(lent.end(), assignment.probeObjects.begin(), assignment.probeObjects.end());
+    lent.insert(lent.end(), manifest.probeLibraries.begin(), manifest.probeLibraries.end());
+    for (const std::string& flag : manifest.probeLink) {
+        const std::size_t file = flag.find("--version-script=");
+        if (file != std::string::npos) lent.push_back(flag.substr(file + 17));
+    }
+    lent.push_back(manifest.probeHost);
+    lent.erase(std::remove_if(lent.begin(), lent.end(),
+                              [](const std::string& p) { return p.empty() || isolation::visibleInSandboxes(p); }),
+               lent.end());
+    return lent;
+}
+
 std::string sandboxCannotReach(const Manifest& manifest, const Assignment& assignment) {
     const isolation::SandboxSupport& sandbox = isolation::sandboxSupport();
     // bubblewrap run as root lends each path whatever folder it lies below; as any other user, tools run as it.
     if (!sandbox.ownUser || (sandbox.bubblewrap && sandbox.rootBubblewrap)) return "";
-    std::vector<std::string> needed = includeFolders(assignment.compile);
-    needed.push_back(assignment.contractInclude);
-    needed.insert(needed.end(), assignment.probeObjects.begin(), assignment.probeObjects.end());
-    needed.insert(needed.end(), manifest.probeLibraries.begin(), manifest.probeLibraries.end());
-    needed.push_back(manifest.probeHost);
+    std::vector<std::string> needed = lentToTools(manifest, assignment);
     needed.erase(std::remove_if(needed.begin(), needed.end(),
                                 [](const std::string& p) {
                                     std::error_code error;
-                                    return p.empty() || p.rfind("/usr/", 0) == 0 || !fs::exists(p, error);
+                                    return p.rfind("/usr/", 0) == 0 || !fs::exists(p, error);
                                 }),
                  needed.end());
     const std::vector<std::string> readable = isolation::readableInSandbox(needed, needed);
@@ -633,6 +658,7 @@ BuildResult Builder::buildProbe(const Assignment& assignment, const std::string&
                                 const std::string& workDir, const std::string& binary, bool checkObject) const {
     std::string object;
     BuildResult result = compile(assignment, name, text, workDir, &object);
+    if (result.ok) result.object = object;
     if (!result.ok || (checkObject && refusedObject(assignment, object, name, result))) return result;
     // The course's objects first and whole: an inline function both define keeps the course's copy, and a
     // definition of anything the course defines is an error rather than a replacement.

@@ -99,6 +99,21 @@ std::string labBuildFolder(const Manifest& manifest, const std::string& dir) {
            sha256Hex(canonical.string()).substr(0, 12);
 }
 
+std::vector<std::string> labsBuilt(const Manifest& manifest) {
+    std::vector<std::string> labs;
+    std::error_code error;
+    for (auto it = fs::directory_iterator(manifest.cacheDir + "/labs", error); !error && it != fs::directory_iterator();
+         it.increment(error)) {
+        // Each build's CMakeLists.txt names its lab's folder (buildLab writes it), in brackets.
+        std::ifstream in(it->path() / "project" / "CMakeLists.txt");
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::size_t at = text.find("simlab_add_lab([==[");
+        const std::size_t end = at == std::string::npos ? at : text.find("]==])", at);
+        if (end != std::string::npos) labs.push_back(text.substr(at + 19, end - at - 19));
+    }
+    return labs;
+}
+
 Assignment buildLab(const Manifest& manifest, const std::string& dir) {
     std::error_code error;
     if (!fs::is_directory(dir, error)) throw UsageError("no lab folder " + printable(dir));
@@ -130,6 +145,11 @@ Assignment buildLab(const Manifest& manifest, const std::string& dir) {
         int fd;
         ~Unlock() { ::close(fd); }
     } unlock{lock};
+    // Everything the build writes is its owner's alone (umask 077); what the sandbox's tools must read is lent below.
+    struct Umask {
+        mode_t old;
+        ~Umask() { ::umask(old); }
+    } umask{::umask(077)};
     const std::string project = root + "/project", build = root + "/build", log = root + "/build.log";
     fs::create_directories(project);
     const std::string lists = "# The lab in " + lab.string() + ", built against simlab " + manifest.version +
@@ -150,11 +170,6 @@ Assignment buildLab(const Manifest& manifest, const std::string& dir) {
     // The log may quote a hidden test's lines (a compiler's error): its owner's alone from the start.
     if (const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0600); fd >= 0) ::close(fd);
     ::chmod(log.c_str(), 0600);
-    // Everything the build writes is its owner's alone (umask 077); what the sandbox's tools must read is lent below.
-    struct Umask {
-        mode_t old;
-        ~Umask() { ::umask(old); }
-    } umask{::umask(077)};
     // Configured until it has generated a build system (a configure that failed leaves a cache and no Makefile).
     const bool first = !fs::exists(build + "/Makefile", error) && !fs::exists(build + "/build.ninja", error);
     if (first) {

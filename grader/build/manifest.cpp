@@ -13,6 +13,7 @@
 
 #include "simlab/common/errors.h"
 #include "simlab/common/files.h"
+#include "simlab/common/text.h"
 
 namespace simlab::engine {
 
@@ -84,6 +85,7 @@ Assignment readAssignment(const nlohmann::json& a) {
     x.rubric = a.at("rubric");
     x.starter = a.at("starter");
     x.solution = a.at("solution");
+    x.solutionShipped = a.value("solution_shipped", false);
     x.hiddenTestsBuilt = a.at("hidden_tests_built");
     x.hiddenTests = a.at("hidden_tests").get<std::vector<std::string>>();
     x.contractInclude = a.at("contract_include");
@@ -124,13 +126,15 @@ std::vector<std::string> secretPaths(const Manifest& manifest, const Assignment&
     const bool built = !assignment.buildDir.empty() || (!relative.empty() && *relative.begin() != "..");
     const fs::path buildDir =
         assignment.buildDir.empty() ? fs::path(manifest.buildDir) / relative : fs::path(assignment.buildDir);
+    // A worked example's solution is handed out: it, and what the build made of it, are no secret.
+    const bool solution = !assignment.solution.empty() && !assignment.solutionShipped;
     for (const std::string& path :
-         {assignment.solution.empty() ? std::string() : fs::path(assignment.solution).parent_path().string(),
-          assignment.judge, manifest.sampleClass, assignment.referenceProgramPath, assignment.studyProgramPath,
+         {solution ? fs::path(assignment.solution).parent_path().string() : std::string(), assignment.judge,
+          manifest.sampleClass, solution ? assignment.referenceProgramPath : std::string(),
+          solution ? assignment.studyProgramPath : std::string(),
           built ? (buildDir / "CMakeFiles" / (assignment.id + "_grader_tests.dir")).string() : std::string(),
           built ? (buildDir / "trade").string() : std::string(),
-          built && !assignment.solution.empty() ? (buildDir / (assignment.program + "_reference.o")).string()
-                                                : std::string(),
+          built && solution ? (buildDir / (assignment.program + "_reference.o")).string() : std::string(),
           assignment.buildDir.empty() ? std::string() : assignment.dir + "/corpus"}) {
         if (!path.empty()) secrets.push_back(path);
     }
@@ -147,9 +151,8 @@ std::vector<std::string> courseSecrets(const Manifest& manifest) {
             if (std::find(secrets.begin(), secrets.end(), secret) == secrets.end()) secrets.push_back(secret);
         }
     }
-    const char* cache = std::getenv("SIMLAB_CACHE");
     secrets.push_back(manifest.sourceDir + "/tests/corpus");
-    secrets.push_back(cache && *cache ? std::string(cache) : manifest.cacheDir + "/objects");
+    secrets.push_back(manifest.cacheDir + "/objects");
     secrets.push_back(manifest.sourceDir + "/.git");
     secrets.push_back(manifest.buildDir + "/Testing");
     return secrets;
@@ -174,9 +177,8 @@ const Assignment& Manifest::find(const std::string& id) const {
             if (!error && lab->dir == dir) return *lab;  // built once a run
         }
         labs.push_back(std::make_unique<Assignment>(buildLab(*this, id)));
-        std::vector<std::string> hidden = secretPaths(*this, *labs.back());
-        hidden.push_back(labBuildFolder(*this, id));
-        isolation::hideFromSandboxes(hidden);
+        // The lab's folder whole (its history, corpus and solution too) and its build are simlab's places.
+        isolation::addPlaces({labs.back()->dir, labBuildFolder(*this, id)});
         return *labs.back();
     }
     for (const Assignment& a : assignments) {
@@ -243,22 +245,26 @@ Manifest loadManifest(const std::string& path) {
             }
         }
         m.cacheDir = m.installed ? userCacheDir(m.prefix, m.version) : m.buildDir + "/cache";
+        if (const char* cache = std::getenv("SIMLAB_CACHE"); cache && *cache) {
+            std::error_code error;
+            m.cacheDir = fs::absolute(cache, error).lexically_normal().string();
+            if (error || m.cacheDir.empty()) throw UsageError("SIMLAB_CACHE is '" + printable(cache) + "': a folder's path");
+        }
         if (m.installed) placePrecompiledHeaders(m);
     } catch (const nlohmann::json::exception& e) {
         throw UsageError("build manifest " + path + " is damaged (" + e.what() + "): rebuild with scripts/setup");
     }
-    // Nothing of simlab's own is any sandbox's to see but what each process is lent: a sandbox lets its processes
-    // read the system's folders, and an installation in /usr/local lies among them.
-    std::vector<std::string> hidden = {m.sourceDir, m.buildDir, m.cacheDir, m.sampleClass,
+    // Nothing of simlab's own is any sandbox's to read but what each process is lent (isolation/reach.h): a
+    // sandbox lets its processes read the system's folders, and an installation in /usr/local lies among them.
+    std::vector<std::string> places = {m.sourceDir, m.buildDir, m.cacheDir, m.sampleClass,
                                        fs::path(m.path).parent_path().string()};
-    if (const char* cache = std::getenv("SIMLAB_CACHE"); cache && *cache) hidden.push_back(cache);
     if (m.installed) {
-        for (const char* place : {"/lib/simlab", "/share/simlab"}) hidden.push_back(m.prefix + place);
+        for (const char* place : {"/lib/simlab", "/share/simlab"}) places.push_back(m.prefix + place);
     }
-    for (const Assignment& a : m.assignments) {
-        for (const std::string& secret : secretPaths(m, a)) hidden.push_back(secret);
-    }
-    isolation::hideFromSandboxes(hidden);
+    for (const Assignment& a : m.assignments) places.push_back(a.dir);
+    // Every lab built against this simlab before, wherever it lies, and whether this run names it or not.
+    for (const std::string& lab : labsBuilt(m)) places.push_back(lab);
+    isolation::addPlaces(places);
     isolation::useProbeHost(m.probeHost);
     return m;
 }

@@ -46,6 +46,9 @@ std::string shellWord(const std::string& word);
 /// output; throws std::runtime_error, in one line, if it cannot be run.
 [[noreturn]] void handOver(const std::string& path, std::vector<std::string> args);
 
+/// One line on stderr naming what sweepLeftovers removed (nothing when it removed nothing).
+void sayLeftovers(const std::vector<std::string>& removed);
+
 /// --shard's "I/N" as (I, N), 1 <= I <= N <= 10000; a UsageError in one line otherwise.
 std::pair<int, int> parseShard(const std::string& text);
 
@@ -54,6 +57,8 @@ void addCheck(CLI::App& app);
 void addGrade(CLI::App& app);
 void addBuild(CLI::App& app);
 void addList(CLI::App& app);
+/// simlab lock and simlab clean.
+void addLock(CLI::App& app);
 void addPackage(CLI::App& app);
 void addAutograde(CLI::App& app);
 void addExport(CLI::App& app);

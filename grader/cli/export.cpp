@@ -6,6 +6,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "commands.h"
@@ -53,23 +54,22 @@ std::string listed(const std::vector<std::string>& ids) {
 int matchThroughIntake(std::vector<engine::RosterEntry>& roster, const std::string& intakePath,
                        const std::set<std::string>& graded) {
     using namespace simlab::engine;
-    std::map<std::string, std::string> byCanvasId, bySis;
+    // By the platform's ids alone; one that two students share names neither (StudentIds refuses it, naming both).
+    StudentIds byCanvasId, bySis;
     try {
-        for (const auto& [folder, id] : rosterColumn(intakePath, "ID")) {
-            if (!id.empty()) byCanvasId.emplace(id, folder);
-        }
-        for (const auto& [folder, sis] : rosterColumn(intakePath, "SIS User ID")) {
-            if (!sis.empty()) bySis.emplace(sis, folder);
-        }
+        for (const auto& [folder, id] : rosterColumn(intakePath, "ID")) byCanvasId.add(id, folder);
+        for (const auto& [folder, sis] : rosterColumn(intakePath, "SIS User ID")) bySis.add(sis, folder);
     } catch (const UsageError&) {
         return 0;  // the instructor's edit of it, unreadable: the roster given is matched as it is
     }
     int matched = 0;
     for (RosterEntry& e : roster) {
         if (graded.count(e.folder)) continue;
-        const auto id = e.canvasId.empty() ? byCanvasId.end() : byCanvasId.find(e.canvasId);
-        const auto sis = e.sisUserId.empty() ? bySis.end() : bySis.find(e.sisUserId);
-        const std::string folder = id != byCanvasId.end() ? id->second : sis != bySis.end() ? sis->second : "";
+        const std::optional<std::string> id =
+            e.canvasId.empty() ? std::nullopt : byCanvasId.find(e.canvasId, printable(intakePath) + ", ID");
+        const std::optional<std::string> sis =
+            e.sisUserId.empty() ? std::nullopt : bySis.find(e.sisUserId, printable(intakePath) + ", SIS User ID");
+        const std::string folder = id ? *id : sis ? *sis : "";
         if (!folder.empty()) {
             e.folder = folder;
             ++matched;
@@ -100,7 +100,7 @@ int writeCanvasComments(const std::string& zip, const std::string& grades,
             continue;
         }
         if (!done.insert(name->second).second) continue;
-        writeFileAtomically(staging.path() + "/" + name->second + "_simlab-feedback.html", readFile(page));
+        writeOutputAtomically(staging.path() + "/" + name->second + "_simlab-feedback.html", readFile(page));
         ++written;
     }
     const fs::path target = fs::absolute(zip);
@@ -161,7 +161,7 @@ void runCanvas(const CanvasOptions& o) {
     if (!o.canvasId.empty()) column += " (" + o.canvasId + ")";
 
     const CanvasExport made = canvasCsv(column, possible, roster, records);
-    writeFileAtomically(o.output, made.csv);
+    writeOutputAtomically(o.output, made.csv);
     std::cout << "Wrote " << printable(o.output) << ": " << printable(column) << ", " << made.scored << " of "
               << roster.size() << " students on the roster scored (out of " << points(possible) << ")"
               << (throughIntake > 0 ? ", " + std::to_string(throughIntake) + " matched by Canvas's ID or SIS User ID"

@@ -1,5 +1,6 @@
 // simlab grade: grade every submission of a class on every test, in parallel, resumably.
 #include <CLI/CLI.hpp>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #include "commands.h"
@@ -43,6 +45,7 @@ struct GradeCommandOptions {
     std::string from;
     std::string shard;  // "I/N"
     std::string course;  // course.toml: the late policy
+    std::string submittedTimes;  // --submitted: the hand-in times the instructor names
     bool intakeOnly = false;
 };
 
@@ -124,7 +127,7 @@ std::string classFolder(const GradeCommandOptions& o, const std::string& root, c
         return root;
     }
     const std::size_t cap = static_cast<std::size_t>(rubric.limits.submissionKiB) * 1024;
-    fs::create_directories(out);
+    createOutputFolder(out);
     std::vector<std::string> handedIn = {rubric.submission};
     handedIn.insert(handedIn.end(), rubric.extraFiles.begin(), rubric.extraFiles.end());
     const std::vector<IntakeStudent> students = takeIn(o.from, root, out + "/class", handedIn, cap);
@@ -138,36 +141,81 @@ std::string classFolder(const GradeCommandOptions& o, const std::string& root, c
         std::cerr << "simlab: warning: kept " << printable(rosterPath) << ", which differs from the download's "
                   << "roster; the download's is " << printable(written) << "\n";
     }
-    writeFileAtomically(written, roster);
+    writeOutputAtomically(written, roster);
     std::printf("Took in %zu submitter%s of a %s download into %s/class; who is who: %s\n", students.size(),
                 students.size() == 1 ? "" : "s", o.from.c_str(), printable(out).c_str(), printable(written).c_str());
     return out + "/class";
 }
 
+// Who is who in the class: the platform's ids (the download's, roster.csv's) and each folder by its own name.
+engine::StudentIds classIds(const std::string& out, const std::string& root,
+                            const std::vector<engine::IntakeStudent>& taken) {
+    using namespace simlab::engine;
+    StudentIds ids = rosterIds(out + "/roster.csv");
+    for (const IntakeStudent& s : taken) {
+        for (const std::string& id : {s.id, s.canvasId, s.sid, s.platformId, s.email}) ids.add(id, s.id);
+    }
+    for (const FolderEntry& e : listFolder(root, /*followFolder=*/true)) {
+        if (e.type == EntryType::Directory && e.name[0] != '.') ids.add(e.name, e.name);
+    }
+    return ids;
+}
+
+// Each student's hand-in as the platform gave it: the download's (with Canvas's late flag), or, for a class taken in
+// earlier (--intake-only), its roster's, else the file's own time; then the times the instructor names
+// (--submitted), which win.
+engine::HandIns handIns(const GradeCommandOptions& o, const std::string& out, const std::string& root,
+                        const Rubric& rubric, const std::vector<engine::IntakeStudent>& taken,
+                        const engine::StudentIds& ids) {
+    using namespace simlab::engine;
+    HandIns all;
+    if (taken.empty()) all = rosterHandIns(out + "/roster.csv");
+    if (taken.empty()) {
+        for (const FolderEntry& e : listFolder(root, /*followFolder=*/true)) {
+            if (e.type != EntryType::Directory || e.name[0] == '.' || all.count(e.name)) continue;
+            const Submission found = findSubmission(root + "/" + e.name, rubric.submission, false);
+            struct stat st {};
+            if (!found.name.empty() && ::lstat((found.folder + "/" + found.name).c_str(), &st) == 0) {
+                all[e.name] = handInOf(utcText(st.st_mtime), "the file's time", std::nullopt);
+            }
+        }
+    }
+    for (const IntakeStudent& s : taken) {
+        const HandIn h =
+            handInOf(s.submitted, s.submittedFrom, s.canvasFile.empty() ? std::nullopt : std::optional<bool>(s.late));
+        const auto [kept, first] = all.emplace(s.id, h);
+        if (first) continue;
+        // A group's members share a folder: the latest of their times, late if any is.
+        if (!h.time.empty() && (kept->second.time.empty() || *parseTime(h.time) > *parseTime(kept->second.time))) {
+            kept->second.time = h.time;
+            kept->second.from = h.from;
+        }
+        if (h.flaggedLate) kept->second.flaggedLate = *h.flaggedLate || kept->second.flaggedLate.value_or(false);
+    }
+    if (o.submittedTimes.empty()) return all;
+    for (const auto& [id, h] : readSubmittedTimes(o.submittedTimes, ids)) {
+        HandIn& kept = all[id];
+        kept.time = h.time;
+        kept.from = h.from;
+        kept.vouched = h.vouched;
+        if (h.flaggedLate) kept.flaggedLate = h.flaggedLate;
+    }
+    return all;
+}
+
 // The course's late policy (course.toml: --course, or beside the rubric), its extensions matched through the
-// roster, and each student's submission time as the platform gave it. A copy is kept beside the grades.
-void latePolicy(const GradeCommandOptions& o, const engine::Assignment& assignment, const std::string& out,
-                const std::vector<engine::IntakeStudent>& taken, engine::ClassOptions& options) {
+// platform's ids, and each student's hand-in as the platform gave it; what the run says of those times.
+void latePolicy(const GradeCommandOptions& o, const engine::Assignment& assignment, const Rubric& rubric,
+                const std::string& out, const std::string& root, const std::vector<engine::IntakeStudent>& taken,
+                engine::ClassOptions& options) {
     using namespace simlab::engine;
     const std::string rubricPath = o.rubric.empty() ? assignment.rubric : o.rubric;
     const std::string path =
         !o.course.empty() ? o.course : (fs::path(rubricPath).parent_path() / "course.toml").string();
     if (!o.course.empty() && !fs::is_regular_file(path)) throw UsageError("no course file " + printable(path));
-    std::map<std::string, std::string> aliases = rosterAliases(out + "/roster.csv");
-    for (const IntakeStudent& s : taken) {
-        for (const std::string& alias : {s.id, s.name, s.canvasId, s.sid, s.platformId, s.email}) {
-            if (!alias.empty()) aliases.emplace(alias, s.id);
-        }
-        auto& [when, from] = options.submitted[s.id];
-        if (when.empty() || (!s.submitted.empty() && *parseTime(s.submitted) > *parseTime(when))) {
-            when = s.submitted;
-            from = s.submittedFrom;
-        }
-    }
-    if (taken.empty()) {  // a class taken in earlier (--intake-only): the times its roster keeps
-        for (const auto& [id, when] : rosterTimes(out + "/roster.csv")) options.submitted[id] = {when, "roster.csv"};
-    }
-    options.late = loadLatePolicy(path, assignment.id, aliases);
+    const StudentIds ids = classIds(out, root, taken);
+    options.submitted = handIns(o, out, root, rubric, taken, ids);
+    options.late = loadLatePolicy(path, assignment.id, ids);
     if (!options.late.active) return;
     const LatePolicy& p = options.late;
     std::printf("Late policy of %s: due %s, %s %% per %s (at most %s %%)%s%s, %zu extension%s\n",
@@ -176,28 +224,20 @@ void latePolicy(const GradeCommandOptions& o, const engine::Assignment& assignme
                 p.graceHours > 0 ? (", " + points(p.graceHours / 24) + " grace day(s)").c_str() : "",
                 p.cutoff ? (", no credit after " + utcText(*p.cutoff)).c_str() : "", p.dueFor.size(),
                 p.dueFor.size() == 1 ? "" : "s");
-    if (!p.unknownStudents.empty()) {
-        std::cerr << "simlab: warning: " << p.unknownStudents.size()
-                  << " extension(s) name no student of the roster (kept under that id): "
-                  << printable(p.unknownStudents.front()) << (p.unknownStudents.size() > 1 ? ", ..." : "") << "\n";
-    }
+    options.handInNotes = checkHandIns(options.submitted, options.late);
 }
 
 // The sandbox in use, said to be fit for grading: no test's code may reach the class's files, the grades or the
 // hidden tests.
-const isolation::SandboxSupport& checkedSandbox(const engine::Manifest& manifest, const engine::Assignment& assignment,
-                                                const std::string& root, const std::string& out) {
+const isolation::SandboxSupport& checkedSandbox(const engine::Manifest& manifest, const std::string& root,
+                                                const std::string& out) {
     using namespace simlab::isolation;
     const SandboxSupport& sandbox = sandboxSupport();
     if (!sandbox.warning.empty()) std::cerr << "simlab: warning: " << sandbox.warning << "\n";
-    if (const std::string closed = engine::sandboxCannotReach(manifest, assignment); !closed.empty()) {
-        throw engine::UsageError(closed);
-    }
-    if (const std::string closed = engine::judgeNotYours(assignment); !closed.empty()) throw engine::UsageError(closed);
-    // The class's files and the grades are no sandbox's to see, wherever they lie.
-    hideFromSandboxes({root, out});
+    // The class's files and the grades are simlab's places: no sandbox's to see, wherever they lie.
+    addPlaces({root, out});
     // Hidden tests run only where no test's code can read them, nor the class's files.
-    if (const std::string exposed = engine::secretsExposed(manifest, {root, out}); !exposed.empty()) {
+    if (const std::string exposed = engine::placesExposed(manifest); !exposed.empty()) {
         throw engine::UsageError(exposed);
     }
     return sandbox;
@@ -228,6 +268,7 @@ void reportClass(const GradeCommandOptions& o, bool sharded, const std::string& 
     for (const std::string& w : result.warnings) std::cerr << "simlab: warning: " << printable(w) << "\n";
 
     std::cout << "\n" << summaryTable(rubric, records);
+    for (const std::string& line : result.handIns) std::cout << "Hand-in times: " << printable(line) << "\n";
     const int others = static_cast<int>(records.size()) - result.graded - result.reused;
     std::cout << "\n"
               << result.graded << " graded, " << result.reused << " up to date and kept"
@@ -255,7 +296,7 @@ void reportClass(const GradeCommandOptions& o, bool sharded, const std::string& 
         }
         return;
     }
-    if (!o.junit.empty()) writeFileAtomically(o.junit, junitXml(assignment, records));
+    if (!o.junit.empty()) writeOutputAtomically(o.junit, junitXml(assignment, records));
     std::cout << "\nWrote " << printable(out) << "/gradebook.csv, " << printable(out) << "/summary.csv, "
               << printable(out) << "/report.html and " << printable(out)
               << "/students/<id>/{results.json,feedback.md,feedback.html,history.jsonl}"
@@ -272,10 +313,14 @@ void reportClass(const GradeCommandOptions& o, bool sharded, const std::string& 
 void runGrade(const GradeCommandOptions& o) {
     using namespace simlab::engine;
     const Manifest manifest = loadManifest();
+    sayLeftovers(sweepLeftovers());
     const Assignment& assignment = manifest.find(o.assignment);
     if (!assignment.hiddenTestsBuilt) {
         throw UsageError("grading needs the hidden tests, which this copy of simlab does not have");
     }
+    // Who may grade, first: a refused run writes nothing (no download taken in as another user's files).
+    if (const std::string closed = sandboxCannotReach(manifest, assignment); !closed.empty()) throw UsageError(closed);
+    if (const std::string closed = judgeNotYours(assignment); !closed.empty()) throw UsageError(closed);
     const std::string submissions = submissionsFolder(o, manifest, assignment);
     const std::string out = o.out.empty() ? "grades/" + assignment.id : o.out;
     const std::pair<int, int> shard = shardOf(o);
@@ -286,6 +331,16 @@ void runGrade(const GradeCommandOptions& o) {
     if (o.intakeOnly && o.from.empty()) {
         throw UsageError(
             "--intake-only takes a platform's download in: add --from gradescope, canvas, moodle or classroom");
+    }
+    if (!o.submittedTimes.empty() && !fs::is_regular_file(o.submittedTimes)) {
+        throw UsageError("no submission times file " + printable(o.submittedTimes));
+    }
+    // Then the lock, before the download is taken in: a second simlab on the same folder stops before it writes.
+    // (A shard shares the folder with the other shards, and takes its own lock as it grades.)
+    std::optional<OutputLock> lock;
+    if (!shard.second) {
+        createOutputFolder(out);
+        lock.emplace(out);
     }
     const std::string root = classFolder(o, submissions, out, rubric, taken);
     if (o.intakeOnly) {
@@ -306,9 +361,10 @@ void runGrade(const GradeCommandOptions& o) {
     options.shard = shard.first;
     options.shards = shard.second;
     options.manual = std::move(manual);
-    if (!shard.second) latePolicy(o, assignment, out, taken, options);
+    options.locked = lock.has_value();
+    if (!shard.second) latePolicy(o, assignment, rubric, out, root, taken, options);
 
-    const isolation::SandboxSupport& sandbox = checkedSandbox(manifest, assignment, root, out);
+    const isolation::SandboxSupport& sandbox = checkedSandbox(manifest, root, out);
     std::printf("Grading %s (%s) from %s into %s%s: %d jobs, sandbox: %s\n", assignment.id.c_str(),
                 assignment.title.c_str(), printable(root).c_str(), printable(out).c_str(),
                 shard.second ? (", shard " + o.shard).c_str() : "", o.jobs, sandbox.summary.c_str());
@@ -370,6 +426,12 @@ void addGrade(CLI::App& app) {
                      "or hour, grace days, an extensions file); default: course.toml beside the rubric, if there "
                      "is one")
         ->check(CLI::ExistingFile);
+    grade
+        ->add_option("--submitted", options->submittedTimes,
+                     "when each student handed in, on the platform's word: Canvas's submissions as its API gives "
+                     "them (JSON: user_id, submitted_at, late), or a CSV of student (any id the platform gives) and "
+                     "submitted; these times set how late, in place of the files' own")
+        ->type_name("FILE");
     grade->add_option("--shard", options->shard,
                       "I/N: grade share I of N of the class (students I, I + N, ... in name order) into OUT's student "
                       "folders only, side by side with the other shards on a shared OUT; the command without "

@@ -1,4 +1,4 @@
-// simlab list: the assignments this build knows (or, with --secrets, what simlab keeps from tests' code).
+// simlab list: the assignments this build knows (or, with --secrets, what no student may have).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -14,9 +14,10 @@ void addList(CLI::App& app) {
     CLI::App* list = app.add_subcommand("list", "List the assignments, their files and points.");
     auto secrets = std::make_shared<bool>(false);
     list->add_flag("--secrets", *secrets,
-                   "list instead, one per line, what no test's code may read - every assignment's hidden tests, "
-                   "solutions, judges and what the build made of them, the corpus, the object cache, the sources' "
-                   "history - where it exists (what scripts/lock-course closes)");
+                   "list instead, one per line, what no student may have - every assignment's hidden tests, "
+                   "solutions (not a worked example's), judges and what the build made of them, the corpus, the "
+                   "object cache, the sources' history - where it exists: what the student bundle leaves out. (No "
+                   "test's code may read any of simlab's places but what it is lent; simlab lock closes them.)");
     list->callback([secrets] {
         const engine::Manifest manifest = engine::loadManifest();
         if (*secrets) {

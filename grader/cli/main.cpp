@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
     simlab::cli::addGrade(app);
     simlab::cli::addBuild(app);
     simlab::cli::addList(app);
+    simlab::cli::addLock(app);
     simlab::cli::addPackage(app);
     simlab::cli::addAutograde(app);
     simlab::cli::addExport(app);

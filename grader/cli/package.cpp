@@ -126,20 +126,20 @@ void runAutograde(const AutogradeOptions& o) {
     fs::create_directories(fs::absolute(o.results).parent_path());
     try {
         const Manifest manifest = loadManifest();
+        sayLeftovers(sweepLeftovers());
         Assignment assignment = manifest.find(o.assignment);
         if (!o.judge.empty()) {
             // A judge made apart, with the hidden tests (PrairieLearn's tests/judge): no sandbox sees it.
             if (!fs::is_regular_file(o.judge)) throw UsageError("no judge at " + o.judge);
             assignment.judge = fs::absolute(o.judge).lexically_normal().string();
             assignment.hiddenTestsBuilt = true;
-            isolation::hideFromSandboxes({assignment.judge});
+            // Its folder (the question's tests/, which holds the hidden tests' sources too) is simlab's place.
+            isolation::addPlaces({fs::path(assignment.judge).parent_path().string()});
         }
         if (!fs::is_directory(o.submission)) throw UsageError("no submission folder " + o.submission);
         const Rubric rubric = loadRubric(assignment.rubric);
         if (const std::string closed = sandboxCannotReach(manifest, assignment); !closed.empty()) throw UsageError(closed);
-        if (const std::string exposed = secretsExposed(manifest, {assignment.judge}); !exposed.empty()) {
-            throw UsageError(exposed);
-        }
+        if (const std::string exposed = placesExposed(manifest); !exposed.empty()) throw UsageError(exposed);
         GradeOptions options;
         options.includeHidden = true;
         options.judges = cores();  // one submission

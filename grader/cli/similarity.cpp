@@ -58,9 +58,9 @@ void runSimilarity(const SimilarityOptions& o) {
     const SimilarityReport report = compareSubmissions(files, starter, o.floor);
     const std::string out = o.out.empty() ? "grades/" + assignment.id : o.out;
     fs::create_directories(out);
-    writeFileAtomically(out + "/similarity.html", similarityHtml(assignment.title, report, files, starter));
+    writeOutputAtomically(out + "/similarity.html", similarityHtml(assignment.title, report, files));
     std::printf(
-        "Compared %zu files in pairs, the starter's lines removed: the median pair shares %.0f %% (spread "
+        "Compared %zu files in pairs, the starter's code removed by its tokens: the median pair shares %.0f %% (spread "
         "%.0f %%); flagged at %.0f %% or more (the floor) or at %.0f %% or more (the class):\n",
         report.ids.size(), report.median, report.spread, report.floor, report.threshold);
     for (std::size_t i = 0; i < report.flagged.size(); ++i) {
@@ -80,7 +80,8 @@ void addSimilarity(CLI::App& app) {
     CLI::App* similarity = app.add_subcommand(
         "similarity",
         "Find the pairs of a class's submissions that share most of their code: every pair compared by sim_c++ "
-        "(Debian's similarity-tester) once the starter's lines are removed; a pair is flagged when one file holds "
+        "(Debian's similarity-tester) once the starter's code is removed by its tokens (identifiers compared by "
+        "kind, so that renaming hides neither a copy nor the starter); a pair is flagged when one file holds "
         "at least --floor of the other, or at least 50 % and more than the class's median pair by three times the "
         "class's spread. Writes similarity.html with each flagged pair side by side, its shared runs marked. A lead "
         "for a person to read, not a verdict.");

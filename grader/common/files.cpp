@@ -26,12 +26,18 @@ namespace fs = std::filesystem;
 
 namespace simlab::engine {
 
+namespace {
+
+std::string temporaryBase(const std::string& parent) {
+    if (!parent.empty()) return parent;
+    const char* tmp = std::getenv("TMPDIR");
+    return tmp && *tmp ? tmp : "/tmp";
+}
+
+}  // namespace
+
 TempDir::TempDir(const std::string& prefix, const std::string& parent) {
-    std::string base = parent;
-    if (base.empty()) {
-        const char* tmp = std::getenv("TMPDIR");
-        base = tmp && *tmp ? tmp : "/tmp";
-    }
+    const std::string base = temporaryBase(parent);
     std::string pattern = base + "/" + prefix + "XXXXXX";
     std::vector<char> buffer(pattern.begin(), pattern.end());
     buffer.push_back('\0');
@@ -39,11 +45,55 @@ TempDir::TempDir(const std::string& prefix, const std::string& parent) {
         throw std::runtime_error("cannot create a directory in " + base + ": " + std::strerror(errno));
     }
     path_ = buffer.data();
+    // Held from before it has its name: a sweeping run sees a hold that is locked, or none.
+    const std::string hold = path_ + ".held", pending = hold + ".new";
+    held_ = ::open(pending.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+    if (held_ >= 0 && (::flock(held_, LOCK_EX | LOCK_NB) != 0 || ::rename(pending.c_str(), hold.c_str()) != 0)) {
+        ::unlink(pending.c_str());
+        ::close(held_);
+        held_ = -1;
+    }
 }
 
 TempDir::~TempDir() {
     std::error_code ignored;
     fs::remove_all(path_, ignored);
+    if (held_ >= 0) {
+        ::unlink((path_ + ".held").c_str());
+        ::close(held_);
+    }
+}
+
+std::vector<std::string> sweepLeftovers(const std::vector<std::string>& more) {
+    std::vector<std::string> removed;
+    std::vector<std::string> bases = {temporaryBase("")};
+    bases.insert(bases.end(), more.begin(), more.end());
+    const uid_t me = ::geteuid();
+    for (const std::string& base : bases) {
+        std::error_code error;
+        for (auto it = fs::directory_iterator(base, error); !error && it != fs::directory_iterator(); it.increment(error)) {
+            const std::string hold = it->path().string();
+            const std::string name = it->path().filename().string();
+            if (name.rfind("simlab-", 0) != 0 || name.size() < 12 || name.compare(name.size() - 5, 5, ".held") != 0) continue;
+            const std::string folder = hold.substr(0, hold.size() - 5);
+            const int fd = ::open(hold.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
+            if (fd < 0) continue;
+            struct stat holdInfo {}, folderInfo {};
+            const bool ours = ::fstat(fd, &holdInfo) == 0 && S_ISREG(holdInfo.st_mode) && holdInfo.st_uid == me;
+            if (ours && ::flock(fd, LOCK_EX | LOCK_NB) == 0) {
+                // Nobody holds it: the run that made it is gone.
+                if (::lstat(folder.c_str(), &folderInfo) == 0 && S_ISDIR(folderInfo.st_mode) && folderInfo.st_uid == me) {
+                    std::error_code ignored;
+                    fs::remove_all(folder, ignored);
+                    removed.push_back(fs::path(folder).filename().string());
+                }
+                ::unlink(hold.c_str());
+            }
+            ::close(fd);
+        }
+    }
+    std::sort(removed.begin(), removed.end());
+    return removed;
 }
 
 std::string readFile(const std::string& path) {
@@ -56,13 +106,30 @@ std::string readFile(const std::string& path) {
 
 namespace {
 
-void writeFileThenRename(const std::string& path, const std::string& text, bool durable) {
+// How a written file may be read: `Fixed`, 0644 whatever the umask (what a sandbox's user reads); `Shared`, an output
+// people share (writeOutputAtomically).
+enum class Access { Fixed, Shared, Private };
+
+void writeFileThenRename(const std::string& path, const std::string& text, bool durable,
+                         Access access = Access::Fixed) {
     const std::string temporary = path + ".tmp." + std::to_string(::getpid());
     {
+        // A shared output replacing a file keeps that file's mode and group (a TA's group write on manual.csv);
+        // a new one has the umask's mode and the folder's group (the kernel gives a setgid folder's).
+        struct stat before {};
+        const bool replacing =
+            access == Access::Shared && ::stat(path.c_str(), &before) == 0 && S_ISREG(before.st_mode);
+        const mode_t mode = access == Access::Fixed ? 0644 : access == Access::Private || replacing ? 0600 : 0666;
         // Close-on-exec: a process another thread starts meanwhile must not keep the file open for writing (a
         // program being written would be busy, ETXTBSY, when it is run).
-        const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+        const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, mode);
         if (fd < 0) throw std::runtime_error("cannot write " + temporary + ": " + std::strerror(errno));
+        if (replacing) {
+            // The group first (it may clear setgid bits), then the mode; either may be refused (a group the writer
+            // is not in): the file is written all the same.
+            (void)!::fchown(fd, static_cast<uid_t>(-1), before.st_gid);
+            (void)!::fchmod(fd, before.st_mode & 0777);
+        }
         std::size_t done = 0;
         while (done < text.size()) {
             const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
@@ -130,6 +197,30 @@ void closeToOthers(const std::string& path) {
 void writeFileAtomically(const std::string& path, const std::string& text) { writeFileThenRename(path, text, false); }
 
 void writeFileDurably(const std::string& path, const std::string& text) { writeFileThenRename(path, text, true); }
+
+void writeOutputAtomically(const std::string& path, const std::string& text) {
+    writeFileThenRename(path, text, false, Access::Shared);
+}
+
+void writeOutputDurably(const std::string& path, const std::string& text) {
+    writeFileThenRename(path, text, true, Access::Shared);
+}
+
+void writePrivateAtomically(const std::string& path, const std::string& text) {
+    writeFileThenRename(path, text, false, Access::Private);
+    ::chmod(path.c_str(), 0600);  // a file it replaced may have had another mode
+}
+
+void createOutputFolder(const std::string& path) {
+    std::error_code error;
+    if (fs::is_directory(path, error)) return;
+    const fs::path parent = fs::absolute(path, error).lexically_normal().parent_path();
+    if (!parent.empty()) fs::create_directories(parent, error);
+    // Grades are the course's staff's: the owner's and the group's (a setgid parent's), never every user's.
+    if (::mkdir(path.c_str(), 0770) != 0 && errno != EEXIST) {
+        throw std::runtime_error("cannot create the folder " + path + ": " + std::strerror(errno));
+    }
+}
 
 OutputLock::OutputLock(const std::string& folder, const std::string& shard) {
     const std::string path = folder + "/.simlab-lock";

@@ -111,7 +111,7 @@ void appendHistory(const std::string& dir, const StudentRecord& r, const std::st
                                  {"score", r.score},    {"max_score", r.maxScore},          {"why", why}};
     std::string lines = fs::exists(dir + "/history.jsonl") ? readFile(dir + "/history.jsonl") : "";
     lines += line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
-    writeFileDurably(dir + "/history.jsonl", lines);
+    writeOutputDurably(dir + "/history.jsonl", lines);
 }
 
 std::vector<std::string> namesOf(const std::vector<Attachment>& attached) {
@@ -247,9 +247,9 @@ void writeClassSheets(const std::string& outDir, const ManualSheet& sheet, const
                                "(kept as typed): " +
                                stray.front() + (stray.size() > 1 ? ", ..." : ""));
         }
-        writeFileAtomically(sheetPath, manualCsv(sheet, ids, rubric));
+        writeOutputAtomically(sheetPath, manualCsv(sheet, ids, rubric));
     }
-    writeFileAtomically(outDir + "/rubric.toml", readFile(rubric.path));
+    writeOutputAtomically(outDir + "/rubric.toml", readFile(rubric.path));
 }
 
 // A student to grade now, and why (history.jsonl).
@@ -335,15 +335,17 @@ ClassPlan planClass(const std::vector<std::string>& ids, const std::string& subm
 void stampLateness(StudentRecord& r, const std::string& submissionsDir, const ClassOptions& options) {
     // A student the platform names has its time, or none (their files were written when the download was taken
     // in: no time of theirs).
+    HandIn handIn;
     if (const auto given = options.submitted.find(r.id); given != options.submitted.end()) {
-        r.submitted = given->second.first;
-        r.submittedFrom = given->second.first.empty() ? "" : given->second.second;
+        handIn = given->second;
+        r.submitted = handIn.time;
+        r.submittedFrom = handIn.time.empty() ? "" : handIn.from;
     } else if (struct stat st{};
                !r.file.empty() && ::lstat((submissionsDir + "/" + r.id + "/" + r.file).c_str(), &st) == 0) {
         r.submitted = utcText(st.st_mtime);
         r.submittedFrom = "the file's time";
     }
-    applyLatePolicy(r, options.late);
+    applyLatePolicy(r, options.late, handIn);
 }
 
 // Kept records: results.json written again from each (its scores now, and the points given by hand); the feedback
@@ -357,24 +359,24 @@ void refreshKeptRecords(const Assignment& assignment, const Rubric& rubric, cons
         const std::string before = r.submitted, lateBefore = r.late.line;
         stampLateness(r, submissionsDir, options);
         if (r.submitted != before || r.late.line != lateBefore)
-            writeFileDurably(outDir + "/students/" + id + "/record.json", recordJson(r));
+            writeOutputDurably(outDir + "/students/" + id + "/record.json", recordJson(r));
         const bool moved = std::count(plan.rescored.begin(), plan.rescored.end(), id) > 0;
         const std::string dir = outDir + "/students/" + id;
-        writeFileAtomically(dir + "/results.json", resultsJson(r));
+        writeOutputAtomically(dir + "/results.json", resultsJson(r));
         if (!moved && rubric.manual.empty() && !options.late.active) continue;
         if (moved) {
-            writeFileDurably(dir + "/record.json", recordJson(r));
+            writeOutputDurably(dir + "/record.json", recordJson(r));
             appendHistory(dir, r, "the rubric's points changed (re-scored from the recorded verdicts)");
         }
         const std::vector<Attachment> attached = attachedBeside(dir);
-        writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, r, rubric.manual, namesOf(attached)));
-        writeFileAtomically(dir + "/" + kFeedbackHtml, feedbackHtml(assignment, r, rubric.manual, attached));
+        writeOutputAtomically(dir + "/feedback.md", feedbackMarkdown(assignment, r, rubric.manual, namesOf(attached)));
+        writeOutputAtomically(dir + "/" + kFeedbackHtml, feedbackHtml(assignment, r, rubric.manual, attached));
     }
     for (const auto& [id, r] : plan.records) {
         const std::string dir = outDir + "/students/" + id;
         if (!fs::exists(dir + "/" + kFeedbackHtml)) {
-            writeFileAtomically(dir + "/" + kFeedbackHtml,
-                                feedbackHtml(assignment, r, rubric.manual, attachedBeside(dir)));
+            writeOutputAtomically(dir + "/" + kFeedbackHtml,
+                                  feedbackHtml(assignment, r, rubric.manual, attachedBeside(dir)));
         }
     }
 }
@@ -429,8 +431,8 @@ public:
         std::vector<StudentRecord> sorted;
         for (const auto& [id, r] : plan_.records) sorted.push_back(r);
         const std::string text = gradebookCsv(c_.rubric, sorted);
-        if (durable) writeFileDurably(c_.outDir + "/gradebook.csv", text);
-        else writeFileAtomically(c_.outDir + "/gradebook.csv", text);
+        if (durable) writeOutputDurably(c_.outDir + "/gradebook.csv", text);
+        else writeOutputAtomically(c_.outDir + "/gradebook.csv", text);
     }
 
 private:
@@ -489,23 +491,23 @@ private:
         record.basis = c_.basis;
         applyManual(record, c_.sheet, c_.rubric);
         stampLateness(record, c_.submissionsDir, c_.options);
-        writeFileAtomically(dir + "/results.json", resultsJson(record));
-        if (report) writeFileAtomically(dir + "/output.txt", testOutputText(*report));
+        writeOutputAtomically(dir + "/results.json", resultsJson(record));
+        if (report) writeOutputAtomically(dir + "/output.txt", testOutputText(*report));
         std::vector<Attachment> attached;
         if (report) {
             for (const TestResult& t : report->tests) {
                 for (const auto& [name, text] : t.attachments) {
                     if (name == kFeedbackHtml) continue;  // the page below
-                    writeFileAtomically(dir + "/" + name, text);
+                    writeOutputAtomically(dir + "/" + name, text);
                     attached.push_back({name, text});
                 }
             }
         }
         const std::vector<ManualItem>& manual = c_.rubric.manual;
-        writeFileAtomically(dir + "/feedback.md", feedbackMarkdown(c_.assignment, record, manual, namesOf(attached)));
-        writeFileAtomically(dir + "/" + kFeedbackHtml, feedbackHtml(c_.assignment, record, manual, attached));
+        writeOutputAtomically(dir + "/feedback.md", feedbackMarkdown(c_.assignment, record, manual, namesOf(attached)));
+        writeOutputAtomically(dir + "/" + kFeedbackHtml, feedbackHtml(c_.assignment, record, manual, attached));
         appendHistory(dir, record, why);
-        writeFileDurably(dir + "/record.json", recordJson(record));  // last: the commit
+        writeOutputDurably(dir + "/record.json", recordJson(record));  // last: the commit
 
         std::lock_guard<std::mutex> guard(lock_);
         plan_.records[record.id] = record;
@@ -540,10 +542,14 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     ClassResult result;
     const std::vector<std::string> ids = classStudents(submissionsDir, options, result.skipped);
     const bool sharded = options.shards > 0;
+    createOutputFolder(outDir);
     fs::create_directories(outDir + "/students");
     // One simlab at a time writes a class's grades, or shards side by side, each its own students.
-    const OutputLock outputLock(outDir,
-                                sharded ? std::to_string(options.shard) + "-of-" + std::to_string(options.shards) : "");
+    std::optional<OutputLock> outputLock;
+    if (!options.locked) {
+        outputLock.emplace(outDir,
+                           sharded ? std::to_string(options.shard) + "-of-" + std::to_string(options.shards) : "");
+    }
     const Limits limits = options.grade.limits.value_or(rubric.limits);
     const Hash base = gradingBasis(builder, assignment, rubric, limits, options.grade.includeHidden);
     ClassPlan plan = planClass(ids, submissionsDir, outDir, rubric, limits, base, options);
@@ -564,9 +570,10 @@ ClassResult gradeClass(const Builder& builder, const Assignment& assignment, con
     }
     grading.publish(true);
     result.reused = plan.reused;
+    result.handIns = options.handInNotes;
     if (!sharded) {
-        writeFileAtomically(outDir + "/summary.csv", summaryCsv(rubric, result.records));
-        writeFileAtomically(outDir + "/report.html", classReportHtml(assignment, rubric, result));
+        writeOutputAtomically(outDir + "/summary.csv", summaryCsv(rubric, result.records));
+        writeOutputAtomically(outDir + "/report.html", classReportHtml(assignment, rubric, result));
     }
     if (setupFailure) std::rethrow_exception(setupFailure);
     if (isolation::childrenInterrupted()) throw Interrupted();

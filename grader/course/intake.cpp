@@ -25,8 +25,10 @@ namespace {
 
 const std::regex kCanvasFile(R"(^([^_]+)_(?:(late|LATE)_)?(\d+)_(\d+)_(.+)$)");
 const std::regex kMoodleFolder(R"(^(.+)_(\d+)_assignsubmission_([a-z]+)_$)");
-// Moodle's download "not in folders": each file named after its student and plugin.
-const std::regex kMoodleFile(R"(^(.+)_(\d+)_assignsubmission_([a-z]+)_(.+)$)");
+// Moodle's download "not in folders": each file named after its student and plugin. The name before the id and the
+// file's own name after it are a person's to choose, so a name may hold the pattern again: moodleFile anchors it.
+const std::regex kMoodleFile(R"(^(.+?)_(\d+)_assignsubmission_([a-z]+)_(.+)$)");
+const std::regex kMoodleMark(R"(_(\d+)_assignsubmission_([a-z]+)_)");
 const std::regex kResubmitted(R"(^(.*)-(\d+)(\.[^.]+)$)");  // Canvas's "NewtonsApple-2.cpp"
 
 // A folder name for an id: letters, digits, '.', '_' and '-' kept; anything else becomes '-'.
@@ -159,7 +161,7 @@ void takeFile(const std::string& folder, const std::string& name, const std::str
         return;
     }
     fs::create_directories(toDir);
-    if (!fs::exists(toDir + "/" + asName)) writeFileAtomically(toDir + "/" + asName, h.text);
+    if (!fs::exists(toDir + "/" + asName)) writeOutputAtomically(toDir + "/" + asName, h.text);
 }
 
 // Every regular file below `folder` (a submission as the platform keeps it), each under its own name.
@@ -340,19 +342,87 @@ std::string newestFileTime(const std::string& folder) {
     return newest;
 }
 
+// One reading of a Moodle entry's name: the student's name and participant number, the plugin, the file's own name.
+struct MoodleName {
+    std::string name, id, plugin, file;
+};
+
+// Every way of reading a flat file's name "Name_123_assignsubmission_file_File.cpp": one per "_<digits>_
+// assignsubmission_<plugin>_" in it (a name or a file name may hold one too).
+std::vector<MoodleName> moodleReadings(const std::string& entry) {
+    std::vector<MoodleName> readings;
+    for (auto it = std::sregex_iterator(entry.begin(), entry.end(), kMoodleMark); it != std::sregex_iterator(); ++it) {
+        const std::smatch& m = *it;
+        const std::size_t at = static_cast<std::size_t>(m.position(0)),
+                          after = at + static_cast<std::size_t>(m.length(0));
+        if (at == 0 || after >= entry.size()) continue;
+        readings.push_back({entry.substr(0, at), m[1].str(), m[2].str(), entry.substr(after)});
+    }
+    return readings;
+}
+
 std::vector<IntakeStudent> moodle(const std::string& folder, const std::string& classDir, std::size_t limit) {
     std::map<std::string, IntakeStudent> students;
     std::vector<std::string> order;
-    for (const FolderEntry& e : listFolder(folder, /*followFolder=*/true)) {
+    // Who each participant number is, by the entries that can be read one way only: a folder (its name ends with
+    // the mark, so the last one is the student's) or a file with one mark. A file that can be read several ways is
+    // read the way that gives no participant another's name; if still more than one way, it is not taken.
+    const std::vector<FolderEntry> entries = listFolder(folder, /*followFolder=*/true);
+    std::map<std::string, std::set<std::string>> namesOf;  // participant number -> names
+    for (const FolderEntry& e : entries) {
+        std::smatch m;
+        if (e.type == EntryType::Directory && std::regex_match(e.name, m, kMoodleFolder)) namesOf[m[2]].insert(m[1]);
+        if (e.type != EntryType::Regular) continue;
+        const std::vector<MoodleName> readings = moodleReadings(e.name);
+        if (readings.size() == 1) namesOf[readings[0].id].insert(readings[0].name);
+    }
+    for (const FolderEntry& e : entries) {
+        MoodleName n;
         std::smatch m;
         const bool inFolder = e.type == EntryType::Directory && std::regex_match(e.name, m, kMoodleFolder);
-        if (!inFolder && !(e.type == EntryType::Regular && std::regex_match(e.name, m, kMoodleFile))) continue;
-        IntakeStudent& s = studentOf(students, order, safeId(m[1].str() + "_" + m[2].str()), m[1]);
-        s.platformId = m[2];
+        if (inFolder) {
+            n = {m[1], m[2], m[3], ""};
+        } else if (e.type == EntryType::Regular) {
+            std::vector<MoodleName> readings = moodleReadings(e.name);
+            if (readings.empty()) continue;
+            if (readings.size() > 1) {
+                // A reading whose participant is known under another name is no reading; one known under its own
+                // name is the one.
+                readings.erase(std::remove_if(readings.begin(), readings.end(),
+                                              [&](const MoodleName& r) {
+                                                  const auto known = namesOf.find(r.id);
+                                                  return known != namesOf.end() && !known->second.count(r.name);
+                                              }),
+                               readings.end());
+                const auto own = std::find_if(readings.begin(), readings.end(),
+                                              [&](const MoodleName& r) { return namesOf.count(r.id) > 0; });
+                if (own != readings.end() && std::count_if(readings.begin(), readings.end(), [&](const MoodleName& r) {
+                                                 return namesOf.count(r.id) > 0;
+                                             }) == 1) {
+                    readings = {*own};
+                }
+            }
+            if (readings.size() != 1) {
+                // Said beside the student its name gives first (the name Moodle writes first), never taken.
+                const MoodleName first = readings.empty() ? moodleReadings(e.name).front() : readings.front();
+                IntakeStudent& s = studentOf(students, order, safeId(first.name + "_" + first.id), first.name);
+                s.platformId = first.id;
+                fs::create_directories(classDir + "/" + s.id);
+                s.note += (s.note.empty() ? "" : "; ") + printable(e.name) +
+                          " can be read as more than one student's (its name holds another participant's number): "
+                          "not taken";
+                continue;
+            }
+            n = readings[0];
+        } else {
+            continue;
+        }
+        IntakeStudent& s = studentOf(students, order, safeId(n.name + "_" + n.id), n.name);
+        s.platformId = n.id;
         const std::string id = s.id;
         fs::create_directories(classDir + "/" + id);
         // The uploaded files are graded; an online text is the same student's, and is noted.
-        if (m[3] != "file") {
+        if (n.plugin != "file") {
             if (s.note.find("online text") == std::string::npos) {
                 s.note += (s.note.empty() ? "" : "; ") + std::string("an online text too (not graded)");
             }
@@ -362,7 +432,7 @@ std::vector<IntakeStudent> moodle(const std::string& folder, const std::string& 
             takeFolder(folder + "/" + e.name, classDir + "/" + id, limit, s);
             s.submitted = later(s.submitted, newestFileTime(folder + "/" + e.name));
         } else {
-            takeFile(folder, e.name, classDir + "/" + id, m[4].str(), limit, s, /*followFolder=*/true);
+            takeFile(folder, e.name, classDir + "/" + id, n.file, limit, s, /*followFolder=*/true);
             s.submitted = later(s.submitted, fileTime(folder + "/" + e.name));
         }
         if (!s.submitted.empty()) s.submittedFrom = "Moodle's file time";
@@ -503,7 +573,7 @@ std::vector<IntakeStudent> takeIn(const std::string& layout, const std::string& 
     }
     fs::remove_all(classDir, ignored);
     fs::create_directories(classDir);
-    writeFileAtomically(mark, "a class simlab took in from " + printable(folder) + "\n");
+    writeOutputAtomically(mark, "a class simlab took in from " + printable(folder) + "\n");
     std::vector<IntakeStudent> students;
     if (layout == "canvas") students = canvas(folder, classDir, limitBytes);
     else if (layout == "gradescope") students = gradescope(folder, classDir, limitBytes);

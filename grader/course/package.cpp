@@ -59,11 +59,22 @@ PackageSummary copyFiles(const Manifest& manifest, const std::vector<Rule>& rule
     return summary;
 }
 
-std::vector<Rule> instructorOnly() {
+std::vector<Rule> instructorOnly(const Manifest& manifest) {
+    // A worked example's solution (simlab_add_assignment's WORKED_EXAMPLE) is given to students; every other
+    // solution is no student's (secretPaths, `simlab list --secrets`).
+    std::vector<std::string> shipped;
+    std::string kept;
+    for (const Assignment& a : manifest.assignments) {
+        if (!a.solutionShipped || a.solution.empty()) continue;
+        shipped.push_back(relativeTo(fs::path(a.solution).parent_path().string(), manifest.sourceDir) + "/");
+        kept += (kept.empty() ? "" : ", ") + shipped.back();
+    }
     return {
-        // The project's reference solution is its worked example, the baby boot, which students are given.
-        {"solutions/ (but the worked example project, solutions/biosim/)",
-         [](const std::string& f) { return startsWith(f, "solutions/") && !startsWith(f, "solutions/biosim/"); }},
+        {"solutions/" + (kept.empty() ? std::string() : " (but the worked examples, " + kept + ")"),
+         [shipped](const std::string& f) {
+             return startsWith(f, "solutions/") &&
+                    std::none_of(shipped.begin(), shipped.end(), [&](const std::string& s) { return startsWith(f, s); });
+         }},
         {"tests/: the corpus is made from the solutions and holds expected scores",
          [](const std::string& f) { return startsWith(f, "tests/"); }},
         {".ci/ and bench/", [](const std::string& f) { return startsWith(f, ".ci/") || startsWith(f, "bench/"); }},
@@ -92,6 +103,50 @@ void addCatch2(const Manifest& manifest, const std::string& dir, PackageSummary&
     }
 }
 
+// pandoc's Lua filter for the handout pages: every code block in a box (div.code) that takes the keyboard's focus,
+// named for a screen reader by its kind and number, so that a block too wide for the page scrolls by keyboard.
+const char kCodeBlocksFilter[] = R"(local names = { console = "console", sh = "shell commands", cpp = "C++ code",
+                toml = "TOML", text = "text", gnuplot = "gnuplot script" }
+local count = 0
+function CodeBlock(block)
+  count = count + 1
+  local kind = block.classes[1]
+  local label = ((kind and (names[kind] or kind)) or "text") .. ", example " .. count
+  return pandoc.Div({ block }, pandoc.Attr("", { "code" }, { { "tabindex", "0" }, { "role", "group" },
+                                                            { "aria-label", label } }))
+end
+)";
+
+// `markdown` with each image that stands alone on its line and shows an SVG of handouts/ (`dir`) that carries a
+// text alternative (a plot drawn by simlab) written as the shared figure: the plot's title as the image's alt,
+// its description, and its points as tables. Other lines as they are.
+std::string withPlotFigures(const std::string& markdown, const std::string& dir) {
+    std::istringstream in(markdown);
+    std::string out, line;
+    bool fenced = false;
+    int figures = 0;
+    while (std::getline(in, line)) {
+        const std::string trimmed = line.substr(0, line.find_last_not_of(" \t\r") + 1);
+        const std::size_t start = trimmed.find_first_not_of(' ');
+        if (start != std::string::npos && (trimmed.compare(start, 3, "```") == 0 || trimmed.compare(start, 3, "~~~") == 0)) {
+            fenced = !fenced;
+        }
+        const std::size_t close = trimmed.find("](");
+        if (!fenced && trimmed.rfind("![", 0) == 0 && close != std::string::npos && trimmed.back() == ')') {
+            const std::string alt = trimmed.substr(2, close - 2), src = trimmed.substr(close + 2, trimmed.size() - close - 3);
+            const bool plain = src.find_first_of(" \"'<>") == std::string::npos && src.find("..") == std::string::npos &&
+                               src.size() > 4 && src.compare(src.size() - 4, 4, ".svg") == 0;
+            const std::string svg = plain && fs::is_regular_file(dir + "/" + src) ? readFile(dir + "/" + src) : "";
+            if (svg.find("<metadata id=\"simlab-plot-data\">") != std::string::npos) {
+                out += writers::figureHtml("figure-" + std::to_string(++figures), src, svg, alt);
+                continue;
+            }
+        }
+        out += line + "\n";
+    }
+    return out;
+}
+
 // The handouts as pages. Each handouts/<id>.md becomes handouts/<id>.html beside it: pandoc, standalone, with its
 // images inlined and its mathematics as MathML, so that the page opens from disk with no network. Where the
 // assignment's reference program draws (--plot) and replays (--replay), the page ends with the reference run's plot
@@ -105,11 +160,21 @@ void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSu
     const std::string handouts = fs::absolute(dir).string() + "/handouts";  // the programs run elsewhere
     // A console block keeps its lines as a terminal shows them (pandoc's default style wraps them, so a table's
     // columns fall apart); a wide one scrolls.
+    // Each block is in a box that takes the keyboard's focus (codeBlocks), so that one too wide for the page can be
+    // scrolled without a mouse; the box scrolls, not the block in it.
     TempDir styleDir("simlab-handout-style-");
-    const std::string style = styleDir.path() + "/style.html";
+    const std::string style = styleDir.path() + "/style.html", filter = styleDir.path() + "/code-blocks.lua";
     writeFileAtomically(style, "<style>\nbody { max-width: 48em; }\n"
-                               "pre, pre > code { white-space: pre; overflow-x: auto; line-height: 1.35; }\n"
-                               "pre { background: #f6f6f6; padding: 0.6em 0.8em; }\n</style>\n");
+                               "pre, pre > code { white-space: pre; line-height: 1.35; }\n"
+                               "pre { background: #f6f6f6; padding: 0.6em 0.8em; margin: 0; overflow: visible; }\n"
+                               "div.code { overflow-x: auto; margin: 1em 0; background: #f6f6f6; }\n"
+                               "div.code div.sourceCode { overflow: visible; margin: 0; }\n"
+                               "div.code:focus-visible { outline: 2px solid #0b57d0; outline-offset: 2px; }\n"
+                               "figure { margin: 1em 0; }\nfigcaption { color: #444; }\n"
+                               "details.data table { margin: 0.5em 0 1em; border-collapse: collapse; }\n"
+                               "details.data th, details.data td { padding: 2px 10px; text-align: right; }\n"
+                               "details.data caption { text-align: left; font-weight: 600; }\n</style>\n");
+    writeFileAtomically(filter, kCodeBlocksFilter);
     int pages = 0, runs = 0;
     for (const Assignment& a : manifest.assignments) {
         const std::string markdown = handouts + "/" + a.id + ".md";
@@ -130,9 +195,10 @@ void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSu
             if (ran.exitedCleanly() && fs::exists(handouts + "/" + plot) && fs::exists(handouts + "/" + replay)) {
                 ++runs;
                 after = "<section id=\"reference-run\">\n<h2>The reference solution's run</h2>\n<p>What <code>" + a.program +
-                        "</code> draws with <code>--plot</code> on the reference solution, with its default settings:</p>\n"
-                        "<p><img src=\"" + plot + "\" alt=\"the reference run against the exact solution\" "
-                        "style=\"max-width: 100%\"></p>\n<p><a href=\"" + replay + "\">Replay the run in 3-D</a> "
+                        "</code> draws with <code>--plot</code> on the reference solution, with its default settings:</p>\n" +
+                        writers::figureHtml("reference-plot", plot, readFile(handouts + "/" + plot),
+                                            "the reference run against the exact solution") +
+                        "<p><a href=\"" + replay + "\">Replay the run in 3-D</a> "
                         "(<code>--replay</code>: a page of its own, which also opens offline).</p>\n</section>\n";
             } else {
                 std::error_code ignored;
@@ -152,8 +218,13 @@ void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSu
         // Read as CommonMark, as the handouts are written (and as a forge shows them): a fence's info string may
         // carry words after the language ("console solution"), a heading needs no blank line before it, and no
         // "smart" typography turns an option's "--" into a dash.
-        std::vector<std::string> argv = {pandoc, "--from", "commonmark_x-smart", a.id + ".md", "--standalone",
+        // The handout's plots that carry their points (figures drawn by simlab) get their text alternative from
+        // the shared figure (figureHtml), in a copy of the handout beside it (its images' paths hold there).
+        const std::string source = "." + a.id + "-page.md";
+        writeFileAtomically(handouts + "/" + source, withPlotFigures(readFile(markdown), handouts));
+        std::vector<std::string> argv = {pandoc, "--from", "commonmark_x-smart", source, "--standalone",
                                          "--self-contained", "--mathml", "--include-in-header=" + style,
+                                         "--lua-filter=" + filter, "--metadata", "lang=en",
                                          "--metadata", "pagetitle=" + title, "--output", a.id + ".html"};
         const std::string afterFile = handouts + "/." + a.id + "-after.html";
         if (!after.empty()) {
@@ -163,6 +234,7 @@ void addHandoutPages(const Manifest& manifest, const std::string& dir, PackageSu
         isolation::runTool(argv, handouts);
         std::error_code ignored;
         fs::remove(afterFile, ignored);
+        fs::remove(handouts + "/" + source, ignored);
         ++pages;
     }
     summary.files += pages + 2 * runs;
@@ -214,7 +286,24 @@ std::vector<std::string> projectFiles(const std::string& sourceDir) {
     std::vector<std::string> files;
     if (fs::exists(fs::path(sourceDir) / ".git") && fs::exists("/usr/bin/git")) {
         // What the repository tracks, nothing else: no build log, editor file or other untracked file is handed out.
-        std::istringstream list(isolation::runTool({"/usr/bin/git", "-C", sourceDir, "ls-files", "--cached"}, sourceDir));
+        std::string tracked;
+        try {
+            tracked = isolation::runTool({"/usr/bin/git", "-C", sourceDir, "ls-files", "--cached"}, sourceDir);
+        } catch (const std::runtime_error& e) {
+            // git's own message is several lines; the user gets one.
+            const std::string said = e.what();
+            if (said.find("dubious ownership") != std::string::npos) {
+                throw UsageError("git will not read " + printable(sourceDir) +
+                                 ": it belongs to another user (git's \"dubious ownership\"); run simlab as its owner, "
+                                 "or trust it with git config --global --add safe.directory " +
+                                 printable(sourceDir));
+            }
+            const std::size_t fatal = said.find("fatal: ");
+            std::string line = said.substr(fatal == std::string::npos ? 0 : fatal);
+            line = line.substr(0, line.find('\n'));
+            throw UsageError("git cannot list the files of " + printable(sourceDir) + ": " + printable(line));
+        }
+        std::istringstream list(tracked);
         std::string file;
         while (std::getline(list, file)) {
             if (fs::is_regular_file(fs::path(sourceDir) / file)) files.push_back(file);  // not deleted since
@@ -285,7 +374,7 @@ PackageSummary writeStudentBundle(const Manifest& manifest, const std::string& o
     for (const Assignment& a : manifest.assignments) {
         for (const std::string& h : a.hiddenTests) hidden.insert(relativeTo(h, manifest.sourceDir));
     }
-    std::vector<Rule> rules = instructorOnly();
+    std::vector<Rule> rules = instructorOnly(manifest);
     rules.push_back({"hidden tests", [hidden](const std::string& f) { return hidden.count(f) > 0; }});
     rules.push_back({"README.md: replaced by handouts/README-student.md",
                      [](const std::string& f) { return f == "README.md"; }});
@@ -307,10 +396,29 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
         throw UsageError("cannot write '" + zip + "': no directory " + target.parent_path().string());
     }
     TempDir staging("simlab-gradescope-");
-    PackageSummary summary = copyFiles(manifest, instructorOnly(), staging.path());
-    // simlab and this assignment's grader alone: the other labs, their programs and the studies are not built. A lab
-    // of one's own is built against simlab once simlab is, its hidden tests then closed as the course's are.
+    // simlab and this assignment alone: the course's other labs (their hidden tests and trade files) are neither
+    // carried nor built, and a lab of one's own carries none of the course's. It is built against simlab once
+    // simlab is, its hidden tests then closed as the course's are.
     const bool own = isOwnLab(manifest, assignment);
+    std::vector<Rule> rules = instructorOnly(manifest);
+    std::vector<std::string> others;
+    std::string left;
+    for (const Assignment& a : manifest.assignments) {
+        if (!own && a.id == assignment.id) continue;
+        const std::string dir = relativeTo(a.dir, manifest.sourceDir) + "/";
+        const std::string starter = relativeTo(fs::path(a.starter).parent_path().string(), manifest.sourceDir) + "/";
+        others.push_back(dir);
+        if (starter.rfind("starter/", 0) == 0) others.push_back(starter);
+        left += (left.empty() ? "" : ", ") + a.id;
+    }
+    if (!others.empty()) {
+        rules.push_back({std::string(own ? "the course's labs" : "the course's other labs") + " (" + left + ")",
+                         [others](const std::string& f) {
+                             return std::any_of(others.begin(), others.end(),
+                                                [&](const std::string& o) { return startsWith(f, o); });
+                         }});
+    }
+    PackageSummary summary = copyFiles(manifest, rules, staging.path());
     std::string named = assignment.id, setup;
     if (own) {
         addLab(assignment, staging.path(), true, summary);
@@ -391,7 +499,7 @@ PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignm
     for (const Assignment& a : manifest.assignments) {
         for (const std::string& h : a.hiddenTests) hidden.insert(relativeTo(h, manifest.sourceDir));
     }
-    std::vector<Rule> rules = instructorOnly();
+    std::vector<Rule> rules = instructorOnly(manifest);
     rules.push_back({"hidden tests: in the question's tests/hidden/, which PrairieLearn keeps from students",
                      [hidden](const std::string& f) { return hidden.count(f) > 0; }});
     PackageSummary summary = copyFiles(manifest, rules, outDir + "/image/simlab");

@@ -3,8 +3,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -21,14 +24,32 @@ namespace {
 
 constexpr const char* kSim = "/usr/bin/sim_c++";
 
-std::set<std::string> linesOf(const std::string& text) {
-    std::set<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) {
-        if (!trimmed(line).empty()) lines.insert(trimmed(line));
-    }
-    return lines;
+// The starter's code is found in a file as runs of at least this many tokens, identifiers, numbers and strings
+// compared by kind (a renamed starter is still the starter). Short runs are left: a student's own `x.f(y);` is
+// not the starter's.
+constexpr std::size_t kStarterRun = 8;
+
+const std::set<std::string>& cppKeywords() {
+    static const std::set<std::string> words = {
+        "alignas",     "alignof",   "and",        "and_eq",    "asm",      "auto",         "bitand",
+        "bitor",       "bool",      "break",      "case",      "catch",    "char",         "char8_t",
+        "char16_t",    "char32_t",  "class",      "compl",     "concept",  "const",        "consteval",
+        "constexpr",   "constinit", "const_cast", "continue",  "co_await", "co_return",    "co_yield",
+        "decltype",    "default",   "delete",     "do",        "double",   "dynamic_cast", "else",
+        "enum",        "explicit",  "export",     "extern",    "false",    "float",        "for",
+        "friend",      "goto",      "if",         "inline",    "int",      "long",         "mutable",
+        "namespace",   "new",       "noexcept",   "not",       "not_eq",   "nullptr",      "operator",
+        "or",          "or_eq",     "private",    "protected", "public",   "register",     "reinterpret_cast",
+        "requires",    "return",    "short",      "signed",    "sizeof",   "static",       "static_assert",
+        "static_cast", "struct",    "switch",     "template",  "this",     "thread_local", "throw",
+        "true",        "try",       "typedef",    "typeid",    "typename", "union",        "unsigned",
+        "using",       "virtual",   "void",       "volatile",  "wchar_t",  "while",        "xor",
+        "xor_eq"};
+    return words;
 }
+
+bool identifierStart(unsigned char c) { return std::isalpha(c) || c == '_' || c >= 0x80; }
+bool identifierPart(unsigned char c) { return std::isalnum(c) || c == '_' || c >= 0x80; }
 
 double medianOf(std::vector<double> values) {
     if (values.empty()) return 0;
@@ -37,21 +58,53 @@ double medianOf(std::vector<double> values) {
     return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
 }
 
-// A file without the starter's lines, and for each line left the line it was in the file as handed in.
-struct StudentLines {
+// A file without the starter's code, as sim_c++ reads it: its tokens on their own lines (so that the lines of a
+// shared run are the file's), each string and character literal as an empty one (sim_c++ compares them all
+// alike), and the lines of the starter's code that were removed.
+struct StudentTokens {
     std::string text;
-    std::vector<int> lines;
+    std::set<int> starterLines;  // lines the starter's code took whole
 };
 
-StudentLines studentLines(const std::string& text, const std::set<std::string>& given) {
-    StudentLines out;
-    std::istringstream in(text);
-    int number = 0;
-    for (std::string line; std::getline(in, line);) {
-        ++number;
-        if (trimmed(line).empty() || given.count(trimmed(line))) continue;
-        out.text += line + "\n";
-        out.lines.push_back(number);
+StudentTokens studentTokens(const std::string& text, const std::vector<CppToken>& starter) {
+    const std::vector<CppToken> tokens = cppTokens(text);
+    std::vector<bool> given(tokens.size(), false);
+    if (starter.size() >= kStarterRun && tokens.size() >= kStarterRun) {
+        // The starter's runs of kStarterRun tokens, by their kinds; each place the file has one is the starter's.
+        std::set<std::vector<std::string>> runs;
+        for (std::size_t i = 0; i + kStarterRun <= starter.size(); ++i) {
+            std::vector<std::string> run;
+            for (std::size_t j = i; j < i + kStarterRun; ++j) run.push_back(starter[j].kind);
+            runs.insert(std::move(run));
+        }
+        std::vector<std::string> window;
+        for (std::size_t i = 0; i + kStarterRun <= tokens.size(); ++i) {
+            window.clear();
+            for (std::size_t j = i; j < i + kStarterRun; ++j) window.push_back(tokens[j].kind);
+            if (runs.count(window))
+                std::fill(given.begin() + static_cast<std::ptrdiff_t>(i),
+                          given.begin() + static_cast<std::ptrdiff_t>(i + kStarterRun), true);
+        }
+    }
+    StudentTokens out;
+    std::map<int, std::string> lines;
+    std::map<int, bool> whole;  // each line's tokens were all the starter's
+    for (std::size_t i = 0; i < tokens.size(); ++i) {
+        const CppToken& t = tokens[i];
+        whole.emplace(t.line, true);
+        if (given[i]) continue;
+        whole[t.line] = false;
+        std::string& line = lines[t.line];
+        line += (line.empty() ? "" : " ") + (t.kind == "STR" ? std::string("\"\"") : t.kind == "CHR" ? "'c'" : t.text);
+    }
+    for (const auto& [line, all] : whole) {
+        if (all) out.starterLines.insert(line);
+    }
+    int at = 1;
+    for (const auto& [line, code] : lines) {
+        for (; at < line; ++at) out.text += "\n";
+        out.text += code + "\n";
+        ++at;
     }
     return out;
 }
@@ -79,15 +132,9 @@ std::string runSim(const std::string& dir, const std::vector<std::string>& optio
     return run.output;
 }
 
-// The stripped file's line `n` (1-based, as sim_c++ counts) as the line of the file handed in.
-int handedInLine(const std::vector<int>& kept, int n) {
-    if (kept.empty()) return 0;
-    return kept[static_cast<std::size_t>(std::clamp(n, 1, static_cast<int>(kept.size())) - 1)];
-}
-
-// Each flagged pair's shared runs: sim_c++ once more, on the flagged pairs' files alone, printing its runs.
-void addRuns(SimilarityReport& report, const std::string& dir, const std::vector<std::string>& names,
-             const std::vector<std::vector<int>>& kept) {
+// Each flagged pair's shared runs: sim_c++ once more, on the flagged pairs' files alone, printing its runs (by the
+// files' own lines: the tokens kept their lines).
+void addRuns(SimilarityReport& report, const std::string& dir, const std::vector<std::string>& names) {
     if (report.flagged.empty()) return;
     std::map<std::string, std::size_t> number;
     for (std::size_t i = 0; i < report.ids.size(); ++i) number[report.ids[i]] = i;
@@ -97,22 +144,14 @@ void addRuns(SimilarityReport& report, const std::string& dir, const std::vector
     for (std::size_t i : involved) some.push_back(names[i]);
     const auto runs = parseSimRuns(runSim(dir, {"-n", "-e", "-s"}, some));
     for (SimilarPair& p : report.flagged) {
-        const std::size_t a = number[p.a], b = number[p.b];
-        const auto found = runs.find({a, b});
-        if (found == runs.end()) continue;
-        for (SharedRun run : found->second) {
-            run.aFirst = handedInLine(kept[a], run.aFirst);
-            run.aLast = handedInLine(kept[a], run.aLast);
-            run.bFirst = handedInLine(kept[b], run.bFirst);
-            run.bLast = handedInLine(kept[b], run.bLast);
-            p.runs.push_back(run);
-        }
+        const auto found = runs.find({number[p.a], number[p.b]});
+        if (found != runs.end()) p.runs = found->second;
     }
 }
 
-// A file as a column: its lines, those in a shared run marked (by the run, in turn of three colours), the
-// starter's dimmed. `ranges` holds each run's first and last line, most tokens first.
-std::string sideColumn(const std::string& id, const std::string& text, const std::set<std::string>& given,
+// A file as a column: its lines, those in a shared run marked (by the run, in turn of three colours), those of the
+// starter's code dimmed. `ranges` holds each run's first and last line, most tokens first.
+std::string sideColumn(const std::string& id, const std::string& text, const std::set<int>& given,
                        const std::vector<std::pair<int, int>>& ranges) {
     std::ostringstream out;
     out << "<div class=\"side\"><h4>" << writers::htmlText(id) << "</h4><pre>";
@@ -122,7 +161,7 @@ std::string sideColumn(const std::string& id, const std::string& text, const std
         ++number;
         std::size_t run = 0;
         while (run < ranges.size() && (number < ranges[run].first || number > ranges[run].second)) ++run;
-        if (given.count(trimmed(line))) out << "<span class=\"muted\">" << writers::htmlBlock(line) << "</span>";
+        if (given.count(number)) out << "<span class=\"muted\">" << writers::htmlBlock(line) << "</span>";
         else if (run < ranges.size() && !trimmed(line).empty()) {
             out << "<mark class=\"r" << run % 3 << "\" title=\"shared run " << run + 1 << "\">"
                 << writers::htmlBlock(line) << "</mark>";
@@ -135,7 +174,7 @@ std::string sideColumn(const std::string& id, const std::string& text, const std
 
 // A flagged pair's section: its shared runs listed, then both files side by side.
 std::string pairSection(std::size_t index, const SimilarPair& p, const std::map<std::string, std::string>& files,
-                        const std::set<std::string>& given) {
+                        const std::map<std::string, std::set<int>>& given) {
     using writers::htmlText;
     char figure[64];
     std::snprintf(figure, sizeof figure, "%.0f %%", p.percent);
@@ -151,8 +190,13 @@ std::string pairSection(std::size_t index, const SimilarPair& p, const std::map<
             << " and " << r.bFirst << "-" << r.bLast << " of " << htmlText(p.b) << ", " << r.tokens << " tokens";
     }
     if (p.runs.empty()) out << "none listed";
-    out << ".</p>\n<div class=\"pair\">" << sideColumn(p.a, files.at(p.a), given, a)
-        << sideColumn(p.b, files.at(p.b), given, b) << "</div>\n</section>\n";
+    static const std::set<int> none;
+    const auto starterOf = [&](const std::string& id) -> const std::set<int>& {
+        const auto found = given.find(id);
+        return found == given.end() ? none : found->second;
+    };
+    out << ".</p>\n<div class=\"pair\">" << sideColumn(p.a, files.at(p.a), starterOf(p.a), a)
+        << sideColumn(p.b, files.at(p.b), starterOf(p.b), b) << "</div>\n</section>\n";
     return out.str();
 }
 
@@ -167,8 +211,115 @@ std::string flaggedBy(const SimilarPair& pair) {
     return pair.overFloor ? "floor" : pair.overClass ? "class" : "";
 }
 
+std::vector<CppToken> cppTokens(const std::string& text) {
+    std::vector<CppToken> tokens;
+    const std::size_t n = text.size();
+    std::size_t i = 0;
+    int line = 1;
+    bool lineStart = true;  // only spaces so far on this line: a '#' here begins a directive
+    auto advance = [&](std::size_t to) {
+        for (; i < to && i < n; ++i) line += text[i] == '\n';
+    };
+    // The punctuators of two and three characters, longest first.
+    static const std::vector<std::string> punctuators = {"<=>", "<<=", ">>=", "...", "->*", "::", "->", "++", "--",
+                                                         "<<",  ">>",  "<=",  ">=",  "==",  "!=", "&&", "||", "+=",
+                                                         "-=",  "*=",  "/=",  "%=",  "&=",  "|=", "^=", ".*", "##"};
+    while (i < n) {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        if (c == '\n') {
+            ++line;
+            ++i;
+            lineStart = true;
+            continue;
+        }
+        if (std::isspace(c)) {
+            ++i;
+            continue;
+        }
+        if (text.compare(i, 2, "//") == 0) {
+            advance(std::min(n, text.find('\n', i)));
+            continue;
+        }
+        if (text.compare(i, 2, "/*") == 0) {
+            const std::size_t end = text.find("*/", i + 2);
+            advance(end == std::string::npos ? n : end + 2);
+            continue;
+        }
+        const bool directive = lineStart && c == '#';
+        lineStart = false;
+        if (directive) {
+            // A directive: #include lines are no one's work (sim_c++ skips them too); the others are read as code.
+            std::size_t at = i + 1;
+            while (at < n && (text[at] == ' ' || text[at] == '\t')) ++at;
+            if (text.compare(at, 7, "include") == 0) {
+                std::size_t end = i;
+                while (end < n && text[end] != '\n') end += text[end] == '\\' && end + 1 < n ? 2 : 1;
+                advance(end);
+                continue;
+            }
+        }
+        const int first = line;
+        const std::size_t start = i;
+        std::string kind;
+        // A string or character literal, with its prefix (u8, u, U, L, R): raw strings to their delimiter.
+        std::size_t prefix = 0;
+        while (prefix < 3 && i + prefix < n && std::strchr("u8ULR", text[i + prefix]) && text[i + prefix] != '\0')
+            ++prefix;
+        const bool raw = prefix > 0 && text[i + prefix - 1] == 'R';
+        if (i + prefix < n && (text[i + prefix] == '"' || text[i + prefix] == '\'') &&
+            (prefix == 0 || !identifierPart(static_cast<unsigned char>(start > 0 ? text[start - 1] : ' ')))) {
+            const char quote = text[i + prefix];
+            std::size_t at = i + prefix + 1;
+            if (raw && quote == '"') {
+                const std::size_t open = text.find('(', at);
+                const std::string close =
+                    ")" + (open == std::string::npos ? std::string() : text.substr(at, open - at)) + "\"";
+                const std::size_t end = open == std::string::npos ? std::string::npos : text.find(close, open);
+                at = end == std::string::npos ? n : end + close.size();
+            } else {
+                while (at < n && text[at] != quote && text[at] != '\n') at += text[at] == '\\' && at + 1 < n ? 2 : 1;
+                if (at < n && text[at] == quote) ++at;
+            }
+            kind = quote == '"' ? "STR" : "CHR";
+            advance(at);
+        } else if (identifierStart(c)) {
+            std::size_t at = i;
+            while (at < n && identifierPart(static_cast<unsigned char>(text[at]))) ++at;
+            const std::string word = text.substr(i, at - i);
+            kind = cppKeywords().count(word) ? word : "ID";
+            i = at;
+        } else if (std::isdigit(c) ||
+                   (c == '.' && i + 1 < n && std::isdigit(static_cast<unsigned char>(text[i + 1])))) {
+            // A pp-number: digits, letters, '.', digit separators, and a sign after an exponent.
+            std::size_t at = i + 1;
+            while (at < n) {
+                const char d = text[at];
+                if (std::strchr("eEpP", d) && at + 1 < n && (text[at + 1] == '+' || text[at + 1] == '-')) at += 2;
+                else if (std::isalnum(static_cast<unsigned char>(d)) || d == '.' || d == '_' ||
+                         (d == '\'' && at + 1 < n && std::isalnum(static_cast<unsigned char>(text[at + 1]))))
+                    ++at;
+                else break;
+            }
+            kind = "NUM";
+            i = at;
+        } else {
+            std::size_t length = 1;
+            for (const std::string& p : punctuators) {
+                if (text.compare(i, p.size(), p) == 0) {
+                    length = p.size();
+                    break;
+                }
+            }
+            kind = text.substr(i, length);
+            i += length;
+        }
+        tokens.push_back({text.substr(start, i - start), kind, first});
+    }
+    return tokens;
+}
+
 std::string withoutStarter(const std::string& text, const std::string& starter) {
-    return studentLines(text, linesOf(starter)).text;
+    return studentTokens(text, cppTokens(starter)).text;
 }
 
 std::map<std::pair<std::size_t, std::size_t>, std::vector<SharedRun>> parseSimRuns(const std::string& output) {
@@ -202,17 +353,16 @@ SimilarityReport compareSubmissions(const std::map<std::string, std::string>& fi
     }
     SimilarityReport report;
     report.floor = floor;
-    // The files go to sim_c++ under numbers (an id may hold any byte), the starter's lines removed.
+    // The files go to sim_c++ under numbers (an id may hold any byte), the starter's code removed by its tokens.
     TempDir dir("simlab-similarity-");
-    const std::set<std::string> given = linesOf(starter);
+    const std::vector<CppToken> given = cppTokens(starter);
     std::vector<std::string> names;
-    std::vector<std::vector<int>> kept;
     for (const auto& [id, text] : files) {
         report.ids.push_back(id);
         names.push_back(std::to_string(names.size()) + ".cpp");
-        StudentLines s = studentLines(text, given);
+        StudentTokens s = studentTokens(text, given);
         writeFileAtomically(dir.path() + "/" + names.back(), s.text);
-        kept.push_back(std::move(s.lines));
+        report.starterLines[id] = std::move(s.starterLines);
     }
     if (report.ids.size() < 2) return report;
     // "3.cpp consists for 87 % of 5.cpp material": how much of 3.cpp lies in runs 5.cpp has too.
@@ -256,22 +406,23 @@ SimilarityReport compareSubmissions(const std::map<std::string, std::string>& fi
         p.overClass = p.percent >= report.threshold;
         if (p.overFloor || p.overClass) report.flagged.push_back(p);
     }
-    addRuns(report, dir.path(), names, kept);
+    addRuns(report, dir.path(), names);
     return report;
 }
 
 std::string similarityHtml(const std::string& title, const SimilarityReport& report,
-                           const std::map<std::string, std::string>& files, const std::string& starter) {
+                           const std::map<std::string, std::string>& files) {
     using writers::htmlText;
-    const std::set<std::string> given = linesOf(starter);
     char figure[64];
     std::ostringstream out;
     out << writers::pageStart(title + ": similar submissions");
     out << "<style>.pair{display:flex;gap:1em}.side{flex:1;min-width:0}.side pre{overflow-x:auto;font-size:85%}"
            ".side mark{color:inherit}mark.r0{background:#f5d76e80}mark.r1{background:#7fb2f080}"
-           "mark.r2{background:#8fd19e80}</style>\n";
-    out << "<header>\n<h1>" << htmlText(title) << ": similar submissions</h1>\n<p>"
-        << report.ids.size() << " files compared in pairs by sim_c++ (similarity-tester), the starter's lines removed. ";
+           "mark.r2{background:#8fd19e80}@media (prefers-color-scheme: dark){mark.r0{background:#9a7b0080}"
+           "mark.r1{background:#1f5fae80}mark.r2{background:#2e7d3c80}}</style>\n";
+    out << "<header>\n<h1>" << htmlText(title) << ": similar submissions</h1>\n<p>" << report.ids.size()
+        << " files compared in pairs by sim_c++ (similarity-tester), the starter's code removed by its tokens "
+           "(whatever its names). ";
     char rules[256];
     std::snprintf(rules, sizeof rules,
                   "A pair is flagged when one file holds at least %.0f %% of the other in shared runs of tokens "
@@ -294,7 +445,8 @@ std::string similarityHtml(const std::string& title, const SimilarityReport& rep
         out << "</tbody>\n</table>\n";
     }
     out << "</section>\n";
-    for (std::size_t i = 0; i < report.flagged.size(); ++i) out << pairSection(i, report.flagged[i], files, given);
+    for (std::size_t i = 0; i < report.flagged.size(); ++i)
+        out << pairSection(i, report.flagged[i], files, report.starterLines);
     out << "<section>\n<h2>The most alike pairs</h2>\n<p class=\"muted\">At most 200, most alike first: ";
     for (std::size_t i = 0; i < report.pairs.size() && i < 200; ++i) {
         const SimilarPair& p = report.pairs[i];

@@ -23,8 +23,11 @@
 
 #include "simlab/protocol/bounded_json.h"
 #include "simlab/common/errors.h"
+#include "simlab/build/lab.h"
+#include "simlab/build/lock.h"
 #include "simlab/isolation/process.h"
 #include "simlab/protocol/verdict.h"
+#include "simlab/grading/failure_sites.h"
 #include "simlab/grading/record.h"
 
 namespace fs = std::filesystem;
@@ -60,7 +63,9 @@ Limits serverLimits(const Limits& probe, std::size_t tests) {
     l.wallSeconds = (probe.wallSeconds + 5) * static_cast<double>(tests) + 60;
     l.cpuSeconds = (probe.cpuSeconds + 3) * static_cast<double>(tests) + 60;
     l.memoryMiB = 2 * probe.memoryMiB + 256;
-    l.fileMiB = 2 * probe.fileMiB;
+    // The tests' folders share the server's space (bubblewrap's memory folder): each of those running at once may
+    // take what a test may (three times its file-size limit), and each test's folder goes when it ends.
+    l.fileMiB = probe.fileMiB * (1 + 3 * std::min<std::size_t>(tests, 4));
     return l;
 }
 
@@ -109,14 +114,49 @@ struct ProbeEvents {
     bool terminated = false;  // std::terminate ran
     std::string type, what;   // the exception in flight then, if there was one
     std::string refused;      // the system call the students' filter refused (the host names it), if one was
+    // Where the student's code was (simlab/isolation/failure_sites.h): as a signal was about to end the process (and
+    // the signal), at the last sample of its CPU time, and where the exception the course's code caught was thrown
+    // (and its type). Addresses in the probe, looked up only beside the outcome the kernel gave. A place is kept only
+    // where it is the one the process told: two crash lines or two exceptions that differ (a child's and its own, a
+    // test that asked twice), or a channel past what is kept, leave it unknown.
+    int crashSignal = 0;
+    std::vector<std::uint64_t> crashAt, sampleAt, threwAt;
+    std::vector<std::uint64_t> terminateAt;  // where the exception std::terminate ended was thrown
+    double sampleCpu = 0;  // the process's CPU time at its last sample
+    std::string threwType;
 };
+
+// The report channel keeps 1 MiB of lines (supervise): past that, later lines are lost, and the last sample kept is
+// not the last one made.
+constexpr std::size_t kReportsKept = 1 << 20;
 
 ProbeEvents probeEvents(const std::vector<std::string>& lines) {
     ProbeEvents e;
+    std::size_t bytes = 0;
+    for (const std::string& line : lines) bytes += line.size() + 1;
+    bool placesKnown = bytes + 4096 < kReportsKept, crashTold = false, throwTold = false;
     for (const std::string& line : lines) {
         const nlohmann::json record = wire::parseBounded(line);
         if (!record.is_object() || !record.contains("event") || !record["event"].is_string()) continue;
         const std::string event = record["event"];
+        const std::vector<std::uint64_t> at = readFailureFrames(record.value("at", nlohmann::json()));
+        if (event == "crash" && record.contains("signal") && record["signal"].is_number_integer()) {
+            const int signal = record["signal"].get<int>();
+            placesKnown = placesKnown && (!crashTold || (signal == e.crashSignal && at == e.crashAt));
+            crashTold = true;
+            e.crashSignal = signal;
+            e.crashAt = at;
+        }
+        if (event == "sample" && record.contains("cpu") && record["cpu"].is_number_unsigned()) {
+            e.sampleAt = at;
+            e.sampleCpu = 1e-6 * static_cast<double>(record["cpu"].get<std::uint64_t>());
+        }
+        if (event == "threw" && record.contains("type") && record["type"].is_string()) {
+            placesKnown = placesKnown && (!throwTold || (record["type"] == e.threwType && at == e.threwAt));
+            throwTold = true;
+            e.threwType = record["type"];
+            e.threwAt = at;
+        }
         if (event == "memory") e.memory = true;
         if (event == "refused" && record.contains("call") && record["call"].is_string()) {
             e.refused = record["call"].get<std::string>().substr(0, 64);
@@ -125,8 +165,10 @@ ProbeEvents probeEvents(const std::vector<std::string>& lines) {
             e.terminated = true;
             e.type = record.contains("type") && record["type"].is_string() ? record["type"].get<std::string>() : "";
             e.what = record.contains("what") && record["what"].is_string() ? record["what"].get<std::string>() : "";
+            e.terminateAt = readFailureFrames(record.value("at", nlohmann::json()));
         }
     }
+    if (!placesKnown) e.crashAt = e.sampleAt = e.threwAt = e.terminateAt = {};
     return e;
 }
 
@@ -147,9 +189,10 @@ std::optional<wire::Verdict> judgeVerdict(const std::vector<std::string>& lines,
     }
 }
 
-// Why a probe that died of a signal died, as far as simlab can tell.
-std::string crashReason(const isolation::ProcessResult& probe, const ProbeEvents& events) {
-    std::string reason = "crashed (" + isolation::signalName(probe.signal) + ")";
+// Why a probe that died of a signal died, as far as simlab can tell, and where in the student's file (`site`: " in
+// simulate() (NewtonsApple.cpp:52)", or nothing).
+std::string crashReason(const isolation::ProcessResult& probe, const ProbeEvents& events, const std::string& site) {
+    std::string reason = "crashed (" + isolation::signalName(probe.signal) + ")" + site;
     if (probe.signal == SIGABRT && events.terminated) {
         if (events.type.empty()) return reason + ": std::terminate was called with no exception in flight";
         return reason + ": " + events.type + (events.what.empty() ? "" : " \"" + events.what + "\"") +
@@ -175,9 +218,40 @@ std::string crashReason(const isolation::ProcessResult& probe, const ProbeEvents
     return reason;
 }
 
-// `stalledFirst` names the test whose stall had this one stopped early (see Stalls), if it was.
+// The last sample of a test stopped for its CPU time, if it says where the student's code was as it was stopped:
+// taken when the sampled process had used nearly all the CPU time the test's processes used together (a sample is
+// made every tenth of a second, and the engine looks every tenth), not before a process of its own spun the rest.
+constexpr double kSampleBefore = 0.5;  // seconds of CPU time
+const std::vector<std::uint64_t>& whereStopped(const isolation::ProcessResult& probe, const ProbeEvents& events) {
+    static const std::vector<std::uint64_t> none;
+    return probe.cpuTimeout && events.sampleCpu >= probe.cpuSeconds - kSampleBefore ? events.sampleAt : none;
+}
+
+// Where the student's code was, for a reason: each frame list of `events` the test's outcome may need.
+std::vector<std::vector<std::uint64_t>> framesToLookUp(const isolation::ProcessResult& probe,
+                                                       const ProbeEvents& events) {
+    std::vector<std::vector<std::uint64_t>> frames;
+    if (probe.signal != 0 && events.crashSignal == probe.signal) frames.push_back(events.crashAt);
+    if (probe.signal == SIGABRT && events.terminated) frames.push_back(events.terminateAt);
+    frames.push_back(whereStopped(probe, events));
+    frames.push_back(events.threwAt);
+    return frames;
+}
+
+// "threw T in f() (F.cpp:12): message" for the judge's "threw T: message", when T is the type the probe's event says
+// was thrown at that site; the reason as it was otherwise.
+std::string withThrowSite(const std::string& reason, const ProbeEvents& events, const FailureSites& sites) {
+    const std::string head = "threw " + events.threwType;
+    if (events.threwType.empty() || reason.rfind(head + ": ", 0) != 0) return reason;
+    const std::string site = sites.site(events.threwAt).inReason();
+    return site.empty() ? reason : head + site + reason.substr(head.size());
+}
+
+// `stalledFirst` names the test whose stall had this one stopped early (see Stalls), if it was; `events` are what
+// its probe said, and `sites` where in the student's file their frames are.
 TestResult interpret(const RubricTest& test, const isolation::ProcessResult& probe,
-                     const isolation::ProcessResult& judge, const Limits& limits, const std::string& stalledFirst) {
+                     const isolation::ProcessResult& judge, const Limits& limits, const std::string& stalledFirst,
+                     const ProbeEvents& events, const FailureSites& sites) {
     TestResult t;
     t.name = test.name;
     t.visibility = test.visibility;
@@ -185,7 +259,6 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
     t.seconds = probe.wallSeconds;
     t.cpuSeconds = probe.cpuSeconds;
     t.output = probe.output;
-    const ProbeEvents events = probeEvents(probe.reports);
     std::string malformed;
     const std::optional<wire::Verdict> verdict = judgeVerdict(judge.reports, test.name, &malformed);
     double credit = 0;
@@ -211,12 +284,15 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
         t.outcome = Outcome::OutputTruncated;
         t.reason = "it printed more than " + std::to_string(limits.outputKiB) + " KiB, and was stopped";
     } else if (probe.diskLimit) {
-        t.outcome = Outcome::OutputTruncated;
+        t.outcome = Outcome::OutOfDisk;
         t.reason = "its files together took more than " + std::to_string(3 * limits.fileMiB) +
                    " MiB, the space a test has, and it was stopped";
     } else if (probe.cpuTimeout) {
         t.outcome = Outcome::TimedOut;
-        t.reason = "no end within " + seconds(std::ceil(limits.cpuSeconds)) + " of CPU time";
+        // Where it was at the last sample of its CPU time, a tenth of a second or so before it was stopped.
+        const std::string site = sites.site(whereStopped(probe, events)).inReason();
+        t.reason = (site.empty() ? "" : "stopped" + site + ": ") + "no end within " +
+                   seconds(std::ceil(limits.cpuSeconds)) + " of CPU time";
     } else if (probe.wallTimeout && !stalledFirst.empty()) {
         t.outcome = Outcome::Stalled;
         t.reason = "no progress for " + seconds(kIdleSeconds) + ": \"" + stalledFirst +
@@ -232,7 +308,12 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
         t.reason = text;
     } else if (probe.signal != 0) {
         t.outcome = Outcome::Crashed;
-        t.reason = crashReason(probe, events);
+        // An exception nothing caught is where it was thrown (std::terminate's own frames may not unwind: clang's
+        // call of it from a noexcept function has no unwind table); any other crash where the signal came.
+        std::string site;
+        if (probe.signal == SIGABRT && events.terminated) site = sites.site(events.terminateAt).inReason();
+        if (site.empty() && events.crashSignal == probe.signal) site = sites.site(events.crashAt).inReason();
+        t.reason = crashReason(probe, events, site);
     } else if (!verdict) {
         t.outcome = Outcome::DidNotFinish;
         if (!malformed.empty()) {
@@ -255,7 +336,7 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
     } else {
         t.outcome = verdict->passed ? Outcome::Passed : Outcome::Failed;
         credit = verdict->passed ? 1.0 : verdict->credit;
-        t.reason = verdict->reason;
+        t.reason = verdict->passed ? verdict->reason : withThrowSite(verdict->reason, events, sites);
         t.feedback = verdict->feedback;
         for (const wire::Attachment& file : verdict->attachments) t.attachments.emplace_back(file.name, file.text);
         if (verdict->figure) {
@@ -279,7 +360,8 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
 // a folder per process.
 struct Workspace {
     std::string root, build, probe, host;
-    std::string student;  ///< GradeOptions::student, for the judge
+    std::string student;             ///< GradeOptions::student, for the judge
+    FailureSites* sites = nullptr;  ///< where in the student's file the tests' failures were, the judges' together
 };
 
 // A judge's files: the rubric, and the files handed in beside the source (or why each was refused).
@@ -293,8 +375,12 @@ void writeJudgeFiles(const std::string& dir, const Rubric& rubric, const Submiss
     }
 }
 
-// A folder every sandbox user may pass through to what it is handed, without seeing what else is there.
+// Where the sandbox's users reach their folders by the host's own paths (as root, without bubblewrap: Landlock, or
+// limits only), a folder they pass through to what they are handed, without seeing what else is there; else
+// simlab's alone, like everything of a grading (bubblewrap binds each process's folders for it).
 void makePassable(const std::string& path) {
+    const isolation::SandboxSupport& sandbox = isolation::sandboxSupport();
+    if (!sandbox.ownUser || sandbox.bubblewrap) return;
     std::error_code ignored;
     fs::permissions(path, fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec, ignored);
 }
@@ -311,14 +397,16 @@ std::unique_ptr<isolation::TestServer> startProbeServer(const Workspace& w, cons
     const std::string home = w.root + "/" + tag + "probes";
     createPrivateFolder(program);
     createPrivateFolder(home);
+    // The server's alone (0600 in a folder of 0700): each test's child copies it into its own folder, as its own
+    // user, before it loads it (probe_host.cpp).
     writeFileAtomically(program + "/probe.so", readFile(w.probe + "/probe.so"));
-    // Opened to the tests' users only once it is whole: each loads it after it has become its user.
-    fs::permissions(program, fs::perms::owner_all | fs::perms::others_exec);
-    fs::permissions(program + "/probe.so", fs::perms::owner_read | fs::perms::others_read);
+    fs::permissions(program + "/probe.so", fs::perms::owner_read | fs::perms::owner_write);
     // Each test's child makes its folder there, through root's group (probe_host.cpp): nothing else of it is
-    // any test's to write or list.
-    fs::permissions(home,
-                    fs::perms::owner_all | fs::perms::group_write | fs::perms::group_exec | fs::perms::others_exec);
+    // any test's to write or list. (bubblewrap puts a folder in memory there, with those modes, for the server.)
+    if (!isolation::sandboxSupport().bubblewrap) {
+        fs::permissions(home,
+                        fs::perms::owner_all | fs::perms::group_write | fs::perms::group_exec | fs::perms::others_exec);
+    }
     isolation::ProcessRequest server;
     server.argv = {w.host, "--serve", program + "/probe.so"};
     server.env = kProbeEnvironment;
@@ -417,10 +505,12 @@ isolation::ProcessResult runJudge(const Assignment& assignment, const std::vecto
     writeFileAtomically(judgeProgram, readFile(assignment.judge));
     fs::permissions(judgeProgram, fs::perms::owner_all);
     isolation::ProcessRequest judge;
-    // One test spec naming every test: Catch2 reads commas as "or" (a rubric's names hold none).
+    // The tests' names in a file of the judge's own (Catch2's --input-file, a name a line), not on its command
+    // line, which every user may read in /proc where no namespace hides the judge's process (limits only).
     std::string names;
-    for (const RubricTest* test : tests) names += (names.empty() ? "" : ",") + test->name;
-    judge.argv = {judgeProgram, "--use-colour", "no", names};
+    for (const RubricTest* test : tests) names += test->name + "\n";
+    writeFileAtomically(judgeFiles + "/tests.txt", names);
+    judge.argv = {judgeProgram, "--use-colour", "no", "--input-file", judgeFiles + "/tests.txt"};
     judge.env = {"PATH=/usr/bin:/bin", "HOME=" + w.root + "/" + tag + "judge-home", "TMPDIR=/tmp", "LC_ALL=C",
                  "SIMLAB_RUBRIC=" + judgeFiles + "/rubric.toml", "SIMLAB_SUBMISSION_DIR=" + judgeFiles + "/submission",
                  "SIMLAB_ANSWER_LIMIT=" + std::to_string(static_cast<unsigned long long>(limits.observationMiB) << 20)};
@@ -479,18 +569,28 @@ std::vector<TestResult> runTests(const Assignment& assignment, const std::vector
     bool interrupted = judged.interrupted;
     for (const auto& [test, probe] : probes.results) interrupted = interrupted || probe.interrupted;
     if (interrupted) throw Interrupted();
-    std::vector<TestResult> results;
+    std::vector<isolation::ProcessResult> ran;
+    std::vector<ProbeEvents> events;
+    std::vector<std::vector<std::uint64_t>> lookUp;
     for (const RubricTest* test : tests) {
         isolation::ProcessResult probe;  // a test that asked nothing had no probe: as if one had started and ended cleanly
         probe.started = true;
         probe.exitCode = 0;
         if (const auto found = probes.results.find(test->name); found != probes.results.end()) probe = found->second;
+        events.push_back(probeEvents(probe.reports));
+        for (auto& frames : framesToLookUp(probe, events.back())) lookUp.push_back(std::move(frames));
+        ran.push_back(std::move(probe));
+    }
+    // Where the failures were, every test's at once.
+    w.sites->lookUp(lookUp);
+    std::vector<TestResult> results;
+    for (std::size_t i = 0; i < tests.size(); ++i) {
         std::string stalledFirst;
         {
             std::lock_guard<std::mutex> guard(stalls.lock);
-            if (stalls.stopped.count(test->name)) stalledFirst = stalls.first;
+            if (stalls.stopped.count(tests[i]->name)) stalledFirst = stalls.first;
         }
-        results.push_back(interpret(*test, probe, judged, limits, stalledFirst));
+        results.push_back(interpret(*tests[i], ran[i], judged, limits, stalledFirst, events[i], *w.sites));
     }
     return results;
 }
@@ -557,6 +657,7 @@ std::string outcomeName(Outcome outcome) {
         case Outcome::TimedOut: return "timed out";
         case Outcome::Stalled: return "stalled";
         case Outcome::OutOfMemory: return "killed for memory";
+        case Outcome::OutOfDisk: return "killed for disk";
         case Outcome::Crashed: return "crashed";
         case Outcome::OutputTruncated: return "output truncated";
         case Outcome::BadReport: return "bad report";
@@ -570,7 +671,7 @@ std::string outcomeName(Outcome outcome) {
 
 Outcome outcomeNamed(const std::string& name) {
     for (Outcome o : {Outcome::Passed, Outcome::Failed, Outcome::TimedOut, Outcome::Stalled, Outcome::OutOfMemory,
-                      Outcome::Crashed, Outcome::OutputTruncated, Outcome::BadReport, Outcome::DidNotFinish,
+                      Outcome::OutOfDisk, Outcome::Crashed, Outcome::OutputTruncated, Outcome::BadReport, Outcome::DidNotFinish,
                       Outcome::DidNotCompile, Outcome::Refused, Outcome::MissingFile}) {
         if (outcomeName(o) == name) return o;
     }
@@ -603,21 +704,52 @@ GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, 
     return report;
 }
 
-std::string secretsExposed(const Manifest& manifest, const std::vector<std::string>& more) {
-    std::vector<std::string> secrets = courseSecrets(manifest);
-    secrets.insert(secrets.end(), more.begin(), more.end());
-    for (std::string& path : secrets) {
-        std::error_code ignored;
-        if (!path.empty()) path = fs::absolute(path, ignored).lexically_normal().string();
+std::string placesExposed(const Manifest& manifest) {
+    const isolation::SandboxSupport& sandbox = isolation::sandboxSupport();
+    if (sandbox.bubblewrap || sandbox.landlock) return "";
+    const isolation::Exposure exposure = isolation::exposedPlaces(lentOfPlaces(manifest));
+    if (!exposure.exposed()) return "";
+    const std::string why = "in this sandbox (" + sandbox.mode + ") ";
+    if (!exposure.error.empty()) return why + exposure.error + ", so hidden tests are not run: install bubblewrap";
+    if (::geteuid() != 0) {
+        // A test runs as this user, and reads what this user may: no mode keeps it out.
+        return why + "a test's code runs as you and could read " + printable(exposure.readable.empty()
+                                                                                  ? exposure.passable.front()
+                                                                                  : exposure.readable.front()) +
+               ", so hidden tests are not run: grade hidden tests as root (each test then runs as a user of its "
+               "own), or where bubblewrap or Landlock runs";
     }
-    const std::vector<std::string> readable = isolation::readableInSandbox(secrets);
-    if (readable.empty()) return "";
-    std::string paths;
-    for (const std::string& path : readable) paths += " " + path;
-    return "in this sandbox (" + isolation::sandboxSupport().mode + ") a test's code could read " + readable.front() +
-           (readable.size() > 1 ? " and " + std::to_string(readable.size() - 1) + " more" : "") +
-           ", so hidden tests are not run: make them unreadable to other users (scripts/lock-course, or chmod -R "
-           "go-rwx" + paths + "), or install bubblewrap";
+    if (exposure.readable.empty() && exposure.passable.empty()) {
+        return why + "simlab's places hold more than it can try (over 500,000 files), so hidden tests are not run: "
+                     "install bubblewrap";
+    }
+    // The command that closes what was read: simlab lock closes the course's places; a lab's folder, a class or
+    // its grades it closes when named.
+    const bool passage = exposure.readable.empty();
+    const std::string& first = passage ? exposure.passable.front() : exposure.readable.front();
+    const std::string place = isolation::placeOf(first);
+    std::string named;
+    for (const auto& lab : manifest.labs) {
+        if (place == lab->dir || (place.rfind(manifest.cacheDir + "/labs/", 0) == 0 &&
+                                  place == labBuildFolder(manifest, lab->dir))) {
+            named = lab->dir;
+        }
+    }
+    const std::vector<std::string> course = {manifest.sourceDir, manifest.buildDir, manifest.cacheDir,
+                                             manifest.sampleClass, fs::path(manifest.path).parent_path().string()};
+    const bool ofTheCourse =
+        std::any_of(course.begin(), course.end(), [&](const std::string& c) {
+            return !c.empty() && (place == c || place.rfind(c + "/", 0) == 0 || c.rfind(place + "/", 0) == 0);
+        }) ||
+        (manifest.installed && place.rfind(manifest.prefix + "/", 0) == 0);
+    if (named.empty() && !ofTheCourse) named = place;
+    const std::size_t more = passage ? 0 : exposure.readableCount - 1;
+    return why + (passage ? "a test's code could pass through " + printable(first) + " to what simlab writes there"
+                          : "a test's code could read " + printable(first)) +
+           (more > 0 ? " and " + std::to_string(more) + " more file" + (more == 1 ? "" : "s") + " of simlab's places"
+                     : std::string()) +
+           ", so hidden tests are not run: close them with `simlab lock" + (named.empty() ? "" : " " + printable(named)) +
+           "` (it leaves other users only what a test is lent), or install bubblewrap";
 }
 
 double roundScore(double points) { return std::round(points * 100.0) / 100.0; }
@@ -796,6 +928,19 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
     const Limits limits = options.limits.value_or(rubric.limits);
 
     if (report.build.ok) {
+        // The probe's twin with line tables, made only when a failure needs a place (failure_sites.h): the same
+        // file and link, compiled with -g1.
+        const std::size_t lines = static_cast<std::size_t>(std::count(files.text.begin(), files.text.end(), '\n')) + 1;
+        FailureSites sites(w.probe + "/probe.so", report.build.object, files.name, lines, w.root + "/lines",
+                           [&](const std::string& folder) {
+                               Assignment lined = assignment;
+                               lined.compile.push_back("-g1");
+                               const BuildResult twin = builder.buildProbe(lined, files.name, files.text, folder,
+                                                                           folder + "/probe.so", false);
+                               return twin.ok ? FailureSites::LinedTwin{twin.binary, twin.object}
+                                              : FailureSites::LinedTwin{};
+                           });
+        w.sites = &sites;
         report.tests = runJudges(assignment, rubric, files, selected, w, limits, options, &report.graderOutput);
     } else {
         const std::string& stage = report.build.stage;

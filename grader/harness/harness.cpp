@@ -83,6 +83,7 @@ struct Running {
     std::vector<std::string> feedback;
     std::vector<wire::Attachment> attachments;
     std::vector<wire::BoardEntry> leaderboard;
+    std::string worstPoint;    // shown after `text` when the test fails (grading::worstPoint)
     std::string firstFailure;  // reason taken from the first failed assertion
     bool failureIsException = false;
     bool failureHasInfo = false;
@@ -162,11 +163,7 @@ std::string submissionFile(const std::string& name) {
     return path;
 }
 
-std::string show(double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g", value);
-    return text;
-}
+void worstPoint(const std::string& text) { verdict().worstPoint = oneLine(text); }
 
 void measured(double value, const std::string& unit, const std::string& text) {
     verdict().figure = value;
@@ -288,6 +285,7 @@ struct Listener : Catch::TestEventListenerBase {
         const bool passed =
             stats.totals.assertions.failed == 0 && !stats.aborting && channel == observe::ChannelFailure::None;
         std::string reason = v.text;
+        if (!passed && !v.worstPoint.empty()) reason += ": " + v.worstPoint;
         if (!passed && (v.failureIsException || v.failureHasInfo || v.text.empty())) reason = v.firstFailure;
         if (!extra.empty() && !failedBefore) reason = extra;
         wire::Verdict end;

@@ -57,11 +57,13 @@ int endProcessesOf(uid_t uid);
 
 /// What a run's processes use together: the tree under `root` (0: none), and every process of `uid` (when not 0)
 /// wherever it went. CPU time counts what each has used and what its reaped children used; memory is resident
-/// anonymous and shared memory (what they allocated), not the libraries every process maps.
+/// anonymous and shared memory (what they allocated), not the libraries every process maps; and the disk their
+/// open files take that no folder names any more (a file unlinked after it was written).
 struct Usage {
     double cpuSeconds = 0;
     long residentKiB = 0;
     int processes = 0;
+    std::uintmax_t unlinkedBytes = 0;  ///< on disk, in files they hold open that no folder names any more
 };
 Usage usageOf(pid_t root, uid_t uid);
 
@@ -74,6 +76,11 @@ long peakResidentOf(pid_t pid);
 /// The bytes the files under `path` take on disk, counted until past `stopAt` (or past 20,000 entries, which count
 /// as past it): what a run wrote where no memory file system caps it.
 std::uintmax_t folderBytes(const std::string& path, std::uintmax_t stopAt);
+
+/// The bytes what `uid` owns in the machine's shared temporary folders (/tmp, /var/tmp, /dev/shm, /run/lock, and
+/// the folders every user may write into at their tops) take on disk, counted until past `stopAt`: where no file
+/// rules keep a run out of them (limits only), what its user writes there counts as the files of its folder do.
+std::uintmax_t sharedTemporaryBytes(uid_t uid, std::uintmax_t stopAt);
 
 /// Hands `path` (and what is in it) to `uid`, shut to everyone else; to root (0) hands it back.
 bool handTo(const std::string& path, uid_t uid);
@@ -136,6 +143,9 @@ struct Watched {
     /// The folder the run writes in, where no memory file system of bubblewrap's caps it: its files together may
     /// take what bubblewrap's three give a run (its folder, /tmp and /dev/shm, each of the file-size limit).
     std::string folder;
+    /// The run's own user, where no file rules keep it out of the machine's shared temporary folders (limits
+    /// only): what it writes there counts with its folder's files. 0: none.
+    uid_t sharedUser = 0;
 };
 
 /// The one loop every sandboxed run is watched by: output drained and counted (the output limit), the report

@@ -1,5 +1,5 @@
-// The one place each mode's sandbox is built: what a sandboxed process sees of the filesystem (the system, less
-// what simlab hides, and what it is lent), its namespaces and its capabilities under bubblewrap, its file rules
+// The one place each mode's sandbox is built: what a sandboxed process sees of the filesystem (reach.h: the system,
+// less simlab's places, what it is lent and its own folder), its namespaces and its capabilities under bubblewrap, its file rules
 // under Landlock, its system-call filter, and which mode this machine allows.
 #include <dirent.h>
 #include <sys/stat.h>
@@ -15,6 +15,7 @@
 
 #include "internal.h"
 #include "simlab/isolation/filter.h"
+#include "simlab/isolation/reach.h"
 
 namespace simlab::isolation {
 
@@ -23,15 +24,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const char* const kSetpriv = "/usr/bin/setpriv";
-
-// What a sandboxed child may always read (and run): the system's programs and libraries, the loader's cache,
-// Debian's alternatives (BLAS and LAPACK, which Simbody loads, are chosen there), fonts (gnuplot, in the judge).
-const std::vector<std::string>& systemFolders() {
-    static const std::vector<std::string> folders = {"/usr", "/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32"};
-    return folders;
-}
-const char* const kSystemFiles[] = {"/etc/ld.so.cache", "/etc/alternatives", "/etc/fonts", "/etc/localtime"};
-const char* const kDevices[] = {"/dev/null", "/dev/zero", "/dev/urandom", "/dev/random"};
 
 // What the kernel shows in /proc that no test has business with - its memory, its log, the physical pages, the
 // processor's memory ranges, the magic keys, the keyrings, the timers of every process - as Docker masks them.
@@ -58,9 +50,6 @@ std::string resolved(const std::string& path) {
     while (text.size() > 1 && text.back() == '/') text.pop_back();
     return text;
 }
-
-std::mutex gHiddenLock;
-std::vector<std::string> gHidden;
 
 bool inSystemFolder(const std::string& path) {
     return std::any_of(systemFolders().begin(), systemFolders().end(),
@@ -131,35 +120,6 @@ std::vector<std::string> readableSystem(const std::vector<std::string>& hiddenPa
 
 }  // namespace
 
-void hideFromSandboxes(const std::vector<std::string>& paths) {
-    std::lock_guard<std::mutex> guard(gHiddenLock);
-    for (const std::string& path : paths) {
-        if (path.empty()) continue;
-        for (const std::string& form : {resolved(path), fs::absolute(path).lexically_normal().string()}) {
-            std::string p = form;
-            while (p.size() > 1 && p.back() == '/') p.pop_back();
-            // Never a system folder itself, nor a folder that holds one: the sandbox is made of them.
-            const bool holdsSystem = std::any_of(systemFolders().begin(), systemFolders().end(), [&](const std::string& d) {
-                return isOrUnder(d, p);
-            });
-            if (p == "/" || holdsSystem || std::find(gHidden.begin(), gHidden.end(), p) != gHidden.end()) continue;
-            gHidden.push_back(p);
-        }
-    }
-    std::sort(gHidden.begin(), gHidden.end());
-}
-
-std::vector<std::string> hiddenFromSandboxes() {
-    std::lock_guard<std::mutex> guard(gHiddenLock);
-    return gHidden;
-}
-
-bool visibleInSandboxes(const std::string& path) {
-    const std::string real = resolved(path);
-    return inSystemFolder(real) && !hidden(real, hiddenFromSandboxes()) &&
-           !hidden(fs::absolute(path).lexically_normal().string(), hiddenFromSandboxes());
-}
-
 const std::string* filterFor(const ProcessRequest& r) {
     const std::string& program = r.studentCode ? filter::studentProgram(true) : filter::toolProgram();
     return program.empty() ? nullptr : &program;
@@ -196,7 +156,7 @@ std::vector<std::string> bubblewrapArguments(const std::string& bwrap, const Pro
         else if (fs::is_directory(dir, error)) a.insert(a.end(), {"--ro-bind", dir, dir});
     }
     // What simlab hides, where a system folder holds it: an empty folder (or file) in its place.
-    const std::vector<std::string> hiddenPaths = hiddenFromSandboxes();
+    const std::vector<std::string> hiddenPaths = outOfReach();
     std::vector<std::string> masked;
     for (const std::string& path : hiddenPaths) {
         std::error_code error;
@@ -206,9 +166,12 @@ std::vector<std::string> bubblewrapArguments(const std::string& bwrap, const Pro
         else a.insert(a.end(), {"--ro-bind", "/dev/null", path});
     }
     const std::string scratch = std::to_string(static_cast<unsigned long long>(r.limits.fileMiB) << 20);
-    // The loader's cache, and Debian's alternatives (BLAS and LAPACK, which Simbody loads, are chosen there).
-    a.insert(a.end(), {"--perms", "0755", "--dir", "/etc", "--ro-bind-try", "/etc/ld.so.cache", "/etc/ld.so.cache",
-                       "--ro-bind-try", "/etc/alternatives", "/etc/alternatives", "--proc", "/proc", "--dev", "/dev"});
+    // The system's files outside its folders (reach.h), each where it is.
+    a.insert(a.end(), {"--perms", "0755", "--dir", "/etc"});
+    for (const std::string& file : systemFiles()) {
+        if (!hidden(resolved(file), hiddenPaths)) a.insert(a.end(), {"--ro-bind-try", file, file});
+    }
+    a.insert(a.end(), {"--proc", "/proc", "--dev", "/dev"});
     for (const char* file : kProcFiles) {
         if (::access(file, F_OK) == 0) a.insert(a.end(), {"--ro-bind", "/dev/null", file});
     }
@@ -262,14 +225,14 @@ std::vector<std::string> bubblewrapArguments(const std::string& bwrap, const Pro
 
 landlock::FileRules fileRulesFor(const ProcessRequest& r) {
     landlock::FileRules rules;
-    const std::vector<std::string> hiddenPaths = hiddenFromSandboxes();
+    const std::vector<std::string> hiddenPaths = outOfReach();
     rules.readable = readableSystem(hiddenPaths);
-    for (const char* file : kSystemFiles) {
+    for (const std::string& file : systemFiles()) {
         if (!hidden(resolved(file), hiddenPaths)) rules.readable.push_back(file);
     }
     rules.readable.insert(rules.readable.end(), r.readOnlyPaths.begin(), r.readOnlyPaths.end());
     rules.writable = {r.workDir};
-    rules.devices.assign(std::begin(kDevices), std::end(kDevices));
+    rules.devices = systemDevices();
     return rules;
 }
 
@@ -321,7 +284,8 @@ const SandboxSupport& sandboxSupport() {
         }
         // SIMLAB_NO_LANDLOCK=1 tries the last fallback on a machine that has Landlock.
         const char* noLandlock = std::getenv("SIMLAB_NO_LANDLOCK");
-        if (!support.bubblewrap && landlock::abi() > 0 && !(noLandlock && std::string(noLandlock) == "1")) {
+        const bool noLandlockWanted = noLandlock && std::string(noLandlock) == "1";
+        if (!support.bubblewrap && landlock::abi() > 0 && !noLandlockWanted) {
             Launch launch;
             launch.uid = support.ownUser ? freshUser() : 0;
             launch.dropUser = support.ownUser;
@@ -353,12 +317,17 @@ const SandboxSupport& sandboxSupport() {
         } else {
             support.mode = "limits only";
             support.summary = "limits only: CPU, memory, processes, output and files capped; " + user + calls;
-            const std::string why = bwrap.empty() ? "bubblewrap is not installed"
-                                                  : "bubblewrap cannot create namespaces here (as in most containers)";
-            support.warning = why + " and this kernel offers no Landlock: student code " +
+            const bool noBubblewrap = without && std::string(without) == "1";
+            const bool noLandlock = noLandlockWanted && landlock::abi() > 0;
+            const std::string why =
+                (noBubblewrap ? std::string("SIMLAB_NO_BUBBLEWRAP=1 leaves bubblewrap out")
+                 : bwrap.empty() ? std::string("bubblewrap is not installed")
+                                 : std::string("bubblewrap cannot create namespaces here (as in most containers)")) +
+                (noLandlock ? " and SIMLAB_NO_LANDLOCK=1 leaves Landlock out" : " and this kernel offers no Landlock");
+            support.warning = why + ": student code " +
                               (support.ownUser ? "can read every file other users can"
                                                : "runs as you and can read your files") +
-                              " (install bubblewrap, or grade as root with the course's files unreadable to others)";
+                              " (install bubblewrap, or grade as root once simlab lock has closed its places)";
         }
     });
     return support;

@@ -434,6 +434,10 @@ ProcessResult launchProcess(const ProcessRequest& r, const Launch& launch) {
     w.ownPeak = [&] { return peakResidentOf(pid); };
     // Sandboxed without bubblewrap, the run's folder is on a disk: its size is watched.
     if (r.isolate && !launch.ownPids) w.folder = r.workDir;
+    // Without file rules (limits only), its user may write in the machine's shared temporary folders too.
+    if (r.isolate && launch.uid != 0 && !sandboxSupport().bubblewrap && !sandboxSupport().landlock) {
+        w.sharedUser = launch.uid;
+    }
     supervise(r, w, start, result);
     if (pidfd >= 0) ::close(pidfd);
     return result;

@@ -171,13 +171,16 @@ void supervise(const ProcessRequest& r, Watched& w, Clock::time_point start, Pro
         if (!ended && !killed && Clock::now() >= nextCheck) {
             nextCheck = Clock::now() + std::chrono::milliseconds(100);
             if (w.ownPeak) ownPeakKiB = std::max(ownPeakKiB, w.ownPeak());
-            if (overLimits(w.usage(), r.limits, treeCpu, peakResidentKiB, result)) killAll();
+            const Usage usage = w.usage();
+            if (overLimits(usage, r.limits, treeCpu, peakResidentKiB, result)) killAll();
             if (!killed && r.stalled && r.stalled(treeCpu)) {
                 result.wallTimeout = true;
                 killAll();
             }
             const std::uintmax_t diskCap = 3 * (static_cast<std::uintmax_t>(r.limits.fileMiB) << 20);
-            if (!killed && !w.folder.empty() && folderBytes(w.folder, diskCap) > diskCap) {
+            std::uintmax_t written = w.folder.empty() ? 0 : folderBytes(w.folder, diskCap) + usage.unlinkedBytes;
+            if (w.sharedUser != 0 && written <= diskCap) written += sharedTemporaryBytes(w.sharedUser, diskCap - written);
+            if (!killed && written > diskCap) {
                 result.diskLimit = true;
                 killAll();
             }

@@ -215,6 +215,33 @@ int endProcessesOf(uid_t uid) {
     return left;
 }
 
+namespace {
+
+// The bytes on disk of the files `pid` holds open, by a descriptor or a mapping, that no folder names any more
+// (unlinked: a test's files that no look at its folders finds), each file once in `seen`.
+std::uintmax_t unlinkedBytesOf(pid_t pid, std::set<std::pair<dev_t, ino_t>>& seen) {
+    std::uintmax_t bytes = 0;
+    const std::string proc = "/proc/" + std::to_string(pid);
+    auto count = [&](const std::string& link) {
+        struct stat info {};
+        if (::stat(link.c_str(), &info) != 0 || !S_ISREG(info.st_mode) || info.st_nlink != 0) return;
+        if (seen.insert({info.st_dev, info.st_ino}).second) bytes += static_cast<std::uintmax_t>(info.st_blocks) * 512;
+    };
+    for (const char* kind : {"/fd", "/map_files"}) {
+        DIR* d = ::opendir((proc + kind).c_str());
+        if (!d) continue;
+        int entries = 0;
+        while (const struct dirent* e = ::readdir(d)) {
+            if (e->d_name[0] == '.' || ++entries > 4096) continue;
+            count(proc + kind + "/" + e->d_name);
+        }
+        ::closedir(d);
+    }
+    return bytes;
+}
+
+}  // namespace
+
 Usage usageOf(pid_t root, uid_t uid) {
     std::set<pid_t> members;
     std::vector<pid_t> pending = {root};
@@ -242,12 +269,14 @@ Usage usageOf(pid_t root, uid_t uid) {
         for (const auto& [pid, state] : processesOf(uid)) members.insert(pid);
     }
     Usage usage;
+    std::set<std::pair<dev_t, ino_t>> unlinked;
     for (const pid_t pid : members) {
         const ProcessStat s = statOf(pid);
         if (!s.alive) continue;
         ++usage.processes;
         usage.cpuSeconds += s.cpuSeconds;
         usage.residentKiB += s.residentKiB;
+        usage.unlinkedBytes += unlinkedBytesOf(pid, unlinked);
     }
     return usage;
 }
@@ -268,32 +297,39 @@ long peakResidentOf(pid_t pid) {
 }
 
 std::uintmax_t folderBytes(const std::string& path, std::uintmax_t stopAt) {
+    // Folder by folder through descriptors, never through a link: a test may swap one of its folders for a link
+    // while it is looked at, and what the link leads to is not its.
     std::uintmax_t bytes = 0;
-    std::vector<std::string> pending = {path};
     int entries = 0;
+    std::vector<int> pending;
+    const int top = ::open(path.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (top >= 0) pending.push_back(top);
     while (!pending.empty()) {
-        const std::string dir = pending.back();
+        const int fd = pending.back();
         pending.pop_back();
-        DIR* d = ::opendir(dir.c_str());
-        if (!d) continue;
+        DIR* d = ::fdopendir(fd);
+        if (!d) {
+            ::close(fd);
+            continue;
+        }
         while (const struct dirent* e = ::readdir(d)) {
             if (e->d_name[0] == '.' && (e->d_name[1] == 0 || (e->d_name[1] == '.' && e->d_name[2] == 0))) continue;
-            if (++entries > 20000) {
-                ::closedir(d);
-                return stopAt + 1;
-            }
             struct stat info {};
-            const std::string p = dir + "/" + e->d_name;
-            if (::lstat(p.c_str(), &info) != 0) continue;
+            if (++entries > 20000 || bytes > stopAt) {
+                bytes = std::max(bytes, stopAt + 1);
+                break;
+            }
+            if (::fstatat(::dirfd(d), e->d_name, &info, AT_SYMLINK_NOFOLLOW) != 0) continue;
             bytes += static_cast<std::uintmax_t>(info.st_blocks) * 512;
-            if (S_ISDIR(info.st_mode)) pending.push_back(p);
-            if (bytes > stopAt) {
-                ::closedir(d);
-                return bytes;
+            if (S_ISDIR(info.st_mode)) {
+                const int below = ::openat(::dirfd(d), e->d_name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+                if (below >= 0) pending.push_back(below);
             }
         }
         ::closedir(d);
+        if (bytes > stopAt) break;
     }
+    for (const int fd : pending) ::close(fd);
     return bytes;
 }
 
@@ -316,16 +352,61 @@ bool handTo(const std::string& path, uid_t uid) {
     return !error;
 }
 
+namespace {
+
+// The machine's shared temporary folders, which every user may write where no file rules keep a process out.
+const char* const kSharedTemporary[] = {"/tmp", "/var/tmp", "/dev/shm", "/run/lock"};
+
+// Calls `each` with every entry of a shared temporary folder that `uid` owns: at their tops, and at the tops of the
+// folders there that every user may write into (a sticky folder such as /tmp/.X11-unix).
+template <typename Each>
+void forFilesOf(uid_t uid, const Each& each) {
+    for (const char* shared : kSharedTemporary) {
+        std::vector<std::string> folders = {shared};
+        for (std::size_t i = 0; i < folders.size(); ++i) {
+            DIR* d = ::opendir(folders[i].c_str());
+            if (!d) continue;
+            std::vector<std::string> entries;
+            while (const struct dirent* e = ::readdir(d)) {
+                if (e->d_name[0] == '.' && (e->d_name[1] == 0 || (e->d_name[1] == '.' && e->d_name[2] == 0))) continue;
+                entries.push_back(folders[i] + "/" + e->d_name);
+            }
+            ::closedir(d);
+            for (const std::string& p : entries) {
+                struct stat info {};
+                if (::lstat(p.c_str(), &info) != 0) continue;
+                if (info.st_uid == uid) {
+                    if (!each(p, info)) return;
+                } else if (i == 0 && S_ISDIR(info.st_mode) && (info.st_mode & S_IWOTH)) {
+                    folders.push_back(p);
+                }
+            }
+        }
+    }
+}
+
+}  // namespace
+
+std::uintmax_t sharedTemporaryBytes(uid_t uid, std::uintmax_t stopAt) {
+    std::uintmax_t bytes = 0;
+    forFilesOf(uid, [&](const std::string& p, const struct stat& info) {
+        bytes += S_ISDIR(info.st_mode) ? folderBytes(p, stopAt) : static_cast<std::uintmax_t>(info.st_blocks) * 512;
+        return bytes <= stopAt;
+    });
+    return bytes;
+}
+
 // Without bubblewrap or Landlock a sandbox user could write to the machine's shared temporary folders: what it
 // left there goes with it.
 void removeFilesOf(uid_t uid) {
-    namespace fs = std::filesystem;
-    for (const char* dir : {"/tmp", "/var/tmp", "/dev/shm", "/run/lock"}) {
+    std::vector<std::string> found;
+    forFilesOf(uid, [&](const std::string& p, const struct stat&) {
+        found.push_back(p);
+        return true;
+    });
+    for (const std::string& p : found) {
         std::error_code error;
-        for (auto it = fs::directory_iterator(dir, error); !error && it != fs::directory_iterator(); it.increment(error)) {
-            struct stat info {};
-            if (::lstat(it->path().c_str(), &info) == 0 && info.st_uid == uid) fs::remove_all(it->path(), error);
-        }
+        std::filesystem::remove_all(p, error);
     }
 }
 

@@ -20,6 +20,7 @@ std::map<std::string, Handler>& handlers() {
 }
 
 bool gSealed = false;
+ThrowReporter gReporter = nullptr;
 
 }  // namespace
 
@@ -38,6 +39,8 @@ void add(const std::string& kind, Handler handler) {
 
 void seal() { gSealed = true; }
 
+void reportThrows(ThrowReporter reporter) { gReporter = reporter; }
+
 std::string answer(const std::string& request) {
     const nlohmann::json parsed = nlohmann::json::parse(request, nullptr, /*allow_exceptions=*/false);
     nlohmann::json reply = {{"id", parsed.is_object() ? parsed.value("id", 0) : 0}};
@@ -50,7 +53,9 @@ std::string answer(const std::string& request) {
     } catch (const NotDoneYet& e) {
         reply["threw"] = {{"type", "simlab::NotDoneYet"}, {"message", e.what()}};
     } catch (const std::exception& e) {
-        reply["threw"] = {{"type", typeName(typeid(e))}, {"message", e.what()}};
+        const std::string type = typeName(typeid(e));
+        reply["threw"] = {{"type", type}, {"message", e.what()}};
+        if (gReporter) gReporter(e, type);
     } catch (...) {
         reply["threw"] = {{"type", "something that is not a std::exception"}, {"message", ""}};
     }

@@ -6,13 +6,16 @@
 // exports.
 //
 // Descriptors, set up by the engine and the host: 3 carries events to the engine (running out of memory,
-// std::terminate with what was in flight), 4 brings requests from the judge, 5 takes answers to it. Student code
+// std::terminate with what was in flight, where an exception of the student's was thrown), 4 brings requests from
+// the judge, 5 takes answers to it. Student code
 // shares this process and can write to any of them; whatever it writes is data the judge and the engine check,
 // never a verdict.
+#include <dlfcn.h>
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -21,7 +24,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <typeinfo>
+#include <vector>
 
+#include "simlab/isolation/failure_sites.h"
 #include "simlab/isolation/host_protocol.h"
 #include "simlab/probe/probe.h"
 
@@ -48,7 +53,19 @@ void onOutOfMemory() {
     std::_Exit(137);
 }
 
-// std::terminate: say what was in flight, then abort as C++ would.
+// Where the exception `caught` was thrown, as the host's throw hook saw it (simlab/isolation/failure_sites.h): the
+// probe's frames, innermost first; none where the host does not know (a floor has no host).
+std::vector<std::uint64_t> thrownFrom(const std::exception& caught) {
+    using simlab::isolation::kMaxFailureFrames;
+    static const auto hook =
+        reinterpret_cast<simlab::isolation::ThrownFrom>(::dlsym(RTLD_DEFAULT, simlab::isolation::kThrownFromSymbol));
+    if (!hook) return {};
+    std::uint64_t at[kMaxFailureFrames];
+    const int count = hook(dynamic_cast<const void*>(&caught), at, kMaxFailureFrames);
+    return count > 0 ? std::vector<std::uint64_t>(at, at + count) : std::vector<std::uint64_t>();
+}
+
+// std::terminate: say what was in flight and where it was thrown, then abort as C++ would.
 void onTerminate() {
     nlohmann::json event = {{"event", "terminate"}};
     try {
@@ -58,6 +75,8 @@ void onTerminate() {
             } catch (const std::exception& e) {
                 event["type"] = simlab::probe::typeName(typeid(e));
                 event["what"] = e.what();
+                const std::vector<std::uint64_t> at = thrownFrom(e);
+                if (!at.empty()) event["at"] = at;
             } catch (...) {
                 event["type"] = "something that is not a std::exception";
             }
@@ -68,6 +87,19 @@ void onTerminate() {
         (void)!::write(kEventFd, line, sizeof line - 1);
     }
     std::abort();
+}
+
+// An exception of the student's code that became the answer: where it was thrown, told on the event channel for the
+// engine to look up. Nothing where the host does not know.
+void onStudentThrow(const std::exception& caught, const std::string& type) {
+    try {
+        const std::vector<std::uint64_t> at = thrownFrom(caught);
+        if (at.empty()) return;
+        const nlohmann::json event = {{"event", "threw"}, {"type", type}, {"at", at}};
+        writeAll(kEventFd, event.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    } catch (...) {
+        // no memory left to say it: the answer still says what was thrown
+    }
 }
 
 // The channel kept from programs the student's code might execute.
@@ -98,6 +130,7 @@ bool readRequest(std::string& pending, std::string& line) {
 __attribute__((constructor(101))) void prepare() {
     std::set_new_handler(onOutOfMemory);
     std::set_terminate(onTerminate);
+    simlab::probe::reportThrows(onStudentThrow);
     keepChannel();
 }
 

@@ -39,7 +39,7 @@ std::string feedbackHtml(const Assignment& assignment, const StudentRecord& reco
     out << writers::pageStart(f.title + ": " + f.id);
     out << "<header>\n<h1>" << htmlText(f.title) << ": " << htmlText(f.id) << "</h1>\n";
     out << "<p class=\"score\">Score: <strong>" << f.score << "</strong>";
-    if (!f.status.empty()) out << " <span class=\"badge error\">" << htmlText(f.status) << "</span>";
+    if (!f.status.empty()) out << " " << writers::outcomeBadge(f.status);
     out << "</p>\n";
     if (!f.note.empty()) out << "<p>" << htmlText(f.note) << ".</p>\n";
     if (!f.late.empty()) out << "<p class=\"late\">Lateness: " << htmlText(f.late) << ".</p>\n";
@@ -55,8 +55,8 @@ std::string feedbackHtml(const Assignment& assignment, const StudentRecord& reco
     for (std::size_t i = 0; i < f.tests.size(); ++i) {
         const writers::FeedbackTest& t = f.tests[i];
         const std::string name = htmlText(t.result->name);
-        out << "<tr><td class=\"num\">" << t.points << "</td><td><span class=\"badge "
-            << writers::outcomeClass(t.outcome) << "\">" << htmlText(t.outcome) << "</span></td><td class=\"name\">"
+        out << "<tr><td class=\"num\">" << t.points << "</td><td>" << writers::outcomeBadge(t.outcome)
+            << "</td><td class=\"name\">"
             << (t.detailed ? "<a href=\"#test-" + std::to_string(i + 1) + "\">" + name + "</a>" : name)
             << "</td><td class=\"figure\">"
             << (t.result->figure && !t.hidden ? htmlText(figureText(*t.result)) : "") << "</td></tr>\n";
@@ -64,23 +64,22 @@ std::string feedbackHtml(const Assignment& assignment, const StudentRecord& reco
     out << "</tbody>\n</table>\n";
 
     // The pictures the tests drew of the student's runs, in the page itself; each is also a file beside it.
-    bool pictures = false;
+    int pictures = 0;
     for (const Attachment& a : attached) {
         const std::string type = writers::pictureType(a.name);
         if (type.empty() || a.bytes.empty()) continue;
         if (!pictures) out << "<h2 id=\"runs\">Your runs, drawn</h2>\n";
-        pictures = true;
-        out << "<figure><img src=\"" << writers::dataUri(type, a.bytes) << "\" alt=\"" << htmlText(a.name)
-            << "\" style=\"max-width: 100%\"><figcaption><a href=\"" << writers::urlSegment(a.name) << "\">"
-            << htmlText(a.name) << "</a></figcaption></figure>\n";
+        ++pictures;
+        out << writers::figureHtml("picture-" + std::to_string(pictures), writers::dataUri(type, a.bytes),
+                                   type == "image/svg+xml" ? a.bytes : "", a.name, a.name);
     }
 
     for (std::size_t i = 0; i < f.tests.size(); ++i) {
         const writers::FeedbackTest& t = f.tests[i];
         if (!t.detailed) continue;
         out << "<section class=\"test " << writers::outcomeClass(t.outcome) << "\" id=\"test-" << i + 1 << "\">\n"
-            << "<h3>" << htmlText(t.result->name) << "</h3>\n<p><strong>" << t.points << "</strong> <span class=\"badge "
-            << writers::outcomeClass(t.outcome) << "\">" << htmlText(t.outcome) << "</span> ";
+            << "<h3>" << htmlText(t.result->name) << "</h3>\n<p><strong>" << t.points << "</strong> "
+            << writers::outcomeBadge(t.outcome) << " ";
         if (t.hidden) {
             out << "A hidden test: your instructor has the details.</p>\n</section>\n";
             continue;

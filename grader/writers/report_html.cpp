@@ -62,9 +62,17 @@ std::string scoreHistogram(const std::vector<StudentRecord>& records, double tot
     const int most = std::max(1, *std::max_element(counts.begin(), counts.end()));
     const double width = 640, height = 180, left = 8, top = 18, bottom = 22, gap = 6;
     const double slot = (width - left) / kScoreBins;
+    // Its text alternative: the count of each tenth that has students.
+    std::string said = "Students per tenth of the points";
+    for (int i = 0, listed = 0; i < kScoreBins; ++i) {
+        if (counts[i] == 0) continue;
+        said += std::string(listed++ ? "; " : ": ") + points(total * i / kScoreBins) + " to " +
+                (i + 1 == kScoreBins ? points(total) + " inclusive" : "under " + points(total * (i + 1) / kScoreBins)) +
+                ", " + plural(counts[i], "student", "students");
+    }
     std::ostringstream svg;
     svg << "<svg width=\"" << at(width + 8) << "\" height=\"" << at(height) << "\" role=\"img\" aria-label=\""
-        << "How many students scored in each tenth of the points\">\n";
+        << htmlText(said) << "\">\n";
     svg << "<line class=\"axis\" x1=\"" << at(left) << "\" x2=\"" << at(width) << "\" y1=\""
         << at(height - bottom) << "\" y2=\"" << at(height - bottom) << "\"/>\n";
     for (int i = 0; i < kScoreBins; ++i) {
@@ -136,11 +144,20 @@ std::string figureDistribution(const std::vector<double>& sorted, double median,
     const double width = 220, barsHeight = 30, height = 46, zeroWidth = logScale && zeros > 0 ? 16 : 0;
     const double start = zeroWidth > 0 ? zeroWidth + 6 : 0, slot = (width - start) / bins;
     const std::string shownUnit = unit.empty() ? "" : " " + unit;
+    auto edge = [&](int k) {  // the value where bin k starts
+        const double x = from + (to - from) * k / bins;
+        return number(logScale ? std::pow(10.0, x) : x);
+    };
+    // Its text alternative: the span, and how many students each bar holds.
+    std::string said = "from " + number(lo) + " to " + number(hi) + shownUnit + (logScale ? ", log scale" : "");
+    if (zeroWidth > 0) said += "; 0" + shownUnit + ": " + std::to_string(zeros);
+    for (int i = 0; i < bins && bins > 1; ++i) {
+        if (counts[i] > 0) said += "; " + edge(i) + " to " + edge(i + 1) + shownUnit + ": " + std::to_string(counts[i]);
+    }
     std::ostringstream svg;
     svg << "<svg width=\"" << at(width) << "\" height=\"" << at(height) << "\" role=\"img\" aria-label=\""
-        << htmlText("from " + number(lo) + " to " + number(hi) + shownUnit + (logScale ? ", log scale" : ""))
-        << "\">\n<line class=\"axis\" x1=\"0\" x2=\"" << at(width) << "\" y1=\"" << at(barsHeight) << "\" y2=\""
-        << at(barsHeight) << "\"/>\n";
+        << htmlText(said) << "\">\n<line class=\"axis\" x1=\"0\" x2=\"" << at(width) << "\" y1=\"" << at(barsHeight)
+        << "\" y2=\"" << at(barsHeight) << "\"/>\n";
     auto bar = [&](double x, double w, int count, const std::string& title) {
         if (count == 0) return;
         const double h = std::max(2.0, barsHeight * count / most);
@@ -149,10 +166,6 @@ std::string figureDistribution(const std::vector<double>& sorted, double median,
             << count << "</title></rect>\n";
     };
     if (zeroWidth > 0) bar(0, zeroWidth, zeros, "0" + shownUnit);
-    auto edge = [&](int k) {  // the value where bin k starts
-        const double x = from + (to - from) * k / bins;
-        return number(logScale ? std::pow(10.0, x) : x);
-    };
     if (bins == 1) bar((width - kFigureBarWidth) / 2, kFigureBarWidth, counts[0], number(lo) + shownUnit);
     for (int i = 0; i < bins && bins > 1; ++i) {
         bar(start + i * slot, slot, counts[i], edge(i) + " to " + edge(i + 1) + shownUnit);
@@ -243,7 +256,7 @@ std::string studentsTable(const std::vector<const StudentRecord*>& rows, bool wi
         }
         if (tests) out << "<td class=\"name\">" << htmlText(shortened(tests(*r), kNoteChars)) << "</td>";
         if (r->status == "graded") out << "<td class=\"muted\">graded</td>";
-        else out << "<td><span class=\"badge error\">" << htmlText(r->status) << "</span></td>";
+        else out << "<td>" << writers::outcomeBadge(r->status) << "</td>";
         if (notes) out << "<td class=\"name\">" << htmlText(shortened(r->note, kNoteChars)) << "</td>";
         out << "</tr>\n";
     }
@@ -385,6 +398,8 @@ std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, 
                                 "gradebook.csv has each one's raw score and penalty)")
             << ".</p>\n";
     }
+    // What the times the lateness was measured from are worth: whose word, and where the sources disagree.
+    for (const std::string& line : result.handIns) out << "<p>Hand-in times: " << htmlText(line) << ".</p>\n";
     // The sandboxes the students' code ran in (one, unless the class was graded in parts on other machines).
     std::map<std::string, std::size_t> sandboxes;
     for (const StudentRecord& r : records) {

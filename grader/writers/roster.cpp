@@ -96,6 +96,8 @@ std::vector<RosterEntry> readRoster(const std::string& text, const std::string& 
                                                                      : csvCellValue(trimmed(row[found->second]));
     };
     std::vector<RosterEntry> entries;
+    // An id of Canvas's names one student: on two rows it is a mistake, and either could get the other's grade.
+    std::map<std::pair<std::string, std::string>, std::size_t> seen;
     for (std::size_t r = 1; r < rows.size(); ++r) {
         const std::string line = where + ", row " + std::to_string(r + 1);
         if (rows[r].size() > rows[0].size()) {
@@ -114,6 +116,16 @@ std::vector<RosterEntry> readRoster(const std::string& text, const std::string& 
         e.folder = cellOf(rows[r], ownIds ? "simlab id" : "SIS Login ID");
         if (e.student.empty() && e.canvasId.empty() && e.sisUserId.empty() && e.sisLoginId.empty()) {
             throw UsageError(line + " names no student (Student, ID, SIS User ID and SIS Login ID are all empty)");
+        }
+        for (const auto& [key, value] : {std::pair<const char*, const std::string&>{"ID", e.canvasId},
+                                         {"SIS User ID", e.sisUserId},
+                                         {"SIS Login ID", e.sisLoginId}}) {
+            if (value.empty()) continue;
+            const auto [at, first] = seen.emplace(std::make_pair(std::string(key), value), r + 1);
+            if (!first) {
+                throw UsageError(line + ": " + key + " " + printable(value) + " is row " + std::to_string(at->second) +
+                                 "'s too: one student per id");
+            }
         }
         entries.push_back(e);
     }

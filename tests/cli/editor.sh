@@ -1,8 +1,9 @@
 # The editor's side of the dev container, as VS Code would use it: devcontainer.json, .vscode/tasks.json and
 # .vscode/launch.json are read as JSON; each starter is a translation unit of the build's compile_commands.json whose
 # headers are found; the check task's problem matchers, applied to simlab check's real output, take the student to
-# the TODO's line and to a compile error's line in their own file; the plot, replay and run tasks work as written;
-# and the launch configuration's program stops at a breakpoint in the student's file under gdb.
+# the TODO's line, to a compile error's line and to the line a crash, an exception or an endless loop was at in their
+# own file; the plot, replay and run tasks work as written; and the launch configuration's program stops at a
+# breakpoint in the student's file under gdb.
 # shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
@@ -82,6 +83,33 @@ awk 'NR==45{print "int broken = ;"}1' "$SOURCE_DIR/starter/apple/NewtonsApple.cp
 matched broken.out >broken.problems
 check "a compile error is a problem at its line and column's line" \
   grep -q "^starter/apple/NewtonsApple.cpp:45: expected expression" broken.problems
+
+# A crash, an exception and an endless loop in the student's file are problems at their lines, each once: the
+# reference solution with one bug, on one test (the loop stopped after a second of CPU time).
+bug() {  # bug NAME FIND REPLACE [CHECK OPTIONS...]: NAME.line is the bug's line, NAME.problems what the matchers find
+  local name=$1 find=$2 replace=$3
+  shift 3
+  python3 - "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" "$find" "$replace" >ws/starter/apple/NewtonsApple.cpp <<'PY'
+import sys
+text = open(sys.argv[1]).read()
+assert text.count(sys.argv[2]) == 1, sys.argv[2]
+sys.stdout.write(text.replace(sys.argv[2], sys.argv[3] + "  // the bug\n" + sys.argv[2]))
+PY
+  grep -n '// the bug$' ws/starter/apple/NewtonsApple.cpp | cut -d: -f1 >"$name.line"
+  (cd ws && "$SIMLAB" check apple starter/apple/NewtonsApple.cpp --test "the apple starts at rest at the drop height" \
+     "$@" >"../$name.out" 2>&1)
+  matched "$name.out" >"$name.problems"
+}
+bug crash "    // Energies need forces" "    *static_cast<volatile int*>(nullptr) = 1;"
+check "a crash is a problem at its line, once" \
+  grep -qx "starter/apple/NewtonsApple.cpp:$(cat crash.line): crashed (SIGSEGV) in apple::sample() (NewtonsApple.cpp:$(cat crash.line)): a bad pointer, or a stack overflowed by endless recursion" crash.problems
+bug exception "    TimeStepper stepper" "    throw std::runtime_error(\"my bug\");"
+check "an exception is a problem at the line that threw it" \
+  grep -qx "starter/apple/NewtonsApple.cpp:$(cat exception.line): threw std::runtime_error in apple::simulate() (NewtonsApple.cpp:$(cat exception.line)): my bug" exception.problems
+bug loop "    TimeStepper stepper" "    for (volatile double x = 1; x > 0;) x = x * 1.0000001;" --timeout 1
+check "an endless loop is a problem at the line it was stopped in" \
+  grep -qx "starter/apple/NewtonsApple.cpp:$(cat loop.line): stopped in apple::simulate() (NewtonsApple.cpp:$(cat loop.line)): no end within 1 s of CPU time" loop.problems
+check "  and each of them once" bash -c "test \$(cat crash.problems exception.problems loop.problems | wc -l) -eq 3"
 
 # The run, plot and replay tasks as written, in a workspace whose build is the one under test: on the starter the
 # run stops at its TODO, which the run task's matcher finds; plot and replay are run on the finished file's program.

@@ -87,6 +87,54 @@ invariants() {
 }
 invariants moved "$work/moved/lib/simlab/simlab-build.json"
 
+# Where files are kept apart by their modes alone (no bubblewrap, no Landlock), an installation closed by simlab lock
+# runs hidden tests, and the walk finds nothing of it a test may not read; open, simlab refuses them.
+moved_manifest=$work/moved/lib/simlab/simlab-build.json
+walk=$SOURCE_DIR/tests/corpus/apple/invariants/reach-walk.toml
+limits=(SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1)
+run_capture open-limits env SIMLAB_MANIFEST="$moved_manifest" "${limits[@]}" "$CORPUS" invariants apple "$walk"
+check "installed, open to all, limits only: simlab refuses hidden tests, naming a file of it and simlab lock" \
+  grep -qE "^limits only: simlab refuses hidden tests here: .* could read $work/.* close them with .simlab lock" open-limits.out
+run_capture lock env SIMLAB_MANIFEST="$moved_manifest" moved/bin/simlab lock
+check "simlab lock closes the installation but what a test's tools are lent" \
+  grep -qE '^simlab lock: [0-9]+ files and folders closed to other users .*; [1-9][0-9]* left to the tools as lent' lock.out
+run_capture locked-limits env SIMLAB_MANIFEST="$moved_manifest" "${limits[@]}" "$CORPUS" invariants apple "$walk"
+grep -E '^(limits only|OK|FAILED|    )' locked-limits.out | sed 's/^/    /'
+check "closed, limits only: the walk reads nothing of the installation a test may not read, and hidden tests run" \
+  bash -c "test $(status_of locked-limits) -eq 0 && grep -q '^limits only: nothing of simlab.s places opens' locked-limits.out &&
+    grep -qE 'walk: [1-9][0-9]* folders listed, [1-9][0-9]* files readable, 0 outside' locked-limits.out"
+run_capture locked-all env "${limits[@]}" moved/bin/simlab check apple NewtonsApple.cpp --all
+check "and simlab check --all grades every test there" grep -q '^Score: ' locked-all.out
+
+# A lab of one's own with a history of its own, graded by the installation: among the system's files where this user
+# may write there (/usr/local/share, which every sandbox lets its processes read), else beside it. The walk, in each
+# mode, reads nothing of it - its history, its solution, its build - that a test may not read.
+labs=$work/labs
+[[ -w /usr/local/share ]] && labs=/usr/local/share/simlab-lab-test-$$
+trap 'rm -rf "$work" "${system:-}" "$labs"' EXIT
+mkdir -p "$labs" && chmod 0755 "$labs" && cp -r "$SOURCE_DIR/examples/pendulum" "$labs/"
+(cd "$labs/pendulum" && git init -q && git add -A && git -c user.name=author -c user.email=author@example.edu commit -qm lab)
+chmod -R go-rwx "$labs/pendulum/grading/hidden.cpp" "$labs/pendulum/solution" "$labs/pendulum/corpus"
+lab_walk=$SOURCE_DIR/tests/corpus/pendulum/invariants/reach-walk.toml
+for mode in bubblewrap Landlock "limits only"; do
+  settings=(SIMLAB_MANIFEST="$moved_manifest")
+  [[ $mode == Landlock ]] && settings+=(SIMLAB_NO_BUBBLEWRAP=1)
+  [[ $mode == "limits only" ]] && settings+=("${limits[@]}")
+  name=lab-${mode// /-}
+  if [[ $mode == "limits only" ]]; then
+    run_capture "$name-lock" env "${settings[@]}" moved/bin/simlab lock "$labs/pendulum"
+  fi
+  run_capture "$name" env "${settings[@]}" "$CORPUS" invariants "$labs/pendulum" "$lab_walk"
+  if ! grep -q "^sandbox: $mode" "$name.out"; then
+    echo "skipped: the lab's walk in $mode (not this machine's: $(grep -m1 '^sandbox' "$name.out"))"
+    continue
+  fi
+  grep -E '^(limits only|OK|FAILED|    )' "$name.out" | sed 's/^/    /'
+  check "installed, a lab of one's own with its history in $labs ($mode): the walk reads nothing a test may not read" \
+    bash -c "test $(status_of "$name") -eq 0 && grep -qE 'walk: [1-9][0-9]* folders listed, [1-9][0-9]* files readable, 0 outside' $name.out"
+done
+chmod -R o+rX "$work/moved"  # open again for what follows
+
 run_capture new moved/bin/simlab project new myboot --from babyboot
 check "a project made by the installed simlab asks for it with find_package(simlab)" \
   grep -q "^find_package(simlab .* REQUIRED CONFIG HINTS \"$work/moved/lib/cmake/simlab\")$" myboot/CMakeLists.txt
@@ -102,7 +150,7 @@ check "which says its version" grep -q '^myboot (simlab ' bootversion.out
 # bubblewrap and without (Landlock and a user of its own, as in Gradescope's and PrairieLearn's containers).
 if [[ -w /usr/local ]]; then
   system=/usr/local/simlab-install-test-$$
-  trap 'rm -rf "$work" "$system"' EXIT
+  trap 'rm -rf "$work" "$system" "$labs"' EXIT
   run_capture system cmake --install "$build" --prefix "$system"
   cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" solution.cpp
   for secret in share/simlab/source/assignments/apple/grading/hidden.cpp lib/simlab/build/judges/apple-judge \
@@ -131,4 +179,6 @@ check "the installed simlab makes a Gradescope package from the sources it carri
     grep -qx assignments/apple/grading/hidden.cpp zipped.txt"
 check "with no solution, test or example lab in it" \
   bash -c "! grep -E '^(solutions/[^b]|tests/|examples/)' zipped.txt"
+check "and none of the course's other labs: their hidden tests and trade files are not the apple's autograder's" \
+  bash -c "! grep -E '^(assignments|starter)/(projectile|book|biosim)/' zipped.txt"
 finish

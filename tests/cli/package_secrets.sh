@@ -28,6 +28,21 @@ done
 run_capture look look "${pulled[@]}"
 sed 's/^/    /' look.out
 check "no line of a hidden test or a solution in what students can reach" test "$(status_of look)" -eq 0
+# simlab list --secrets and the bundle agree: nothing it lists is in the bundle, and nothing in the bundle lies under
+# anything it lists (the worked example's solution, which students are given, is no secret).
+run_capture secrets "$SIMLAB" list --secrets
+(cd bundle && find . -type f | sed 's|^\./||' | sort) >bundled.txt
+disagree=0
+while IFS= read -r secret; do
+  rel=${secret#"$SOURCE_DIR"/}
+  [[ $rel == "$secret" ]] && continue  # the build's and caches' paths are not the sources'
+  if grep -qE "^$(printf '%s' "$rel" | sed 's/[.[\*^$]/\\&/g')(/|$)" bundled.txt; then
+    echo "    listed as secret, and bundled: $rel"
+    disagree=$((disagree + 1))
+  fi
+done <secrets.out
+check "simlab list --secrets and the student bundle agree ($(wc -l <secrets.out) secrets listed)" \
+  bash -c "test $(status_of secrets) -eq 0 && test $disagree -eq 0 && ! grep -q '/solutions/biosim' secrets.out"
 run_capture tests look question-apple/tests question-book/tests
 check "the questions' tests/ folders hold the hidden tests (the look finds them there)" \
   bash -c "test $(status_of tests) -eq 1 && grep -q 'hidden.cpp' tests.out"

@@ -62,8 +62,8 @@ if [[ ${#as_docker[@]} -gt 0 ]]; then
   run_capture refused env SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1 "${as_docker[@]}" "$SIMLAB" grade apple class --out grades
   check "limits only, files readable by all: simlab grade refuses (exit 2), grading nothing" \
     bash -c "test $(status_of refused) -eq 2 && test ! -e grades/gradebook.csv"
-  check "in one line naming the hidden tests and the fix" \
-    bash -c "test \$(wc -l <refused.err) -le 2 && grep -q 'could read .*hidden.*chmod -R go-rwx' refused.err"
+  check "in one line naming a file of the course it could read and the command that closes them" \
+    bash -c "test \$(wc -l <refused.err) -le 2 && grep -qE \"could read $SOURCE_DIR/.* so hidden tests are not run: close them with .simlab lock. \" refused.err"
   run_capture visible env SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1 "${as_docker[@]}" "$SIMLAB" check apple \
     class/alice/NewtonsApple.cpp
   check "the visible tests still run there (a self-check holds no secret): 76/76" grep -q 'Score: 76/76' visible.out

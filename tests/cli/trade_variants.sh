@@ -60,8 +60,8 @@ check "bob's results.json is valid and has the leaderboard the grader measured" 
   "$VALIDATE" out/students/bob/results.json --score 6 --max 6 --tests 1
 leaderboard() { python3 -c 'import json, sys; print(json.dumps(json.load(open(sys.argv[1])).get("leaderboard")))' "$1"; }
 leaderboard out/students/bob/results.json >bob-board.json
-check "its entries: 202 evaluations (200 steps), 3 digits kept (counted up to those asked), 1.52 x the front (133)" \
-  grep -qF '[{"name": "trade: evaluations", "order": "asc", "value": 202.0}, {"name": "trade: digits kept", "order": "desc", "value": 3.0}, {"name": "trade: x the front", "order": "asc", "value": 1.52}]' bob-board.json
+check "its entries: 1.52 x the front (133) first, then 202 evaluations (200 steps), 3 digits kept (counted up to those asked)" \
+  grep -qF '[{"name": "trade: x the front", "order": "asc", "value": 1.52}, {"name": "trade: evaluations", "order": "asc", "value": 202.0}, {"name": "trade: digits kept", "order": "desc", "value": 3.0}]' bob-board.json
 check "an answer short of the digits asked is not on it" \
   test "$(leaderboard out/students/dee/results.json)" = "null"
 

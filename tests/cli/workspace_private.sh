@@ -1,8 +1,10 @@
 # Nothing of a grading is another user's to read, at any moment: while simlab check grades the solution (with
-# bubblewrap, and with limits only), a local user with no part in it (nobody) reads every file it can reach in every
-# grading folder under /tmp, by listing and by the names simlab gives them. It must find none but the probe a test
-# server opens to the tests' users once it is whole (the student's own compiled code, never a judge, rubric or
-# source). Each folder is private from the moment it exists (createPrivateFolder), not made so later.
+# bubblewrap, and with limits only), a local user with no part in it (nobody) tries every file in every grading
+# folder under $TMPDIR - by listing what it can, and by every name root sees there, since a folder it may pass
+# through but not list still opens by name. It must read none: each test's probe is the test's own copy, in its
+# own folder, and every folder is private from the moment it exists (createPrivateFolder), not made so later. Then a
+# grading killed for good (SIGKILL) leaves its folder behind, which nobody can read either, and the next run removes
+# in one line; simlab clean removes what is left.
 # The reader is a user id no other test runs simlab as (cli/isolation grades as nobody, whose own folders are its
 # to read), and it looks only at gradings root owns, the ones this test starts.
 # shellcheck source=../smoke/lib.sh
@@ -12,41 +14,57 @@ if [[ $(id -u) -ne 0 ]] || ! command -v setpriv >/dev/null; then
   echo "skipped: needs root and setpriv, to read as another user"
   exit 77
 fi
+export TMPDIR=$work/tmp  # this test's gradings alone
+mkdir -p "$TMPDIR" && chmod 1777 "$TMPDIR"
 cat >poll.py <<'PY'
 import glob, os, sys, time
-ready, stop = sys.argv[1], sys.argv[2]
+ready, stop, tmp = sys.argv[1], sys.argv[2], sys.argv[3]
+reader = 65532
 seen, read = set(), set()
-names = ["build", "probe"] + [f"judge{k}" for k in range(1, 5)]
-for k in range(1, 5):
-    names += [f"j{k}-server", f"j{k}-probes", f"j{k}-judge-home"]
-    names += [f"j{k}-test{n}" for n in range(1, 17)] + [f"j{k}-program{n}" for n in range(1, 17)]
-files = ["judge", "rubric.toml", "probe.so", "NewtonsApple.cpp", "NewtonsApple.o", "submission"]
-allowed = lambda rel: rel.split("/")[0].endswith("-server") and rel.endswith("/probe.so")
 first, caught = True, False
+
+def names(root):
+    # Every file under a grading's folder, as root sees it (no link followed).
+    found = []
+    for folder, dirs, files in os.walk(root, onerror=lambda e: None):
+        found += [os.path.join(folder, name) for name in files]
+    return found
+
+def opened_by_reader(paths):
+    # Tried as the reader, in a child: a user with no part in the grading, no group, no capability.
+    r, w = os.pipe()
+    child = os.fork()
+    if child == 0:
+        os.close(r)
+        os.setgroups([])
+        os.setresgid(reader, reader, reader)
+        os.setresuid(reader, reader, reader)
+        out = os.fdopen(w, "w")
+        for path in paths:
+            try:
+                fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+            except OSError:
+                continue
+            os.close(fd)
+            out.write(path + "\n")
+        out.close()
+        os._exit(0)
+    os.close(w)
+    text = os.fdopen(r).read()
+    os.waitpid(child, 0)
+    return [line for line in text.split("\n") if line]
+
 while not os.path.exists(stop):
-    for root in glob.glob("/tmp/simlab-apple-*"):
+    for root in glob.glob(tmp + "/simlab-apple-*"):
         try:
-            if os.lstat(root).st_uid != 0:
+            if not os.path.isdir(root) or os.lstat(root).st_uid != 0:
                 continue
         except OSError:
             continue
         seen.add(root)
-        for sub in names:
-            folder = root + "/" + sub
-            try:
-                found = os.listdir(folder)
-            except OSError:
-                found = []
-            for name in set(found) | set(files):
-                path = folder + "/" + name
-                try:
-                    fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
-                except OSError:
-                    continue
-                os.close(fd)
-                rel = path[len(root) + 1:]
-                if os.path.isfile(path) and not allowed(rel):
-                    read.add(rel)
+        for path in opened_by_reader(names(root)):
+            if os.path.isfile(path):
+                read.add(path[len(root) + 1:])
     if first:
         open(ready, "w").close()
         first = False
@@ -69,8 +87,7 @@ for mode in bubblewrap limits-only; do
   # machine: the gradings wait for its first pass, go on (three at least) until it has seen one come and go, and
   # it stops when told.
   mkdir -m 0777 "$mode.flags"
-  setpriv --reuid=65532 --regid=65532 --clear-groups /usr/bin/python3 poll.py "$mode.flags/ready" "$mode.flags/stop" \
-    >"$mode.poll" 2>&1 &
+  /usr/bin/python3 poll.py "$mode.flags/ready" "$mode.flags/stop" "$TMPDIR" >"$mode.poll" 2>&1 &
   poller=$!
   for _ in $(seq 600); do [[ -e $mode.flags/ready ]] && break; sleep 0.1; done
   for round in $(seq 20); do
@@ -84,6 +101,31 @@ for mode in bubblewrap limits-only; do
   sed 's/^/    /' "$mode.poll"
   check "$mode: the solution was graded while the reader looked" grep -q "passed" "$mode.1.out"
   check "$mode: the reader saw the gradings as they ran" grep -qE '^[1-9][0-9]* grading folders seen while they lived' "$mode.poll"
-  check "$mode: it read nothing of them" bash -c "! grep -q '^read ' '$mode.poll'"
+  check "$mode: it read nothing of them, by any name" bash -c "! grep -q '^read ' '$mode.poll'"
 done
+
+# A grading killed for good: its folder stays, closed to others, until the next run (or simlab clean) removes it.
+env SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1 "$SIMLAB" check apple "$solution" --jobs 1 >killed.out 2>&1 </dev/null &
+killed=$!
+for _ in $(seq 600); do
+  compgen -G "$TMPDIR/simlab-apple-*/probe/probe.so" >/dev/null && break
+  sleep 0.1
+done
+kill -KILL "$killed"; wait "$killed" 2>/dev/null
+mapfile -t left < <(find "$TMPDIR" -maxdepth 1 -name 'simlab-apple-*' -type d)
+check "a grading killed for good leaves its folder behind" test ${#left[@]} -ge 1
+listed=$(find "$TMPDIR" -type f | wc -l)
+readable=$(find "$TMPDIR" -type f -print0 | setpriv --reuid=65532 --regid=65532 --clear-groups xargs -0 -r sh -c \
+  'for f; do head -c1 -- "$f" >/dev/null 2>&1 && echo "$f"; done' sh | wc -l)
+check "and nobody else can read any of its $listed files" test "$readable" -eq 0
+run_capture next "$SIMLAB" check apple "$solution" --test "the apple starts at rest at the drop height"
+check "the next run removes it, saying so in one line" \
+  bash -c "grep -qE '^simlab: removed [0-9]+ folders? that a stopped run of simlab left behind: simlab-apple-' next.err &&
+    test -z \"\$(find '$TMPDIR' -maxdepth 1 -name 'simlab-apple-*' -type d)\""
+mkdir "$TMPDIR/simlab-apple-LEFT01" && touch "$TMPDIR/simlab-apple-LEFT01.held"
+run_capture clean "$SIMLAB" clean
+check "simlab clean removes what a stopped run left" \
+  bash -c "grep -q 'simlab-apple-LEFT01' clean.err && test ! -e '$TMPDIR/simlab-apple-LEFT01'"
+run_capture clean-again "$SIMLAB" clean
+check "and says when nothing is left" grep -qx 'simlab clean: nothing left behind' clean-again.out
 finish

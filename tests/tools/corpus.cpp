@@ -17,9 +17,9 @@
 //   simlab-corpus compare <assignment> <case.toml>... --grades DIR    compare a class graded into DIR (`simlab grade
 //       --out DIR` of the materialized cases) with every case's expectations: outcomes, score, status and text
 //   simlab-corpus invariants <assignment> <case.toml>...               grade each with the object check off, in the
-//       sandbox this machine and environment give, and fail on any record of the witness made as root, with a
-//       capability, or having read a secret, and on an entry point that did not run where it must (or ran where it
-//       must not)
+//       sandbox this machine and environment give, and fail on any record of the witness made as root or with a
+//       capability, on a walk that read a file outside what a test may read (isolation/reach.h), and on an entry
+//       point that did not run where it must (or ran where it must not)
 //   simlab-corpus class <assignment> <case.toml>... --simlab PATH     grade them all as one class with
 //       `simlab grade` (--env NAME=VALUE for it, --docker-capabilities to run it with Docker's default capabilities),
 //       while listening on 127.0.0.1:47810, and compare every student; also check that no process a submission
@@ -54,6 +54,7 @@
 #include "simlab/common/errors.h"
 #include "simlab/common/files.h"
 #include "simlab/grading/grade.h"
+#include "simlab/build/lock.h"
 #include "simlab/build/manifest.h"
 #include "simlab/isolation/process.h"
 #include "simlab/grading/report.h"
@@ -66,8 +67,7 @@ using namespace simlab::isolation;
 namespace {
 
 std::string gSourceDir, gBuildDir;  // this tree's, for {source_dir} and {build_dir}
-std::string gWitness;               // tests/corpus/witness.inc with {secrets} written in, for {witness}
-std::vector<std::string> gSecrets;  // the witness's paths, by line
+std::string gWitness;               // tests/corpus/witness.inc with {reach} written in, for {witness}
 
 using Case = CorpusCase;
 
@@ -458,34 +458,54 @@ int compareClass(const Assignment& assignment, const simlab::Rubric& rubric, con
 
 // ---- the isolation's invariants ------------------------------------------------------------------------------------
 
-// What no test's code may read, for the witness to try: every assignment's hidden tests, solution and judge, the
-// sample class and the object cache (every student's source), the machine's secrets (root's passwords, the kernel's
-// memory, log and pages, simlab's environment), and `extra` (the canaries of `invariants`).
-std::vector<std::string> witnessSecrets(const Manifest& manifest, const std::vector<std::string>& extra) {
-    std::vector<std::string> paths;
-    for (const Assignment& a : manifest.assignments) {
-        paths.insert(paths.end(), a.hiddenTests.begin(), a.hiddenTests.end());
-        if (!a.solution.empty()) paths.push_back(a.solution);
-        paths.push_back(a.judge);
+// What a test may read, for the witness's walk (witness.inc's kReach): where to start besides / (the top of the
+// machine as root sees it, simlab's places, the temporary folder), the system, simlab's places and the name prefix
+// of gradings' folders, what a probe is lent (limits only: what any tool is, lentOfPlaces), and "M" where files are
+// kept apart by their modes alone.
+std::string reachLiteral(const Manifest& manifest) {
+    const SandboxSupport& sandbox = sandboxSupport();
+    const bool modesAlone = !sandbox.bubblewrap && !sandbox.landlock;
+    std::vector<std::string> lines;
+    // Where to start: the folders two levels down from / and around each place (the folders on the way to it, it,
+    // and what is in it), by the names root sees - a sandbox may let a test enter a folder it may not list (Landlock
+    // grants /usr's entries one by one where a place lies among them).
+    std::set<std::string> starts;
+    const auto folders = [](const std::string& dir) {
+        std::vector<std::string> found;
+        std::error_code error;
+        for (auto it = fs::directory_iterator(dir, error); !error && it != fs::directory_iterator(); it.increment(error)) {
+            if (it->is_directory(error) && !it->is_symlink(error)) found.push_back(it->path().string());
+        }
+        return found;
+    };
+    for (const std::string& top : folders("/")) {
+        if (top == "/proc" || top == "/sys") continue;
+        starts.insert(top);
+        for (const std::string& below : folders(top)) starts.insert(below);
     }
-    const char* cache = std::getenv("SIMLAB_CACHE");
-    paths.push_back(manifest.sampleClass);
-    paths.push_back(cache && *cache ? std::string(cache) : manifest.cacheDir + "/objects");
-    for (const char* file : {"/etc/shadow", "/proc/kcore", "/proc/kmsg", "/proc/kpagecount", "/proc/kpageflags",
-                             "/proc/kpagecgroup", "/proc/sysrq-trigger", "/proc/mtrr", "/proc/timer_list"}) {
-        paths.push_back(file);
+    const char* tmp = std::getenv("TMPDIR");
+    const std::string temporary = tmp && *tmp ? tmp : "/tmp";
+    starts.insert(temporary);
+    for (const std::string& place : places()) {
+        for (fs::path up = place; up.has_relative_path(); up = up.parent_path()) starts.insert(up.string());
+        for (const std::string& below : folders(place)) starts.insert(below);
     }
-    // This program's environment: simlab's, where a sandbox shares its view of the processes.
-    paths.push_back("/proc/" + std::to_string(::getpid()) + "/environ");
-    paths.insert(paths.end(), extra.begin(), extra.end());
-    return paths;
-}
-
-// The paths as a C++ string literal, one per line, for {secrets}.
-std::string secretsLiteral(const std::vector<std::string>& paths) {
+    for (const std::string& start : starts) lines.push_back("S" + start);
+    for (const auto* list : {&systemFolders(), &systemFiles(), &systemDevices()}) {
+        for (const std::string& path : *list) lines.push_back("A" + path);
+    }
+    for (const std::string& path : notTheSystems()) lines.push_back("X" + path);
+    for (const std::string& place : places()) lines.push_back("P" + place);
+    lines.push_back("T" + temporary + "/simlab-");
+    if (modesAlone) {
+        for (const std::string& path : lentOfPlaces(manifest)) lines.push_back("L" + path);
+        lines.push_back("M");
+    } else {
+        lines.push_back("L" + manifest.probeHost);
+    }
     std::string literal = "\"";
-    for (const std::string& path : paths) {
-        for (const char c : path) {
+    for (const std::string& line : lines) {
+        for (const char c : line) {
             if (c == '"' || c == '\\') literal += '\\';
             literal += c;
         }
@@ -494,13 +514,42 @@ std::string secretsLiteral(const std::vector<std::string>& paths) {
     return literal + "\"";
 }
 
-// One record of the witness: W{e=ENTRY,ENTRY...;u=UID/EUID;c=EFF/PRM/INH/AMB/BND;nnp=N;o=I,J,} (capabilities in
+// The walk's record, R{d=FOLDERS;f=FILES;o=OUTSIDE;b=BOUNDED;p=PATH|PATH...}, if the report holds one.
+struct Walk {
+    unsigned long folders = 0, files = 0, outside = 0;
+    bool bounded = false;
+    std::vector<std::string> first;
+};
+
+std::optional<Walk> walkRecord(const std::string& text) {
+    const std::size_t at = text.find("R{d=");
+    if (at == std::string::npos) return std::nullopt;
+    const std::size_t end = text.find('}', at);
+    if (end == std::string::npos) return std::nullopt;
+    Walk w;
+    std::istringstream fields(text.substr(at + 2, end - at - 2));
+    for (std::string field; std::getline(fields, field, ';');) {
+        const std::size_t eq = field.find('=');
+        if (eq == std::string::npos) continue;
+        const std::string key = field.substr(0, eq), value = field.substr(eq + 1);
+        if (key == "d") w.folders = std::stoul(value);
+        if (key == "f") w.files = std::stoul(value);
+        if (key == "o") w.outside = std::stoul(value);
+        if (key == "b") w.bounded = value == "1";
+        if (key == "p") {
+            std::istringstream paths(value);
+            for (std::string path; std::getline(paths, path, '|');) w.first.push_back(path);
+        }
+    }
+    return w;
+}
+
+// One record of the witness: W{e=ENTRY,ENTRY...;u=UID/EUID;c=EFF/PRM/INH/AMB/BND;nnp=N} (capabilities in
 // hexadecimal): the entry points that saw one state.
 struct Record {
     std::vector<std::string> entries;
     unsigned long uid = 0, euid = 0;
     std::map<std::string, unsigned long> caps;  // effective, permitted, inheritable, ambient, bounding
-    std::vector<std::size_t> seen;               // indices into gSecrets
 };
 
 std::vector<Record> records(const std::string& text) {
@@ -528,11 +577,6 @@ std::vector<Record> records(const std::string& text) {
             if (key == "u") {
                 r.uid = std::stoul(value.substr(0, value.find('/')));
                 r.euid = std::stoul(value.substr(value.find('/') + 1));
-            } else if (key == "o") {
-                std::istringstream list(value);
-                for (std::string index; std::getline(list, index, ',');) {
-                    if (!index.empty()) r.seen.push_back(std::stoul(index));
-                }
             } else if (key == "c") {
                 std::istringstream sets(value);
                 std::string bits;
@@ -548,28 +592,24 @@ std::vector<Record> records(const std::string& text) {
 
 // Grades each case with the object check off, in the sandbox this machine and its environment give
 // (SIMLAB_NO_BUBBLEWRAP, SIMLAB_NO_LANDLOCK, SIMLAB_NO_TEST_SERVER; a capability set from setpriv; an installed
-// simlab's manifest from SIMLAB_MANIFEST), on one test, and reads the witness's records from the report.
+// simlab's manifest from SIMLAB_MANIFEST), on one test, and reads the witness's records from the report: who each
+// entry point ran as, and what the walk of a test's call could read.
 int invariants(const Manifest& manifest, const Assignment& assignment, const simlab::Rubric& rubric,
-               const std::vector<std::string>& paths, const std::vector<std::string>& canaries) {
+               const std::vector<std::string>& paths) {
     const SandboxSupport& sandbox = sandboxSupport();
     const bool root = ::geteuid() == 0;
     std::cout << "sandbox: " << sandbox.summary << (testServers() ? "; tests forked by a probe's server" : "; a probe per test")
               << "\nmanifest: " << manifest.path << "\n";
-    // Where files are kept apart by their modes alone, the course's own files may be readable (simlab then refuses
-    // to run hidden tests, and says so in one line): the witness's reading them is that mode's known limit.
-    std::set<std::string> byModesAlone;
+    // Where files are kept apart by their modes alone, simlab runs hidden tests only once nothing of its places but
+    // what is lent opens for a throwaway user; until then (it refuses, in one line) a visible test's reading them is
+    // that mode's known limit, and the walk must show that the refusal was right.
+    std::string refusal;
     if (!sandbox.bubblewrap && !sandbox.landlock) {
-        const std::string refusal = secretsExposed(manifest);
-        std::cout << "limits only: " << (refusal.empty() ? "the course's files are closed to other users" : "simlab refuses hidden tests here: " + refusal) << "\n";
-        if (!refusal.empty()) {
-            for (const std::string& path : gSecrets) {
-                if (std::find(canaries.begin(), canaries.end(), path) == canaries.end() && path.rfind("/proc/", 0) != 0 &&
-                    path != "/etc/shadow") {
-                    byModesAlone.insert(path);
-                }
-            }
-        }
-        byModesAlone.insert("/proc/mtrr");  // readable by every user, and no mount namespace to hide it
+        refusal = placesExposed(manifest);
+        std::cout << "limits only: "
+                  << (refusal.empty() ? "nothing of simlab's places opens for a throwaway user but what it is lent"
+                                      : "simlab refuses hidden tests here: " + refusal)
+                  << "\n";
     }
     int failures = 0;
     for (const std::string& path : paths) {
@@ -598,10 +638,18 @@ int invariants(const Manifest& manifest, const Assignment& assignment, const sim
                     problems.push_back(where + " held capabilities (" + set + " set " + hex + ")");
                 }
             }
-            for (const std::size_t i : r.seen) {
-                const std::string secret = i < gSecrets.size() ? gSecrets[i] : "secret #" + std::to_string(i);
-                if (!byModesAlone.count(secret)) problems.push_back(where + " read " + secret);
-            }
+        }
+        const std::optional<Walk> walked = walkRecord(text);
+        std::string walkLine;
+        if (walked) {
+            walkLine = "walk: " + std::to_string(walked->folders) + " folders listed, " + std::to_string(walked->files) +
+                       " files readable, " + std::to_string(walked->outside) + " outside what a test may read";
+            std::string first;
+            for (const std::string& f : walked->first) first += (first.empty() ? "" : ", ") + f;
+            if (walked->folders == 0 || walked->files == 0) problems.push_back("the walk read nothing: " + walkLine);
+            if (walked->bounded) problems.push_back("the walk stopped at its bound: " + walkLine);
+            if (walked->outside > 0 && refusal.empty()) problems.push_back(walkLine + ": " + first);
+            if (walked->outside > 0 && !refusal.empty()) walkLine += " (simlab refuses hidden tests here: " + first + ")";
         }
         if (made.empty()) problems.push_back("no record of the witness in the report: " + report.status);
         if (c.invariantRuns && !entryRan) problems.push_back("'" + c.invariantEntry + "' never ran");
@@ -616,7 +664,8 @@ int invariants(const Manifest& manifest, const Assignment& assignment, const sim
             std::cout << "OK       " << c.name << ": "
                       << (c.invariantRuns ? "'" + c.invariantEntry + "' ran" : "'" + c.invariantEntry + "' never ran") << "; "
                       << entries << " entry point(s) recorded, as uid " << *users.begin()
-                      << (users.size() > 1 ? " and others" : "") << ", with no capability, having read nothing secret\n";
+                      << (users.size() > 1 ? " and others" : "") << ", with no capability"
+                      << (walkLine.empty() ? "" : "; " + walkLine) << "\n";
         } else {
             ++failures;
             std::cout << "FAILED   " << c.name << ":\n";
@@ -624,7 +673,8 @@ int invariants(const Manifest& manifest, const Assignment& assignment, const sim
             std::cout << text;
         }
     }
-    std::cout << (failures == 0 ? "OK: no student code ran with privilege or read a secret\n" : "FAILED\n");
+    std::cout << (failures == 0 ? "OK: no student code ran with privilege or read beyond what a test may read\n"
+                                : "FAILED\n");
     return failures == 0 ? 0 : 1;
 }
 
@@ -666,36 +716,19 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     try {
         const Manifest manifest = loadManifest();
-        // Canaries for the witness: a file only root may read and one of another user's, in a folder anyone may
-        // enter.
-        std::optional<TempDir> canaryDir;
-        std::vector<std::string> canaries;
-        if (invariantsCommand->parsed()) {
-            canaryDir.emplace("simlab-canaries-");
-            fs::permissions(canaryDir->path(), fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
-            for (const char* name : {"root-only", "another-user"}) {
-                const std::string canary = canaryDir->path() + "/" + name;
-                writeFileAtomically(canary, std::string("a secret of ") + name + "\n");
-                fs::permissions(canary, fs::perms::owner_read | fs::perms::owner_write);
-                if (std::string(name) == "another-user" && ::geteuid() == 0 && ::chown(canary.c_str(), 12345, 12345) != 0) {
-                    throw std::runtime_error("cannot give " + canary + " to another user");
-                }
-                canaries.push_back(canary);
-            }
-        }
-        gSecrets = witnessSecrets(manifest, canaries);
-        gWitness = readFile(SIMLAB_CORPUS_DIR "/witness.inc");
-        const std::size_t at = gWitness.find("{secrets}");
-        if (at != std::string::npos) gWitness.replace(at, 9, secretsLiteral(gSecrets));
         gSourceDir = manifest.sourceDir;
         gBuildDir = manifest.buildDir;
         const Assignment& assignment = manifest.find(assignmentId);
+        // The witness knows what a test may read once the lab's places are known (Manifest::find adds a lab's).
+        gWitness = readFile(SIMLAB_CORPUS_DIR "/witness.inc");
+        const std::size_t at = gWitness.find("{reach}");
+        if (at != std::string::npos) gWitness.replace(at, 7, reachLiteral(manifest));
         const simlab::Rubric rubric = simlab::loadRubric(assignment.rubric);
         if (materializeCommand->parsed()) return materialize(assignment, rubric, cases, out);
         if (classCommand->parsed()) {
             return gradeAsClass(assignment, rubric, cases, simlab, jobs, environment, dockerCapabilities);
         }
-        if (invariantsCommand->parsed()) return invariants(manifest, assignment, rubric, cases, canaries);
+        if (invariantsCommand->parsed()) return invariants(manifest, assignment, rubric, cases);
         if (compareCommand->parsed()) return compareClass(assignment, rubric, cases, grades);
         return check(manifest, assignment, rubric, cases.front());
     } catch (const std::exception& e) {

@@ -5,8 +5,8 @@
 //
 //   sandbox-try ACTION...   actions: calls (every filtered call, each line "call NAME: ..."), thread, session,
 //                           tty, read:PATH, write:DIR,
-//                           connect:PORT, signal:PID, daemon, memory:CHILDREN:MIB, disk:MIB (files of just
-//                           under MIB each in its folder, up to 1 GiB), x32 (last: it may be killed)
+//                           connect:PORT, signal:PID, daemon, memory:CHILDREN:MIB, disk:MIB[:DIR] (files of just
+//                           under MIB each in its folder, or in DIR, up to 1 GiB), x32 (last: it may be killed)
 #include <fcntl.h>
 #include <linux/keyctl.h>
 #include <mqueue.h>
@@ -189,11 +189,14 @@ int main(int argc, char** argv) {
             say("memory", "held for 3 s");
         } else if (name == "disk") {
             // Files each under the file-size limit, as many as will go: the folder's space is the test's.
-            const std::size_t each = (std::strtoul(arg.c_str(), nullptr, 10) << 20) - 4096;
+            const std::size_t colon = arg.find(':');
+            const std::size_t each = (std::strtoul(arg.substr(0, colon).c_str(), nullptr, 10) << 20) - 4096;
+            const std::string where =
+                colon == std::string::npos ? "" : arg.substr(colon + 1) + "/sandbox-try-" + std::to_string(::getpid()) + "-";
             std::vector<char> block(1 << 20, 'x');
             std::size_t written = 0;
             for (int k = 0; written < (std::size_t{1} << 30); ++k) {
-                const int fd = ::open(("fill-" + std::to_string(k)).c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+                const int fd = ::open((where + "fill-" + std::to_string(k)).c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
                 if (fd < 0) break;
                 std::size_t in = 0;
                 while (in < each) {

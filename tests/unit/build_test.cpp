@@ -38,8 +38,9 @@ TEST_CASE("a cached object is used only for the file it was compiled from", "[bu
     const std::string key = builder.objectKey(apple, "NewtonsApple.cpp", text);
     // The same bytes under another name are another object: the name is in its messages and its __FILE__.
     CHECK(builder.objectKey(apple, "Other.cpp", text) != key);
-    writeFileAtomically(cache.path() + "/" + key + ".o", "not an object");
-    writeFileAtomically(cache.path() + "/" + key + ".cpp", readFile(apple.starter));
+    CHECK(builder.cacheDir() == cache.path() + "/objects");  // $SIMLAB_CACHE holds every cache
+    writeFileAtomically(builder.cacheDir() + "/" + key + ".o", "not an object");
+    writeFileAtomically(builder.cacheDir() + "/" + key + ".cpp", readFile(apple.starter));
     TempDir work("simlab-build-test-");
     fs::create_directory(work.path() + "/build");
     fs::create_directory(work.path() + "/probe");
@@ -47,7 +48,7 @@ TEST_CASE("a cached object is used only for the file it was compiled from", "[bu
                                                  work.path() + "/probe/probe");
     CHECK_FALSE(built.cached);
     CHECK(built.ok);
-    CHECK(readFile(cache.path() + "/" + key + ".cpp") == text);
+    CHECK(readFile(builder.cacheDir() + "/" + key + ".cpp") == text);
 }
 
 TEST_CASE("the sandbox refuses the kernel keyring and new namespaces, and lets threads start", "[build][sandbox]") {

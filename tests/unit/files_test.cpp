@@ -90,3 +90,24 @@ TEST_CASE("a folder is listed and walked without following links", "[files]") {
     CHECK(names == std::vector<std::string>{"root", "sub", "sub/deeper", "sub/deeper/A.cpp"});
     CHECK(entries[0].type == simlab::engine::EntryType::Symlink);
 }
+
+TEST_CASE("an output is written as the umask gives it, and written again keeps the mode it was given", "[files]") {
+    simlab::engine::TempDir dir("simlab-output-test-");
+    const std::string sheet = dir.path() + "/manual.csv", judge = dir.path() + "/judge.txt";
+    const mode_t before = ::umask(002);
+    simlab::engine::writeOutputAtomically(sheet, "a\n");
+    simlab::engine::writeFileAtomically(judge, "a\n");
+    ::umask(022);  // sudo's, on the next run
+    struct stat info {};
+    REQUIRE(::stat(sheet.c_str(), &info) == 0);
+    CHECK((info.st_mode & 0777) == 0664);  // the staff's group may edit it
+    simlab::engine::writeOutputDurably(sheet, "b\n");
+    REQUIRE(::stat(sheet.c_str(), &info) == 0);
+    CHECK((info.st_mode & 0777) == 0664);  // still, whatever the umask now
+    simlab::engine::writeOutputAtomically(dir.path() + "/report.html", "c\n");
+    REQUIRE(::stat((dir.path() + "/report.html").c_str(), &info) == 0);
+    CHECK((info.st_mode & 0777) == 0644);  // a new one as this umask gives it
+    REQUIRE(::stat(judge.c_str(), &info) == 0);
+    CHECK((info.st_mode & 0777) == 0644);  // a file of simlab's own: 0644 whatever the umask
+    ::umask(before);
+}

@@ -217,9 +217,29 @@ TEST_CASE("Gradescope: a test with points is never hidden, so the student always
     CHECK(doc["tests"][4]["visibility"] == "after_published");
 }
 
-TEST_CASE("Similarity: the starter's lines removed; flagged above the class by three spreads, 50 to 100 %", "[platforms]") {
-    CHECK(withoutStarter("int main() {\n  double p_GA = 1;\n  // TODO: step\n}\n", "int main() {\n// TODO: step\n}\n") ==
-          "  double p_GA = 1;\n");
+TEST_CASE("Similarity: C++ read as tokens, identifiers, numbers and literals by kind, on their lines", "[platforms]") {
+    const std::vector<CppToken> t = cppTokens(
+        "#include <cmath>\nauto s = u8R\"x(a\")x\" + 'c'; // a comment\n/* two\nlines */ x.y->z >>= 1.5e-3;\n\"open");
+    std::vector<std::string> kinds;
+    for (const CppToken& k : t) kinds.push_back(k.kind);
+    CHECK(kinds == std::vector<std::string>{"auto", "ID", "=", "STR", "+", "CHR", ";", "ID", ".", "ID", "->", "ID",
+                                            ">>=", "NUM", ";", "STR"});
+    CHECK(t[3].text == "u8R\"x(a\")x\"");
+    CHECK((t[0].line == 2 && t[7].line == 4 && t[12].text == ">>=" && t[13].text == "1.5e-3" && t[15].line == 5));
+}
+
+TEST_CASE(
+    "Similarity: the starter's code removed by its tokens, renamed or not; flagged above the class by three "
+    "spreads, 50 to 100 %",
+    "[platforms]") {
+    const std::string starter =
+        "void f(const Model& model, State& state) {\n    model.system.realize(state, Stage::Dynamics);\n}\n";
+    // The starter's function with its names changed is still the starter's; the student's own line stays, on its line.
+    CHECK(withoutStarter("void f(const Model& m, State& s) {\n    m.system.realize(s, Stage::Dynamics);\n"
+                         "    double p_GA = \"a\";\n}\n",
+                         starter) == "\n\ndouble p_GA = \"\" ;\n}\n");
+    // A short piece like the starter's is the student's own: runs of fewer than 8 tokens are not removed.
+    CHECK(withoutStarter("int g() { m.realize(s); }\n", starter) == "int g ( ) { m . realize ( s ) ; }\n");
     CHECK(similarityThreshold(10, 5) == 50);    // a class of distinct files: 50 %
     CHECK(similarityThreshold(40, 10) == 70);   // one that shares more: above its median by three spreads
     CHECK(similarityThreshold(88, 10) == 100);  // a class made from one file: its identical copies still show

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "simlab/common/text.h"
+#include "simlab/writers/html.h"
 #include "simlab/writers/writers.h"
 #include "../../grader/writers/common.h"
 
@@ -111,11 +112,14 @@ TEST_CASE("feedback.html escapes a hostile id, reason and compiler message", "[r
 TEST_CASE("feedback.html has each test's line: its points, outcome and figure", "[report][html]") {
     const std::string page = simlab::engine::feedbackHtml(apple(), hostileStudent());
     checkHolds(page, {"Score: <strong>12.5/30</strong>",
-                      "<td class=\"num\">10/10</td><td><span class=\"badge pass\">passed</span></td>",
+                      "<td class=\"num\">10/10</td><td><span class=\"badge pass\"><span aria-hidden=\"true\">\u2713</span> "
+                      "passed</span></td>",
                       "y at the final time has the target accuracy digits</a></td><td class=\"figure\">14.8 digits</td>",
-                      "<td class=\"num\">2.5/10</td><td><span class=\"badge fail\">failed</span></td>",
+                      "<td class=\"num\">2.5/10</td><td><span class=\"badge fail\"><span aria-hidden=\"true\">\u2717</span> "
+                      "failed</span></td>",
                       "the energy &lt;stays&gt; &amp; &quot;holds&quot;",
-                      "<td class=\"num\">0/10</td><td><span class=\"badge error\">crashed</span></td>",
+                      "<td class=\"num\">0/10</td><td><span class=\"badge error\"><span aria-hidden=\"true\">\u26A0</span> "
+                      "crashed</span></td>",
                       "Reproduce: <code>simlab check apple NewtonsApple.cpp --test &quot;the energy &lt;stays&gt; &amp; "
                       "&quot;holds&quot;&quot;</code>"});
     // A hidden test: its points and outcome, never its reason or figure.
@@ -134,6 +138,40 @@ TEST_CASE("feedback.html shows the runs the tests drew in the page, and links ev
     CHECK_THAT(page, !Catch::Contains("<path"));        // the picture's markup is never the page's own
     CHECK_THAT(page, !Catch::Contains("digraph"));      // a file that is not a picture is linked, not shown
     CHECK_THAT(simlab::engine::feedbackHtml(apple(), hostileStudent()), !Catch::Contains("Your runs, drawn"));
+}
+
+TEST_CASE("a plot's text alternative: its title as the alt, its description beside it, its points as tables",
+          "[report][html]") {
+    // A plot as drawPlot writes it (simlab/plot.h): a title and a description that are markup, and two curves drawn
+    // at the same x, which share a table.
+    const std::string svg =
+        "<svg xmlns=\"http://www.w3.org/2000/svg\">\n<title>a &lt;b&gt; run</title>\n<desc>height &amp; more</desc>\n"
+        "<metadata id=\"simlab-plot-data\">{&quot;title&quot;:&quot;a &lt;b&gt; run&quot;,&quot;panels&quot;:[{"
+        "&quot;x&quot;:&quot;t (s)&quot;,&quot;y&quot;:&quot;y (m)&quot;,&quot;marks&quot;:[{&quot;label&quot;:"
+        "&quot;hit&quot;,&quot;x&quot;:2,&quot;y&quot;:0}],&quot;curves&quot;:[{&quot;title&quot;:&quot;exact&quot;,"
+        "&quot;samples&quot;:false,&quot;points&quot;:200,&quot;x&quot;:[0,1],&quot;y&quot;:[10,5.1]},{&quot;title"
+        "&quot;:&quot;simulated&quot;,&quot;samples&quot;:true,&quot;points&quot;:2,&quot;x&quot;:[0,1],&quot;y"
+        "&quot;:[10,5.100000001]}]}]}</metadata>\n<path d=\"M0 0L1 1\"/></svg>";
+    const std::string figure = simlab::engine::writers::figureHtml("p1", "your-run.svg", svg, "your-run.svg", "your-run.svg");
+    CHECK_THAT(figure, !Catch::Contains("<b>"));
+    checkHolds(figure, {"<img src=\"your-run.svg\" alt=\"Plot: a &lt;b&gt; run\" aria-describedby=\"p1-about\"",
+                        "<p id=\"p1-about\">height &amp; more</p>", "<a href=\"#p1-data\">Its points as tables</a>",
+                        "<details class=\"data\" id=\"p1-data\">",
+                        "<caption>exact and simulated: y (m) against t (s), points of the line, 2 of 200 evenly spread"
+                        "</caption>",
+                        "<th scope=\"col\">t (s)</th><th scope=\"col\">exact</th><th scope=\"col\">simulated</th>",
+                        "<tr><th scope=\"row\" class=\"num\">1</th><td class=\"num\">5.1</td><td class=\"num\">"
+                        "5.100000001</td></tr>",
+                        "<tr><th scope=\"row\">hit</th><td class=\"num\">2</td><td class=\"num\">0</td></tr>"});
+    CHECK_THAT(figure, !Catch::Contains("<path"));
+    // A picture that carries nothing of its own keeps the alt it is given; broken points are no table.
+    const std::string plain = simlab::engine::writers::figureHtml("p2", "a.png", "", "a.png");
+    checkHolds(plain, {"alt=\"a.png\""});
+    CHECK_THAT(plain, !Catch::Contains("<details"));
+    const std::string broken = simlab::engine::writers::figureHtml(
+        "p3", "b.svg", "<svg><metadata id=\"simlab-plot-data\">{not json</metadata></svg>", "b.svg");
+    CHECK_THAT(broken, !Catch::Contains("<details"));
+    checkHolds(broken, {"alt=\"b.svg\""});
 }
 
 TEST_CASE("report.html escapes hostile ids and links each student's feedback by a URL-encoded path",

@@ -287,3 +287,34 @@ TEST_CASE("a panel whose values differ in the sixth digit is drawn less a refere
     CHECK(svg.find(">-2.12393<") == std::string::npos);  // no tick label that says nothing
     CHECK(svg.find("e-09<") != std::string::npos);         // the ticks tell the values apart
 }
+
+TEST_CASE("a plot says in words what it draws: each curve's ends and extremes, how near its samples keep to their line",
+          "[plot]") {
+    // A fall, y = 10 - 4.9 t^2 from t = 0 to 2 s: the exact line, and samples 0.1 m off it at t = 1.5 s.
+    simlab::PlotCurve exact("exact"), simulated("simulated", true);
+    for (int k = 0; k <= 200; ++k) {
+        const double t = 0.01 * k;
+        exact.x.push_back(t), exact.y.push_back(10 - 4.9 * t * t);
+    }
+    for (int k = 0; k <= 4; ++k) {
+        const double t = 0.5 * k;
+        simulated.x.push_back(t), simulated.y.push_back(10 - 4.9 * t * t + (k == 3 ? 0.1 : 0.0));
+    }
+    simulated.x.push_back(NAN), simulated.y.push_back(1);  // not drawn, not counted
+    simlab::Plot plot;
+    plot.title = "a fall";
+    plot.panels.emplace_back("time t (s)", "height y (m)", std::vector<simlab::PlotCurve>{exact, simulated});
+    plot.panels.back().marks.push_back({2, 0.4, "the end"});
+    const std::string said = simlab::describePlot(plot);
+    CHECK(said == "a fall. Drawn: height y (m) against time t (s), from 0 to 2: exact, a line, from 10 at 0 to -9.6 "
+                  "at 2; simulated, 5 samples, from 10 at 0 to -9.6 at 2, up to 0.1 off the line exact (at 1.5); "
+                  "marked: the end at (2, 0.4).");
+    // 0.1 m in 19.6 m is more than the drawing shows; 1e-6 m is not.
+    plot.panels.back().curves[1].y[3] -= 0.1 - 1e-6;
+    CHECK_THAT(simlab::describePlot(plot), Catch::Contains("5 samples, from 10 at 0 to -9.6 at 2, on the line exact as drawn"));
+    // Its points, at most kPlotDataRows a curve, the first and the last among them.
+    const std::string points = simlab::plotDataJson(plot);
+    CHECK_THAT(points, Catch::Contains("\"points\":201,\"samples\":false,\"title\":\"exact\""));
+    CHECK_THAT(points, Catch::Contains("\"label\":\"the end\",\"x\":2.0,\"y\":0.4"));
+    CHECK_THAT(points, Catch::Contains(",2.0],\"y\":[10.0,"));
+}

@@ -26,11 +26,15 @@ inline simlab::RunSettings settingsFor(double finalTime, double dt, double accur
     return simlab::testing::settingsFor(defaultRunSettings(), finalTime, dt, accuracy);
 }
 
-/// Digits of y at the final time against y = h - g t^2/2.
-inline double finalDigits(const Scene& scene, const simlab::RunSettings& settings) {
+/// Digits of y at the final time against y = h - g t^2/2, and the two values.
+inline WorstDigits finalDigits(const Scene& scene, const simlab::RunSettings& settings) {
     const Run run = simulate(scene, settings);
     const Sample& last = lastSample(run, settings.finalTime);
-    return simlab::accuracyDigits(last.yLocation, exact::yLocation(scene, last.time));
+    const double expected = exact::yLocation(scene, last.time);
+    WorstDigits digits;
+    digits.add(simlab::accuracyDigits(last.yLocation, expected), grading::at("y", last.time), last.yLocation, expected,
+               "m");
+    return digits;
 }
 
 /// The trade question (tests/trade-question.json): the scene it is asked on, the digits, and the front.
@@ -46,13 +50,13 @@ inline std::function<double(const Sample&)> tradeDigits(const Scene& scene, doub
     return [scene, finalTime](const Sample& s) { return exact::sampleDigits(scene, s, finalTime); };
 }
 
-/// Largest relative departure of the sampled mechanical energy from m g h.
-inline double energyDrift(const Scene& scene, const Run& run) {
+/// Largest relative departure of the sampled mechanical energy from m g h, and where.
+inline WorstDrift energyDrift(const Scene& scene, const Run& run) {
     const double expected = exact::mechanicalEnergy(scene);
-    double drift = 0;
+    WorstDrift drift;
     for (const Sample& s : run.samples) {
-        const double relative = std::abs(s.mechanicalEnergy - expected) / std::abs(expected);
-        drift = std::isnan(relative) ? INFINITY : std::max(drift, relative);
+        drift.add(std::abs(s.mechanicalEnergy - expected) / std::abs(expected), grading::at("E", s.time),
+                  s.mechanicalEnergy, expected, "J");
     }
     return drift;
 }

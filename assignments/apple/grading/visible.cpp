@@ -28,8 +28,8 @@ TEST_CASE("the integrator is the one asked for at the accuracy asked for", "[app
 TEST_CASE("y at the final time has the target accuracy digits", "[apple][accuracy]") {
     // y(4) = 10 - 4.9 * 4^2 = -68.4 m exactly; a double carries about 15.7 digits.
     const Scene scene;
-    const double digits = finalDigits(scene, defaultRunSettings());
-    CHECK(grading::atLeast(digits, grading::param("floor"), grading::param("target"), "digits"));
+    CHECK(atLeast(finalDigits(scene, defaultRunSettings()), grading::param("floor"), grading::param("target"),
+                  "digits"));
 }
 
 TEST_CASE("the velocity follows v = -g t at every sample", "[apple][velocity]") {
@@ -42,11 +42,13 @@ TEST_CASE("the velocity follows v = -g t at every sample", "[apple][velocity]") 
     lastSample(run, settings.finalTime);
     // Errors relative to the final speed g T, so the sample at rest (v = 0) counts like the others.
     const double scale = scene.gravity * settings.finalTime;
-    double worst = simlab::kMaxDigits;
+    WorstDigits worst;
     for (const Sample& s : run.samples) {
-        worst = std::min(worst, simlab::accuracyDigits(s.yVelocity, exact::yVelocity(scene, s.time), scale));
+        const double expected = exact::yVelocity(scene, s.time);
+        worst.add(simlab::accuracyDigits(s.yVelocity, expected, scale), grading::at("v", s.time), s.yVelocity, expected,
+                  "m/s");
     }
-    CHECK(grading::atLeast(worst, grading::param("floor"), grading::param("target"), "digits at the worst sample"));
+    CHECK(atLeast(worst, grading::param("floor"), grading::param("target"), "digits at the worst sample"));
 }
 
 TEST_CASE("the mechanical energy stays at m g h", "[apple][energy]") {
@@ -57,7 +59,7 @@ TEST_CASE("the mechanical energy stays at m g h", "[apple][energy]") {
     const Run run = simulate(scene, settings);
     lastSample(run, settings.finalTime);
     const double allowed = grading::param("tolerance") * settings.accuracy;
-    CHECK(grading::atMost(energyDrift(scene, run), allowed, "relative energy drift"));
+    CHECK(atMost(energyDrift(scene, run), allowed, "relative energy drift"));
 }
 
 TEST_CASE("the model has only the one degree of freedom a fall needs", "[apple][model]") {

@@ -78,10 +78,17 @@ inline const std::vector<std::string>& axisNames() {
     return names;
 }
 
-/// Digits of w_B at the last sample against the exact solution.
-inline double finalDigits(const Scene& scene, const Run& run) {
+/// A vector as a comparison takes it.
+inline std::vector<double> values(const SimTK::Vec3& v) { return {v[0], v[1], v[2]}; }
+
+/// Digits of w_B at the last sample against the exact solution, and the two vectors.
+inline WorstDigits finalDigits(const Scene& scene, const Run& run) {
     const Sample& last = lastSample(run, defaultRunSettings().finalTime);
-    return exact::angularVelocityDigits(scene, last.time, last.w_B);
+    WorstDigits digits;
+    digits.add(exact::angularVelocityDigits(scene, last.time, last.w_B),
+               grading::compared(grading::at("w_B", last.time), values(last.w_B),
+                                 values(exact::angularVelocity(scene, last.time)), "rad/s"));
+    return digits;
 }
 
 /// The largest change of f over the run, relative to the size of its first value.
@@ -95,6 +102,27 @@ double relativeChange(const Run& run, F f) {
         worst = std::isnan(change) ? INFINITY : std::max(worst, change);
     }
     return worst / exact::magnitude(first);
+}
+
+/// relativeChange(), kept with the sample where the change was largest: `name` there against its first value, in
+/// `unit`, `components` of them (1 for a number, 3 for a vector).
+template <class F>
+WorstDrift driftOf(const Run& run, F f, const std::string& name, const std::string& unit, int components) {
+    requireSamples(run);
+    const SimTK::Vec3 first(f(run.samples.front()));
+    const double size = exact::magnitude(first);
+    auto shown = [components](const SimTK::Vec3& v) {
+        return components == 1 ? std::vector<double>{v[0]} : values(v);
+    };
+    WorstDrift drift;
+    for (const Sample& s : run.samples) {
+        const SimTK::Vec3 now(f(s));
+        const double change = exact::magnitude(now - first);
+        drift.add((std::isnan(change) ? INFINITY : change) / size,
+                  grading::compared(grading::at(name, s.time), shown(now), shown(first), unit) +
+                      " (its value at t = 0)");
+    }
+    return drift;
 }
 
 /// The student's answers file, BookAnswers.toml: each section's values as written.

@@ -48,13 +48,15 @@ inline Scene launch(double angleDegrees, double speed, double gravity = 9.8) {
     return s;
 }
 
-/// Worst digits, over the samples, of the height on the parabola y(x) that the launch defines; errors are
+/// Worst digits, over the samples, of the height on the parabola y(x) that the launch defines, and where; errors are
 /// relative to the flight's peak height, so samples near the ground count like the others.
-inline double parabolaDigits(const Scene& scene, const Run& run) {
+inline WorstDigits parabolaDigits(const Scene& scene, const Run& run) {
     requireSamples(run);
-    double worst = simlab::kMaxDigits;
+    WorstDigits worst;
     for (const Sample& s : run.samples) {
-        worst = std::min(worst, simlab::accuracyDigits(s.y, exact::yOfX(scene, s.x), exact::maxHeight(scene)));
+        const double expected = exact::yOfX(scene, s.x);
+        worst.add(simlab::accuracyDigits(s.y, expected, exact::maxHeight(scene)), "y(x = " + grading::show(s.x) + " m)",
+                  s.y, expected, "m");
     }
     return worst;
 }
@@ -67,10 +69,11 @@ inline Landing observeLanding(const Scene& scene, const simlab::RunSettings& run
     return simlab::observe::decode<Landing>(simlab::observe::ask("landing", arguments), "landing");
 }
 
-/// The ground hit's digits of time and of range (relative to v0 t*, so a vertical launch counts too), 0 if the
-/// student's handler recorded none. Sampled every `dt`: an event handler does not care, a scan of samples does.
+/// The ground hit's digits of time and of range (relative to v0 t*, so a vertical launch counts too), and the values,
+/// 0 digits if the student's handler recorded none. Sampled every `dt`: an event handler does not care, a scan of
+/// samples does.
 struct HitDigits {
-    double time = 0, range = 0;
+    WorstDigits time, range;
 };
 inline HitDigits groundHitDigits(const Scene& scene, double dt) {
     simlab::RunSettings run = defaultRunSettings();
@@ -80,10 +83,17 @@ inline HitDigits groundHitDigits(const Scene& scene, double dt) {
         INFO("no ground hit was recorded (the simulation ran to t = " << landing.endTime << " s)");
         CHECK(landing.hit.found);
     }
-    if (!landing.hit.found) return {};
-    const double tStar = exact::flightTime(scene);
-    return {simlab::accuracyDigits(landing.hit.time, tStar),
-            simlab::accuracyDigits(landing.hit.x, exact::range(scene), scene.launchSpeed * tStar)};
+    HitDigits digits;
+    if (!landing.hit.found) {  // none: the check above says why
+        digits.time.add(0.0);
+        digits.range.add(0.0);
+        return digits;
+    }
+    const double tStar = exact::flightTime(scene), xStar = exact::range(scene);
+    digits.time.add(simlab::accuracyDigits(landing.hit.time, tStar), "t*", landing.hit.time, tStar, "s");
+    digits.range.add(simlab::accuracyDigits(landing.hit.x, xStar, scene.launchSpeed * tStar), "x*", landing.hit.x,
+                     xStar, "m");
+    return digits;
 }
 
 }  // namespace projectile::testing

@@ -51,6 +51,9 @@
         for (var k = 0; k < v.length; ++k) if (v[k] !== null) { lo = Math.min(lo, v[k]); hi = Math.max(hi, v[k]); }
         if (!(lo <= hi)) { lo = -1; hi = 1; }
         scales[c] = Math.max(Math.abs(lo), Math.abs(hi));
+        var said = names[c] + ": from " + short(v[0], scales[c]) + " at " + short(t0) + " s to " +
+          short(v[v.length - 1], scales[c]) + " at " + short(t1) + " s, between " + short(lo, scales[c]) + " and " +
+          short(hi, scales[c]);
         if (hi === lo) { var pad = Math.abs(hi) * 0.1 || 1; lo -= pad; hi += pad; }
         var last = c === names.length - 1, height = top + plotHeight + bottom + (last ? 14 : 0);
         var d = "", open = false;
@@ -60,8 +63,8 @@
           d += (open ? "L" : "M") + px.toFixed(1) + " " + py.toFixed(1);
           open = true;
         }
-        html += '<svg class="panel" width="' + width + '" height="' + height + '" viewBox="0 0 ' + width + " " +
-          height + '" data-column="' + c + '">' +
+        html += '<svg class="panel" role="img" aria-label="' + escape(said) + '" width="' + width + '" height="' +
+          height + '" viewBox="0 0 ' + width + " " + height + '" data-column="' + c + '">' +
           '<text class="name" x="' + left + '" y="13">' + escape(names[c]) + "</text>" +
           '<text class="value" x="' + (width - right) + '" y="13" text-anchor="end"></text>' +
           '<rect class="plot" x="' + left + '" y="' + top + '" width="' + (width - left - right) + '" height="' +
@@ -105,6 +108,41 @@
       }
     }
     return { draw: draw, cursor: cursor };
+  }
+
+  // --- The time series as a table, for a reader who cannot see the chart: every k-th row, at most 200 ---------
+  function createTable() {
+    var box = document.getElementById("series-table");
+    var names = data.series.names, values = data.series.values;
+    if (names.length === 0 || values[0].length === 0) {
+      box.textContent = "This run has no time series.";
+      return;
+    }
+    var rows = values[0].length, step = Math.max(1, Math.ceil(rows / 200));
+    var shown = [];
+    for (var r = 0; r < rows; r += step) shown.push(r);
+    if (shown[shown.length - 1] !== rows - 1) shown.push(rows - 1);
+    var table = document.createElement("table");
+    table.createCaption().textContent = "The time series: " + (shown.length < rows ? shown.length + " of " + rows +
+      " rows, evenly spread" : rows + " rows");
+    var head = table.createTHead().insertRow();
+    names.forEach(function (name) {
+      var th = document.createElement("th");
+      th.scope = "col";
+      th.textContent = name;
+      head.appendChild(th);
+    });
+    var body = table.createTBody();
+    shown.forEach(function (r) {
+      var row = body.insertRow();
+      for (var c = 0; c < names.length; ++c) {
+        var cell = document.createElement(c === 0 ? "th" : "td");
+        if (c === 0) cell.scope = "row";
+        cell.textContent = values[c][r] === null ? "\u2013" : String(values[c][r]);
+        row.appendChild(cell);
+      }
+    });
+    box.appendChild(table);
   }
 
   // --- The bodies in 3-D ------------------------------------------------------------------------------------------
@@ -304,7 +342,7 @@
         if (own.getSize(new THREE.Vector3()).length() > 3 * reach) {
           var geometry = new THREE.BufferGeometry();
           geometry.setAttribute("position", new THREE.Float32BufferAttribute(b.p, 3));
-          b.trail = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: 0xc8783c }));
+          b.trail = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: 0xa85f28 }));
           scene.add(b.trail);
           // ... and a dot of a fixed size on screen where it is: a body small beside its motion (an apple in a
           // 78 m fall) stays in sight at any distance.
@@ -332,6 +370,7 @@
 
     var camera = new THREE.PerspectiveCamera(25, 1, size / 1000, size * 100);
     var viewFrom = new THREE.Vector3(0.35, 0.3, 1).normalize();  // looking at the x-y plane, from above and aside
+    var startFrom = viewFrom.clone(), zoom = 1;
     var controls = null, moved = false;
     if (THREE.OrbitControls) {
       controls = new THREE.OrbitControls(camera, renderer.domElement);
@@ -339,6 +378,9 @@
       controls.addEventListener("change", function () { moved = true; dirty = true; });
       note.textContent = "Drag to turn, scroll to zoom, right-drag to move.";
     }
+    note.textContent += (note.textContent ? " " : "") +
+      "From the keyboard, with the view selected (Tab): the arrow keys turn it, + and - zoom, 0 sets it back; " +
+      "or the buttons at the right.";
     if (data.skipped > 0) {
       note.textContent += (note.textContent ? " " : "") + data.skipped +
         (data.skipped === 1 ? " decoration (text) is" : " decorations (text) are") + " not shown.";
@@ -357,7 +399,7 @@
         distance = Math.max(distance, depth + 1.08 * Math.abs(corner.dot(xc)) / tanH,
                             depth + 1.08 * Math.abs(corner.dot(yc)) / tanV);
       }
-      camera.position.copy(center).addScaledVector(viewFrom, Math.max(distance, size / 100));
+      camera.position.copy(center).addScaledVector(viewFrom, zoom * Math.max(distance, size / 100));
       camera.up.set(0, 1, 0);
       camera.lookAt(center);
       if (controls) { controls.target.copy(center); controls.update(); moved = false; }
@@ -372,6 +414,43 @@
       if (!moved) frameAll();
       dirty = true;
     }
+    // The keyboard's way to turn and zoom the view: 15 degrees a key about the vertical or across it (short of the
+    // poles), a fifth nearer or farther.
+    function turnBy(key) {
+      var step = Math.PI / 12;
+      if (key === "ArrowLeft" || key === "ArrowRight") {
+        viewFrom.applyAxisAngle(yAxis, key === "ArrowLeft" ? -step : step);
+      } else if (key === "ArrowUp" || key === "ArrowDown") {
+        var across = new THREE.Vector3().crossVectors(yAxis, viewFrom).normalize();
+        var turned = viewFrom.clone().applyAxisAngle(across, key === "ArrowUp" ? -step : step);
+        if (Math.abs(turned.y) < 0.97) viewFrom.copy(turned);
+      } else if (key === "+" || key === "=") {
+        zoom /= 1.25;
+      } else if (key === "-" || key === "_") {
+        zoom *= 1.25;
+      } else if (key === "0" || key === "Home") {
+        viewFrom.copy(startFrom);
+        zoom = 1;
+      } else {
+        return false;
+      }
+      moved = false;
+      frameAll();
+      dirty = true;
+      return true;
+    }
+    view.addEventListener("keydown", function (event) {
+      if (event.altKey || event.ctrlKey || event.metaKey || event.target.tagName === "BUTTON") return;
+      if (turnBy(event.key)) event.preventDefault();
+    });
+    // The same with a tap or a click, for a pointer that cannot drag.
+    var buttons = document.getElementById("view-turn");
+    buttons.hidden = false;
+    buttons.addEventListener("click", function (event) {
+      var key = event.target.getAttribute("data-key");
+      if (key) turnBy(key);
+    });
+
     function pose(t) {
       var at = locate(times, t);
       bodies.forEach(function (b) {
@@ -397,12 +476,14 @@
 
   var chart = createChart();
   chart.draw();
+  createTable();
   var view3d = createScene();
 
   function show(t) {
     current = Math.min(tEnd, Math.max(tStart, t));
     slider.value = current;
     now.textContent = "t = " + current.toFixed(decimals) + " s";
+    slider.setAttribute("aria-valuetext", now.textContent);
     if (view3d) view3d.pose(current);
     chart.cursor(current);
   }
@@ -451,8 +532,10 @@
     if (playing) pause(); else play();
   });
 
+  // It plays from the start, unless the reader asks for less motion (then Play, or the space bar, starts it).
   var start = timeInLink();
+  var still = window.matchMedia && window.matchMedia("(prefers-reduced-motion: reduce)").matches;
   show(start === null ? tStart : start);
-  if (start === null) play();
+  if (start === null && !still) play();
   window.requestAnimationFrame(tick);
 })();

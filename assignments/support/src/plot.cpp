@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
@@ -80,6 +82,8 @@ std::string script(const Plot& plot, const std::string& terminal, const std::str
        << "set termoption noenhanced\n"  // names like w_B and y'' are printed as written
        << "set output " << quoted(output) << "\n"
        << "set grid\nset key below\nset datafile missing 'NaN'\n"
+       // Every curve at least 3:1 against the white (WCAG 1.4.11): gnuplot's third to fifth colours are lighter.
+       << "set linetype 3 lc rgb '#1f6fb4'\nset linetype 4 lc rgb '#b35900'\nset linetype 5 lc rgb '#8a6d00'\n"
        << "set lmargin at screen 0.09\nset rmargin at screen 0.96\n";  // panels line up
     int block = 0;
     std::vector<Offset> offsets;
@@ -135,6 +139,184 @@ std::string script(const Plot& plot, const std::string& terminal, const std::str
     return gp.str();
 }
 
+// --- The plot in words, and its points (an SVG's text alternative) ------------------------------------------------
+
+constexpr double kOnTheLine = 0.005;  // samples within this share of the panel's height of their line look on it
+
+// A figure as the description gives it: 4 significant digits.
+std::string figure(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", v == 0 ? 0.0 : v);  // no "-0"
+    return text;
+}
+
+// The points of `curve` that `panel` draws.
+std::vector<std::pair<double, double>> drawnPoints(const PlotPanel& panel, const PlotCurve& curve) {
+    std::vector<std::pair<double, double>> points;
+    for (std::size_t i = 0; i < curve.x.size() && i < curve.y.size(); ++i) {
+        if (drawable(panel, curve.x[i], curve.y[i])) points.emplace_back(curve.x[i], curve.y[i]);
+    }
+    return points;
+}
+
+// The label of panel `p`'s horizontal axis: its own, or, where it has none, that of the next panel below that has
+// one (stacked panels against the same variable label only the bottom one).
+std::string xLabelOf(const Plot& plot, std::size_t p) {
+    for (std::size_t q = p; q < plot.panels.size(); ++q) {
+        if (!plot.panels[q].xLabel.empty()) return plot.panels[q].xLabel;
+    }
+    return "x";
+}
+
+// The line a simulation's samples are drawn on: the line of the same colour, else the panel's first line.
+const PlotCurve* lineFor(const PlotPanel& panel, const PlotCurve& samples) {
+    const PlotCurve* first = nullptr;
+    for (const PlotCurve& c : panel.curves) {
+        if (c.markers) continue;
+        if (samples.color > 0 && c.color == samples.color) return &c;
+        if (!first) first = &c;
+    }
+    return samples.color > 0 ? nullptr : first;
+}
+
+// The largest distance of `points` from `line` along y, where the line covers their x (taken as straight between
+// its points, which must go one way in x), and the x where it is; a negative distance when none can be read.
+std::pair<double, double> largestDistance(const std::vector<std::pair<double, double>>& points,
+                                          std::vector<std::pair<double, double>> line) {
+    if (line.size() < 2) return {-1, 0};
+    if (line.front().first > line.back().first) std::reverse(line.begin(), line.end());
+    for (std::size_t i = 1; i < line.size(); ++i) {
+        if (!(line[i].first > line[i - 1].first)) return {-1, 0};
+    }
+    double most = -1, at = 0;
+    for (const auto& [x, y] : points) {
+        if (x < line.front().first || x > line.back().first) continue;
+        const auto after = std::lower_bound(line.begin(), line.end(), x,
+                                            [](const std::pair<double, double>& point, double v) { return point.first < v; });
+        double onLine = after->second;  // x is the line's first x
+        if (after != line.begin()) {
+            const auto& [xa, ya] = *(after - 1);
+            onLine = ya + (after->second - ya) * (x - xa) / (after->first - xa);
+        }
+        const double d = std::abs(y - onLine);
+        if (d > most) most = d, at = x;
+    }
+    return {most, at};
+}
+
+}  // namespace
+
+std::string describePlot(const Plot& plot) {
+    std::ostringstream out;
+    if (!plot.title.empty()) out << plot.title << ". ";
+    if (plot.panels.size() > 1) out << plot.panels.size() << " panels, one above the other. ";
+    for (std::size_t p = 0; p < plot.panels.size(); ++p) {
+        const PlotPanel& panel = plot.panels[p];
+        double xLow = INFINITY, xHigh = -INFINITY, yLow = INFINITY, yHigh = -INFINITY;
+        std::vector<std::vector<std::pair<double, double>>> drawn;
+        for (const PlotCurve& c : panel.curves) {
+            drawn.push_back(drawnPoints(panel, c));
+            for (const auto& [x, y] : drawn.back()) {
+                xLow = std::min(xLow, x), xHigh = std::max(xHigh, x), yLow = std::min(yLow, y), yHigh = std::max(yHigh, y);
+            }
+        }
+        std::string sentence = (plot.panels.size() > 1 ? "Panel " + std::to_string(p + 1) + " of " +
+                                                              std::to_string(plot.panels.size()) + ": "
+                                                        : std::string("Drawn: ")) +
+                               (panel.yLabel.empty() ? std::string("y") : panel.yLabel) +
+                               (panel.logY ? " (log scale)" : "") + " against " + xLabelOf(plot, p) +
+                               (panel.logX ? " (log scale)" : "");
+        if (xLow <= xHigh) sentence += ", from " + figure(xLow) + " to " + figure(xHigh);
+        std::vector<std::string> parts;
+        for (std::size_t c = 0; c < panel.curves.size(); ++c) {
+            const PlotCurve& curve = panel.curves[c];
+            const auto& points = drawn[c];
+            const std::string title = curve.title.empty() ? "a curve" : curve.title;
+            if (points.empty()) {
+                parts.push_back(title + ": nothing to draw");
+                continue;
+            }
+            double low = INFINITY, high = -INFINITY;
+            for (const auto& point : points) low = std::min(low, point.second), high = std::max(high, point.second);
+            std::string part = title + ", " +
+                               (curve.markers ? std::to_string(points.size()) + (points.size() == 1 ? " sample" : " samples")
+                                              : std::string("a line")) +
+                               ", from " + figure(points.front().second) + " at " + figure(points.front().first) +
+                               " to " + figure(points.back().second) + " at " + figure(points.back().first);
+            if (low < std::min(points.front().second, points.back().second) ||
+                high > std::max(points.front().second, points.back().second)) {
+                part += ", between " + figure(low) + " and " + figure(high);
+            }
+            const PlotCurve* line = curve.markers && !panel.logY ? lineFor(panel, curve) : nullptr;
+            if (line && yHigh > yLow) {
+                const auto [distance, at] = largestDistance(points, drawnPoints(panel, *line));
+                if (distance >= 0 && distance <= kOnTheLine * (yHigh - yLow)) {
+                    part += ", on the line " + line->title + " as drawn";
+                } else if (distance >= 0) {
+                    part += ", up to " + figure(distance) + " off the line " + line->title + " (at " + figure(at) + ")";
+                }
+            }
+            parts.push_back(part);
+        }
+        for (const PlotMark& mark : panel.marks) {
+            parts.push_back("marked: " + mark.label + " at (" + figure(mark.x) + ", " + figure(mark.y) + ")");
+        }
+        if (parts.empty()) parts.push_back("nothing drawn");
+        sentence += ": ";
+        for (std::size_t i = 0; i < parts.size(); ++i) sentence += (i ? "; " : "") + parts[i];
+        out << sentence << ". ";
+    }
+    std::string text = out.str();
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text;
+}
+
+std::string plotDataJson(const Plot& plot) {
+    using nlohmann::json;
+    json panels = json::array();
+    for (std::size_t p = 0; p < plot.panels.size(); ++p) {
+        const PlotPanel& panel = plot.panels[p];
+        json curves = json::array(), marks = json::array();
+        for (const PlotCurve& curve : panel.curves) {
+            const auto points = drawnPoints(panel, curve);
+            json x = json::array(), y = json::array();
+            for (const std::size_t i : thinned(points.size(), kPlotDataRows)) {
+                x.push_back(std::strtod(number(points[i].first).c_str(), nullptr));  // as gnuplot was given it
+                y.push_back(std::strtod(number(points[i].second).c_str(), nullptr));
+            }
+            curves.push_back({{"title", curve.title}, {"samples", curve.markers}, {"points", points.size()},
+                              {"x", x}, {"y", y}});
+        }
+        for (const PlotMark& mark : panel.marks) {
+            if (std::isfinite(mark.x) && std::isfinite(mark.y)) {
+                marks.push_back({{"label", mark.label}, {"x", mark.x}, {"y", mark.y}});
+            }
+        }
+        panels.push_back({{"x", xLabelOf(plot, p)}, {"y", panel.yLabel}, {"curves", curves}, {"marks", marks}});
+    }
+    // Text that is not valid UTF-8 (a title from anywhere) is replaced, not thrown on.
+    return json{{"title", plot.title}, {"panels", panels}}.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+namespace {
+
+// gnuplot's SVG with the plot's text alternative in it, in place of gnuplot's own <title> and <desc>: the title,
+// the description, and the points as JSON in <metadata>.
+std::string withTextAlternative(const std::string& svg, const Plot& plot) {
+    const std::string own = "<title>" + markupEscaped(plot.title) + "</title>\n<desc>" +
+                            markupEscaped(describePlot(plot)) + "</desc>\n<metadata id=\"simlab-plot-data\">" +
+                            markupEscaped(plotDataJson(plot)) + "</metadata>\n";
+    std::string out = svg;
+    const std::size_t title = out.find("<title>"), desc = out.find("</desc>");
+    const std::size_t open = out.find("<svg");
+    if (title != std::string::npos && desc != std::string::npos && desc > title) {
+        out.replace(title, desc + 7 - title, own.substr(0, own.size() - 1));
+    } else if (open != std::string::npos && out.find('>', open) != std::string::npos) {
+        out.insert(out.find('>', open) + 1, "\n" + own);
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string plotPathProblem(const std::string& path) {
@@ -188,6 +370,20 @@ void drawPlot(const Plot& plot, const std::string& path) {
         if (!failure.empty()) said = failure;
         throw std::runtime_error("gnuplot could not draw " + path +
                                  (said.empty() ? std::string() : ": " + oneLineMessage(said)));
+    }
+    if (endsWith(path, ".svg")) {
+        std::string svg;
+        {
+            std::ifstream in(partial, std::ios::binary);
+            svg.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        }
+        std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+        out << withTextAlternative(svg, plot);
+        out.close();
+        if (!out) {
+            fs::remove(partial, ignored);
+            throw std::runtime_error("cannot write the plot to " + path);
+        }
     }
     std::error_code renamed;
     fs::rename(partial, target, renamed);

@@ -188,6 +188,20 @@ std::string shapeJson(const SimTK::DecorativeGeometry& geometry, int body) {
     return json + "}";
 }
 
+/// A figure in the page's words: 4 significant digits, no "-0".
+std::string figure(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", v == 0 ? 0.0 : v);
+    return text;
+}
+
+/// A coordinate of a pose in the page's words: 0 where the recording writes 0 (kNegligiblePose).
+std::string coordinate(double v) { return figure(std::abs(v) < kNegligiblePose ? 0.0 : v); }
+
+std::string point(const double* p) {
+    return "(" + coordinate(p[0]) + ", " + coordinate(p[1]) + ", " + coordinate(p[2]) + ")";
+}
+
 }  // namespace
 
 struct ReplayRecorder::Recording {
@@ -197,6 +211,7 @@ struct ReplayRecorder::Recording {
     int skipped = 0;                     // decorations the page cannot draw
     int bodies = 0;                      // mobilized bodies other than Ground
     std::vector<bool> massless;          // per body: no mass (a device of the joints, such as a slider), not drawn
+    std::vector<std::string> looks;      // per body: the kinds of its decorations ("brick", "sphere and line")
     std::vector<double> times;           // s, one per frame
     std::vector<double> poses;           // per frame and body: p_GB (3 values), then R_GB's quaternion (x, y, z, w)
 };
@@ -244,6 +259,7 @@ private:
         const SimTK::SimbodyMatterSubsystem& matter = system_.getMatterSubsystem();
         r.bodies = matter.getNumBodies() - 1;
         r.massless.clear();
+        r.looks.assign(static_cast<std::size_t>(r.bodies), "");
         for (int b = 1; b <= r.bodies; ++b) {
             r.massless.push_back(matter.getMobilizedBody(SimTK::MobilizedBodyIndex(b)).getBodyMass(state) == 0);
         }
@@ -257,6 +273,13 @@ private:
                 if (g.getRepresentation() != SimTK::DecorativeGeometry::Hide) ++r.skipped;
             } else {
                 r.shapes.push_back(json);
+                // Its kind, as shapeJson wrote it ("k":"brick").
+                const std::size_t k = json.find("\"k\":\"") + 5;
+                const std::string kind = json.substr(k, json.find('"', k) - k);
+                if (body > 0) {
+                    std::string& looks = r.looks[static_cast<std::size_t>(body - 1)];
+                    if (looks.find(kind) == std::string::npos) looks += (looks.empty() ? "" : " and ") + kind;
+                }
             }
         }
         r.shapesRead = true;
@@ -265,6 +288,57 @@ private:
     const SimTK::MultibodySystem& system_;  // owns this reporter
     std::shared_ptr<Recording> recording_;
 };
+
+namespace {
+
+/// The motion in words, for a reader who cannot see the 3-D view: over which times, and for each body drawn where
+/// its origin starts and ends, the box it stays in, and how far it turns in all.
+std::string motionInWords(const std::vector<double>& times, const std::vector<double>& poses, int bodies,
+                          const std::vector<bool>& massless, const std::vector<std::string>& looks) {
+    const std::size_t frames = times.size(), perFrame = 7 * static_cast<std::size_t>(bodies);
+    std::string text = "From t = " + figure(times.front()) + " s to t = " + figure(times.back()) + " s, " +
+                       std::to_string(frames) + (frames == 1 ? " frame" : " frames") + ".";
+    int shown = 0;
+    for (int b = 0; b < bodies; ++b) {
+        if (massless[static_cast<std::size_t>(b)]) continue;
+        ++shown;
+        double low[3] = {INFINITY, INFINITY, INFINITY}, high[3] = {-INFINITY, -INFINITY, -INFINITY}, turned = 0;
+        for (std::size_t f = 0; f < frames; ++f) {
+            const double* pose = &poses[f * perFrame + 7 * static_cast<std::size_t>(b)];
+            for (int i = 0; i < 3; ++i) low[i] = std::min(low[i], pose[i]), high[i] = std::max(high[i], pose[i]);
+            if (f > 0) {  // the angle between this frame's attitude and the last one's
+                const double* last = pose - perFrame;
+                double dot = 0;
+                for (int i = 3; i < 7; ++i) dot += last[i] * pose[i];
+                turned += 2 * std::acos(std::min(1.0, std::abs(dot)));
+            }
+        }
+        const double* first = &poses[7 * static_cast<std::size_t>(b)];
+        const double* end = &poses[(frames - 1) * perFrame + 7 * static_cast<std::size_t>(b)];
+        const std::string& look = looks[static_cast<std::size_t>(b)];
+        const bool vowel = !look.empty() && std::string("aeiou").find(look[0]) != std::string::npos;
+        text += " Body " + std::to_string(b + 1) + " (" +
+                (look.empty() ? "drawn as a small sphere" : (vowel ? "an " : "a ") + look) + "): ";
+        std::string within;
+        for (int i = 0; i < 3; ++i) {
+            if (coordinate(low[i]) != coordinate(high[i])) {
+                within += std::string(within.empty() ? "" : ", ") + "xyz"[i] + " " + coordinate(low[i]) + " to " +
+                          coordinate(high[i]);
+            }
+        }
+        text += within.empty() ? "its origin stays at " + point(first) + " m"
+                               : "its origin goes from " + point(first) + " m to " + point(end) + " m, within " +
+                                     within + " m";
+        const double degrees = turned * 180 / SimTK::Pi;
+        text += degrees < 0.05 ? "; it does not turn."
+                               : "; it turns through " + figure(degrees) + " degrees in all" +
+                                     (degrees >= 360 ? " (" + figure(degrees / 360) + " turns)." : ".");
+    }
+    if (shown == 0) text += " No body is drawn.";
+    return text;
+}
+
+}  // namespace
 
 ReplayRecorder::ReplayRecorder(SimTK::MultibodySystem& system, double frameInterval)
     : recording_(std::make_shared<Recording>()) {
@@ -347,15 +421,30 @@ void ReplayRecorder::write(const std::string& path, const std::string& title, co
             "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
             "<title>" + heading + "</title>\n<link rel=\"icon\" href=\"data:,\">\n<style>\n";
     html += kStyle;
+    // Every control works from the keyboard (the 3-D view too, once focused), and what the view and the chart show
+    // is also said in words and given as a table, below them.
     html += "</style>\n</head>\n<body>\n<header>\n<h1>" + heading + "</h1>\n<div class=\"controls\">\n"
             "<button id=\"play\" type=\"button\">Play</button>\n"
             "<label>Speed <select id=\"speed\"><option value=\"0.25\">0.25&times;</option>"
             "<option value=\"0.5\">0.5&times;</option><option value=\"1\" selected>1&times;</option>"
             "<option value=\"2\">2&times;</option><option value=\"4\">4&times;</option></select></label>\n"
             "<input id=\"time\" type=\"range\" min=\"0\" max=\"1\" step=\"any\" value=\"0\" aria-label=\"time\">\n"
-            "<output id=\"now\">t = 0 s</output>\n</div>\n</header>\n<main>\n"
-            "<section id=\"view\" aria-label=\"the bodies' motion in 3-D\"><p id=\"view-note\"></p></section>\n"
-            "<section id=\"chart\" aria-label=\"the run's time series\"></section>\n</main>\n"
+            "<output id=\"now\" aria-live=\"off\">t = 0 s</output>\n</div>\n</header>\n<main>\n"
+            "<section id=\"view\" tabindex=\"0\" aria-label=\"the bodies' motion in 3-D\" "
+            "aria-describedby=\"view-note motion\"><p id=\"view-note\"></p>\n"
+            "<div id=\"view-turn\" role=\"group\" aria-label=\"turn and zoom the view\" hidden>"
+            "<button type=\"button\" data-key=\"ArrowLeft\" aria-label=\"turn left\">&larr;</button>"
+            "<button type=\"button\" data-key=\"ArrowRight\" aria-label=\"turn right\">&rarr;</button>"
+            "<button type=\"button\" data-key=\"ArrowUp\" aria-label=\"turn up\">&uarr;</button>"
+            "<button type=\"button\" data-key=\"ArrowDown\" aria-label=\"turn down\">&darr;</button>"
+            "<button type=\"button\" data-key=\"+\" aria-label=\"zoom in\">+</button>"
+            "<button type=\"button\" data-key=\"-\" aria-label=\"zoom out\">&minus;</button>"
+            "<button type=\"button\" data-key=\"0\" aria-label=\"reset the view\">Reset</button></div>"
+            "</section>\n"
+            "<section id=\"chart\" tabindex=\"0\" aria-label=\"the run's time series\"></section>\n</main>\n"
+            "<footer>\n<details id=\"in-words\"><summary>The motion in words, and the time series as a table</summary>\n"
+            "<p id=\"motion\">" + markupEscaped(motionInWords(r.times, r.poses, r.bodies, r.massless, r.looks)) +
+            "</p>\n<div id=\"series-table\" role=\"region\" tabindex=\"0\" aria-label=\"the time series as a table\"></div>\n</details>\n</footer>\n"
             "<script type=\"application/json\" id=\"replay-data\">" + data + "</script>\n<script>\n";
     html += inlineScript(threeJs);
     html += "\n</script>\n";

@@ -8,7 +8,8 @@
 //   simlab-probe-host PROBE.so           one test's probe; the engine starts it as the test's own user
 //   simlab-probe-host --serve PROBE.so   a submission's server (engine::TestServer): it keeps CAP_SETUID,
 //                                        CAP_SETGID and CAP_SETPCAP alone and, for each test the engine asks for,
-//                                        forks a child that drops them, becomes the test's user and loads PROBE.so
+//                                        forks a child that drops them, becomes the test's user and loads its
+//                                        own copy of PROBE.so (which only the server may read)
 //   simlab-probe-host --exec PROGRAM...  a program built from a student's file (a study of one): loads the
 //                                        students' filter, execs allowed, then runs PROGRAM - where the sandbox
 //                                        could not load that filter before the user was handed over (bubblewrap
@@ -16,9 +17,11 @@
 //
 // Descriptors (host_protocol.h): 3 events to the engine, 4 the judge's requests, 5 the answers; the server reads
 // the engine's requests on 7. What the server says of a probe (that it started, how it ended) comes from the
-// kernel (waitpid), never from the probe.
+// kernel (waitpid), never from the probe. Where the student's code was when a test fails, the host's watches tell on
+// 3, as data (failure_sites.cpp).
 #include <dlfcn.h>
 #include <fcntl.h>
+#include <ftw.h>
 #include <poll.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
@@ -36,6 +39,7 @@
 #include <cstring>
 #include <vector>
 
+#include "failure_sites.h"
 #include "simlab/isolation/filter.h"
 #include "simlab/isolation/host_protocol.h"
 
@@ -90,39 +94,68 @@ void onRefusedCall(int, siginfo_t* info, void* context) {
 #endif
     append(line, sizeof line, used, "\"}\n");
     (void)!::write(host::kEventFd, line, used);
+    host::tellFailureSite(SIGSYS);
     // Then as SIGSYS would: the engine sees the signal.
-    struct sigaction plain {};
-    plain.sa_handler = SIG_DFL;
-    ::sigaction(SIGSYS, &plain, nullptr);
-    sigset_t only;
-    ::sigemptyset(&only);
-    ::sigaddset(&only, SIGSYS);
-    ::sigprocmask(SIG_UNBLOCK, &only, nullptr);
-    ::syscall(SYS_tgkill, ::getpid(), ::syscall(SYS_gettid), SIGSYS);
+    host::endAs(SIGSYS);
     ::_exit(128 + SIGSYS);
 }
 
-// The probe: the students' filter, then the submission's shared object, then its entry point. Never returns.
-[[noreturn]] void runProbe(const char* probe) {
+// The probe: the students' filter, then the submission's shared object, then its entry point. Never returns. A
+// test's own copy (`ownCopy`) goes once it is loaded: the folder's space is the test's.
+[[noreturn]] void runProbe(const char* probe, bool ownCopy) {
     struct sigaction refused {};
     refused.sa_sigaction = onRefusedCall;
     refused.sa_flags = SA_SIGINFO;
     ::sigemptyset(&refused.sa_mask);
     ::sigaction(SIGSYS, &refused, nullptr);
+    host::watchFailureSites(probe);
     const std::string& program = filter::studentProgram(false);
     if (!program.empty() && !filter::install(program)) cannot("simlab: cannot load the probe's system-call filter");
     void* loaded = ::dlopen(probe, RTLD_NOW | RTLD_LOCAL);
     if (!loaded) cannot("simlab: cannot load the probe", ::dlerror());
+    if (ownCopy) ::unlink(probe);
     using Entry = int (*)();
     const auto entry = reinterpret_cast<Entry>(::dlsym(loaded, "simlab_probe_entry"));
     if (!entry) cannot("simlab: the probe has no entry point");
     ::_exit(entry());
 }
 
+// The test's own copy of the probe, `probe` (the server's descriptor of it, which only the server's user may
+// read), written into the test's folder as the test's user (the file system's user: setfsuid) and its alone. The
+// probe on disk is thus no other user's to read, and one test's copy is no other test's.
+bool copyProbe(int probe, const char* folder, uid_t uid) {
+    char path[128] = {};
+    std::size_t used = 0;
+    append(path, sizeof path, used, folder);
+    append(path, sizeof path, used, "/probe.so");
+    ::syscall(SYS_setfsuid, uid);
+    const int copy = ::open(path, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0400);
+    ::syscall(SYS_setfsuid, 0);
+    if (copy < 0) return false;
+    bool ok = true;
+    char buffer[65536];
+    for (off_t at = 0;;) {
+        const ssize_t got = ::pread(probe, buffer, sizeof buffer, at);
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0) {
+            ok = got == 0;
+            break;
+        }
+        for (ssize_t written = 0; written < got;) {
+            const ssize_t n = ::write(copy, buffer + written, static_cast<std::size_t>(got - written));
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) return ::close(copy), false;
+            written += n;
+        }
+        at += got;
+    }
+    return ::close(copy) == 0 && ok;
+}
+
 // In a server's forked child: the test's descriptors in place (output on 1 and 2, then 3, 4, 5), nothing else of
 // the server's open, the test's limits, no capability left to regain, the test's user, a parent-death signal, and
-// a folder of its own. Nothing of the student's is in this process yet.
-void becomeTest(const host::StartTest& test, const int (&fds)[5], pid_t server) {
+// a folder of its own with its copy of the probe. Nothing of the student's is in this process yet.
+void becomeTest(const host::StartTest& test, const int (&fds)[5], pid_t server, int probe) {
     sigset_t none;
     ::sigemptyset(&none);
     ::sigprocmask(SIG_SETMASK, &none, nullptr);
@@ -134,7 +167,6 @@ void becomeTest(const host::StartTest& test, const int (&fds)[5], pid_t server) 
     ::dup2(moved[2], host::kEventFd);
     ::dup2(moved[3], host::kRequestFd);
     ::dup2(moved[4], host::kAnswerFd);
-    ::close_range(host::kAnswerFd + 1, ~0U, 0);
     host::setLimits(test.cpuSeconds, test.memoryBytes, test.fileBytes, test.tasks);
     // The test's folder, made as the test's user through the server's group, which alone may add to the server's
     // folder (root's, mode 0731): the test's user can pass through it to its own folder, and neither list nor add
@@ -148,6 +180,8 @@ void becomeTest(const host::StartTest& test, const int (&fds)[5], pid_t server) 
     const bool made = ::mkdir(folder, 0700) == 0;
     ::syscall(SYS_setfsuid, 0);
     if (!made) cannot("simlab: cannot enter the test's working directory");
+    if (!copyProbe(probe, folder, test.uid)) cannot("simlab: cannot copy the probe into the test's folder");
+    ::close_range(host::kAnswerFd + 1, ~0U, 0);
     if (!host::leaveCapabilities()) cannot("simlab: cannot leave the server's capabilities behind");
     if (!host::becomeUser(test.uid)) cannot("simlab: cannot switch to the test's user");
     if (!host::holdsNoCapability() || ::prctl(PR_CAPBSET_READ, CAP_SETUID, 0, 0, 0) == 1) {
@@ -164,16 +198,34 @@ void becomeTest(const host::StartTest& test, const int (&fds)[5], pid_t server) 
     ::setenv("TMPDIR", here, 1);
 }
 
+// A test's folder, once its probe has ended, removed as the test's own user (the file system's user: setfsuid) -
+// the server holds no capability over files, so nothing a test's process might swap into it while it goes (a
+// link, say) lets this remove more than that user may - and no link followed: the folders the tests share are
+// the space of those still running.
+int removeEntry(const char* path, const struct stat*, int type, struct FTW*) {
+    if (type == FTW_DP) (void)::rmdir(path);
+    else (void)::unlink(path);
+    return 0;  // what cannot go stays; the walk goes on
+}
+void removeFolder(const char* folder, uid_t uid) {
+    if (uid == 0 || !folder[0] || std::strchr(folder, '/') || folder[0] == '.') return;
+    ::syscall(SYS_setfsuid, uid);
+    ::nftw(folder, removeEntry, 16, FTW_DEPTH | FTW_PHYS | FTW_MOUNT);
+    ::syscall(SYS_setfsuid, 0);
+}
+
 // Serves the engine on kServerFd: a test's probe forked for each request, its start and its end told on the
 // test's own socket. Returns only in a test's child, ready to load the probe; the server itself leaves when the
 // engine closes its end.
-void serveTests() {
+void serveTests(int probe) {
     using host::StartTest;
     using host::TestEvent;
     const pid_t server = ::getpid();
     struct Running {
         pid_t pid;
         int pidfd, notify;
+        uid_t uid;
+        char folder[sizeof(StartTest::folder) + 1];
     };
     std::vector<Running> running;
     auto tell = [](int fd, TestEvent event) { (void)!::send(fd, &event, sizeof event, MSG_NOSIGNAL); };
@@ -202,6 +254,7 @@ void serveTests() {
             tell(running[i].notify, endedEvent(running[i].pid, status, usage));
             ::close(running[i].notify);
             ::close(running[i].pidfd);
+            removeFolder(running[i].folder, running[i].uid);
             running.erase(running.begin() + static_cast<std::ptrdiff_t>(i));
         }
         if (!(watched[0].revents & (POLLIN | POLLHUP | POLLERR))) continue;
@@ -229,7 +282,7 @@ void serveTests() {
         }
         const pid_t pid = ::fork();
         if (pid == 0) {
-            becomeTest(test, fds, server);
+            becomeTest(test, fds, server, probe);
             return;
         }
         const int pidfd = pid > 0 ? static_cast<int>(::syscall(SYS_pidfd_open, pid, 0)) : -1;
@@ -244,9 +297,14 @@ void serveTests() {
             struct rusage usage {};
             ::wait4(pid, &status, 0, &usage);
             tell(fds[0], endedEvent(pid, status, usage));
+            char folder[sizeof test.folder + 1] = {};
+            std::memcpy(folder, test.folder, sizeof test.folder);
+            removeFolder(folder, test.uid);
         }
         if (pid > 0 && pidfd >= 0) {
-            running.push_back({pid, pidfd, fds[0]});
+            Running r{pid, pidfd, fds[0], test.uid, {}};
+            std::memcpy(r.folder, test.folder, sizeof test.folder);
+            running.push_back(r);
         } else {
             ::close(fds[0]);
         }
@@ -279,10 +337,17 @@ int main(int argc, char** argv) {
         cannot("simlab: cannot make the probe's system-call filter");
     }
     if (serve) {
-        serveTests();  // returns in a test's child
+        // Read once, as the server's user: each test's child copies it into its own folder.
+        // (Kept above the descriptors a test's child puts in place.)
+        const int opened = ::open(probe, O_RDONLY | O_CLOEXEC);
+        const int image = opened < 0 ? -1 : ::fcntl(opened, F_DUPFD_CLOEXEC, 64);
+        if (image < 0) cannot("simlab: cannot read the probe", ::strerrordesc_np(errno));
+        ::close(opened);
+        serveTests(image);  // returns in a test's child, whose folder holds its copy
+        probe = "./probe.so";
     } else if (!host::holdsNoCapability() || ::getuid() == 0 || ::geteuid() == 0) {
         // Run alone, the host is already the test's user: it never loads a student's code with privilege.
         cannot("simlab: a probe runs as a user of its own, never as root or with a capability");
     }
-    runProbe(probe);
+    runProbe(probe, serve);
 }

@@ -2,6 +2,7 @@
 // function draws it with gnuplot's file terminals, PNG or SVG, so that it renders on any machine, a display or not.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,9 +49,25 @@ struct Plot {
 std::string plotPathProblem(const std::string& path);
 
 /// Draws `plot` into `path` (PNG or SVG, by its extension) with gnuplot, replacing the file only once the
-/// drawing is whole. Throws std::runtime_error, in one line, when the path is not a plot file, gnuplot is not
-/// installed, or gnuplot fails (its first line of complaint).
+/// drawing is whole. An SVG also carries its text alternative: its <title> is the plot's, its <desc> what
+/// describePlot says, and its <metadata id="simlab-plot-data"> the points drawn as JSON (plotDataJson), from which
+/// a page shows them as a table. Throws std::runtime_error, in one line, when the path is not a plot file,
+/// gnuplot is not installed, or gnuplot fails (its first line of complaint).
 void drawPlot(const Plot& plot, const std::string& path);
+
+/// What `plot` shows, in a few sentences of plain text for a reader who cannot see it: for each panel, what is
+/// drawn against what and over which range, each curve's ends and extremes, how far a simulation's samples stray
+/// from the line they are drawn on (when more than the drawing shows), and the points marked. Figures are given
+/// to 4 significant digits, as read off the data, not the picture.
+std::string describePlot(const Plot& plot);
+
+/// The points `plot` draws, as JSON: {"title", "panels": [{"x", "y" (the axes' labels), "curves": [{"title",
+/// "samples" (true for markers), "points" (how many it draws), "x", "y" (at most kPlotDataRows of them, evenly
+/// spread, the first and the last among them)}], "marks": [{"label", "x", "y"}]}]}. Points not drawn (not finite,
+/// or at or below zero on a logarithmic axis) are left out.
+std::string plotDataJson(const Plot& plot);
+/// The most rows of one curve in plotDataJson.
+constexpr std::size_t kPlotDataRows = 60;
 
 /// At most `most` of the indices 0 ... n-1, evenly spread, the first and the last among them: the samples to mark
 /// without hiding the line beneath them.

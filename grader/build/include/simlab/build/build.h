@@ -25,7 +25,14 @@ struct BuildResult {
     double compileSeconds = 0;
     double linkSeconds = 0;
     std::string binary;
+    std::string object;        ///< the student's object, in the object cache, once compiled
 };
+
+/// What a grading's sandboxed processes are lent of simlab's places (isolation/reach.h) beside their own folders:
+/// the contract's headers and the precompiled header (the compiler), the course's objects and the probe's export
+/// list (the linker), the probe's host. The rest of the places is none of theirs; the audit of limits only and
+/// `simlab lock` keep these open to throwaway users and nothing else.
+std::vector<std::string> lentToTools(const Manifest& manifest, const Assignment& assignment);
 
 /// Where the sandbox's users could not reach what a build lends them (the contract's headers, the precompiled
 /// header, the course's objects and libraries) - as root without bubblewrap each tool runs as a throwaway user,
@@ -47,7 +54,7 @@ void ensurePrecompiledHeader(const Manifest& manifest, const Assignment& assignm
 
 class Builder {
 public:
-    /// Objects are cached in <cache>/objects (Manifest::cacheDir), or in $SIMLAB_CACHE.
+    /// Objects are cached in <cache>/objects (Manifest::cacheDir: $SIMLAB_CACHE, or the build's or user's cache).
     explicit Builder(const Manifest& manifest);
 
     /// Compile the student's file (`name`, its bytes `text`) in `workDir` in the sandbox, check the object (unless
@@ -75,7 +82,7 @@ public:
     std::string gradingKey(const Assignment& assignment) const;
     /// The course's symbols for `assignment`'s probe, found once (and kept in the cache).
     const isolation::CourseSymbols& courseSymbols(const Assignment& assignment) const;
-    /// The folder of the object cache (SIMLAB_CACHE, or the build's cache/).
+    /// The folder of the object cache (<cache>/objects).
     const std::string& cacheDir() const { return cacheDir_; }
     /// simlab-probe-host, the program every probe of this build runs in.
     const std::string& probeHost() const { return manifest_.probeHost; }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "simlab/build/manifest.h"
 
@@ -17,6 +18,9 @@ bool isLabFolder(const std::string& name);
 /// incrementally after (an edited test or rubric is built again). Its build log is kept beside the build; a
 /// failure is one line naming the log. Throws UsageError.
 Assignment buildLab(const Manifest& manifest, const std::string& dir);
+
+/// The folders of the labs built in this simlab's cache so far: simlab's places from then on, named or not.
+std::vector<std::string> labsBuilt(const Manifest& manifest);
 
 /// Where buildLab builds the lab in `dir` (its canonical path).
 std::string labBuildFolder(const Manifest& manifest, const std::string& dir);

@@ -23,6 +23,8 @@ struct Assignment {
                                        ///< -I<contractInclude> -c SOURCE -o OBJECT
     std::string starter;
     std::string solution;          ///< empty in the student bundle
+    bool solutionShipped = false;  ///< the solution is handed out as a worked example (simlab_add_assignment's
+                                   ///< WORKED_EXAMPLE): in the student bundle, and no secret
     bool hiddenTestsBuilt = false;
     std::vector<std::string> hiddenTests;  ///< the hidden tests' source files (absent from the student bundle)
     std::string judge;                     ///< the tests' program, which decides every verdict
@@ -59,7 +61,9 @@ struct Manifest {
     /// prefix is, on first use (ensurePrecompiledHeaders).
     bool installed = false;
     std::string prefix;                ///< the installed prefix, "" for a build tree
-    std::string cacheDir;              ///< what simlab keeps between runs: <build>/cache, or the user's cache
+    std::string cacheDir;              ///< what simlab keeps between runs (compiled files, labs' builds, an
+                                       ///< installation's precompiled headers): $SIMLAB_CACHE, else <build>/cache
+                                       ///< or, installed, the user's cache
     std::string cmake;                 ///< the cmake that configured the build
     std::string studiesTarget;         ///< the target that builds every study (left out of `all` in the bundle)
     std::string sampleClass;           ///< <build>/sample-class: one folder per assignment, made from tests/corpus
@@ -88,22 +92,22 @@ struct Manifest {
 /// The assignments a lab built out of the tree declares (its build's simlab-lab.json).
 std::vector<Assignment> loadLabManifest(const std::string& path);
 
-/// What no test's code may read, for one assignment: its hidden tests' sources, its solution's folder, its judge
+/// What no student may have, for one assignment: its hidden tests' sources, its solution's folder, its judge
 /// (which holds the hidden tests) and its tests' objects, the hidden trade question's text as the build embeds
-/// it, what the build made of the solution (its object, its reference lab program and study), and the course's
-/// sample class.
+/// it, what the build made of the solution (its object, its reference lab program and study) - the solution's
+/// part not for a worked example handed out with the bundle - and the course's sample class.
 std::vector<std::string> secretPaths(const Manifest& manifest, const Assignment& assignment);
 
-/// Everything simlab keeps from tests' code: every assignment's secretPaths, the corpus (the solutions' edits), the
-/// object cache (every student's source), the source tree's history (.git: every file it ever held) and the test
-/// logs (build/Testing). What a sandbox of limits only is audited for (secretsExposed) and scripts/lock-course
-/// closes (`simlab list --secrets`).
+/// Everything of the course no student may have: every assignment's secretPaths, the corpus (the solutions'
+/// edits), the object cache (every student's source), the source tree's history (.git: every file it ever held)
+/// and the test logs (build/Testing); `simlab list --secrets`, and what the student bundle leaves out. (What no
+/// test's code may read is wider: everything of simlab's places but what a test is lent, isolation/reach.h.)
 std::vector<std::string> courseSecrets(const Manifest& manifest);
 
 /// The manifest at SIMLAB_MANIFEST if set, else the one of the build this engine was built in. simlab's places it
-/// names - its sources, its build or installation, its cache, the sample class, every assignment's secrets - are
-/// hidden from every sandbox from then on (isolation::hideFromSandboxes). Throws UsageError if it is missing or
-/// unreadable.
+/// names - its sources, its build or installation, its cache ($SIMLAB_CACHE, which holds every cache), the sample
+/// class - are out of every sandbox's reach from then on (isolation::addPlaces). Throws UsageError if it is
+/// missing or unreadable.
 Manifest loadManifest();
 Manifest loadManifest(const std::string& path);
 

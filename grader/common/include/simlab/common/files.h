@@ -9,7 +9,9 @@ namespace simlab::engine {
 /// A fresh private directory, removed with everything in it when this object goes.
 class TempDir {
 public:
-    /// Creates <parent>/<prefix>XXXXXX; parent defaults to $TMPDIR or /tmp.
+    /// Creates <parent>/<prefix>XXXXXX (0700); parent defaults to $TMPDIR or /tmp. Beside it, <that>.held stays
+    /// locked (flock) while this process lives: a run stopped for good (SIGKILL, a power cut) leaves the folder
+    /// unheld, for the next run to sweep (sweepLeftovers).
     explicit TempDir(const std::string& prefix, const std::string& parent = "");
     ~TempDir();
     TempDir(const TempDir&) = delete;
@@ -18,7 +20,13 @@ public:
 
 private:
     std::string path_;
+    int held_ = -1;
 };
+
+/// The folders runs of simlab stopped for good left in $TMPDIR (or /tmp), and in `more`: each a TempDir whose
+/// hold nobody keeps, owned by this process's user. Removed, with their holds; their names are returned. Never
+/// touches another user's folder, a folder a live run holds, or anything a link leads to.
+std::vector<std::string> sweepLeftovers(const std::vector<std::string>& more = {});
 
 /// A folder only its owner may enter (0700) from the moment it exists, so that nothing written into it is ever
 /// another user's to read; a folder already there is closed to others. Throws std::runtime_error on failure.
@@ -35,6 +43,19 @@ void writeFileAtomically(const std::string& path, const std::string& text);
 /// The same, and durable: the file's bytes and then its folder's entry are flushed to the disk (fsync), so that
 /// after a crash or a power cut `path` holds the old text or the new one. For the files that commit a grade.
 void writeFileDurably(const std::string& path, const std::string& text);
+/// The same two for a file people share, an output of grading (the gradebook, manual.csv, the reports, a student's
+/// feedback): its mode as the umask gives (0666 less it) and its group the folder's (a setgid folder's), or, where it
+/// replaces a file, that file's mode and group, so that a TA of the course's group who may edit manual.csv in place
+/// still may after simlab wrote it again.
+void writeOutputAtomically(const std::string& path, const std::string& text);
+void writeOutputDurably(const std::string& path, const std::string& text);
+/// The same for a file of simlab's own (a cache's): its owner's alone (0600), whatever the umask.
+void writePrivateAtomically(const std::string& path, const std::string& text);
+
+/// A folder of grades, made if missing (with the folders above it): its owner's and its group's (0770 less the
+/// umask), never every user's - where files are kept apart by their modes alone, a test's throwaway user must not
+/// reach what simlab writes there later.
+void createOutputFolder(const std::string& path);
 
 /// A hold on a folder simlab writes into (`folder`/.simlab-lock, flock): a second simlab given the same folder
 /// stops with a UsageError naming the first one's process. Released when destroyed or when the process ends.

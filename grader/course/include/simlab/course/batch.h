@@ -82,11 +82,15 @@ struct ClassOptions {
     /// The points given by hand (readManualSheet), read by the caller before anything changes; a shard has no use
     /// for them.
     ManualSheet manual;
-    /// The course's late policy for the assignment (policy.h), and each student's submission time as the platform
-    /// gave it (UTC text, and how it is known; empty: the platform gave none), by id; a student not in it is
-    /// timed by their file's own time.
+    /// The course's late policy for the assignment (policy.h), and each student's hand-in as the platform or the
+    /// instructor gave it (its time, how it is known, the platform's late flag), by id; a student not in it is
+    /// timed by their file's own time. `handInNotes` is what the run says of those times (checkHandIns), for the
+    /// report.
     LatePolicy late;
-    std::map<std::string, std::pair<std::string, std::string>> submitted;
+    HandIns submitted;
+    std::vector<std::string> handInNotes;
+    /// The caller holds the output folder's lock (OutputLock) already, taken before it wrote anything there.
+    bool locked = false;
 };
 
 /// Grade every student folder of `submissionsDir` into `outDir`. Returns the records of every student in the

@@ -1,15 +1,30 @@
 // Which submissions of a class are far more alike than the class: each pair of files compared, once the starter's
-// lines are removed, by Debian's similarity-tester (sim_c++, Dick Grune's token-run comparison, the measure MOSS's
-// users know): the share of each file's tokens that lies in runs shared with the other.
+// code is removed by its tokens, by Debian's similarity-tester (sim_c++, Dick Grune's token-run comparison, the
+// measure MOSS's users know): the share of each file's tokens that lies in runs shared with the other. Both steps
+// compare tokens with identifiers, numbers and strings by kind alone, so that renaming hides neither a copy nor
+// the starter. The tokens are read by cppTokens, a small C++ tokenizer (Debian's C++ lexers come with a compiler
+// or a preprocessor library: libclang, Boost.Wave's compiled lexer, which the grader does not otherwise need).
 #pragma once
 
 #include <cstddef>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace simlab::engine {
+
+/// A token of C++ source: its text, its kind (the keyword or punctuator itself, or ID, NUM, STR, CHR) and its line.
+struct CppToken {
+    std::string text;
+    std::string kind;
+    int line = 0;
+};
+
+/// The tokens of C++ source `text`, comments and #include lines left out. Any bytes read: an unterminated literal
+/// or comment ends at the end of its line or the file.
+std::vector<CppToken> cppTokens(const std::string& text);
 
 /// The default floor: a pair at or above it is flagged whatever the class. In a scaffolded lab every honest
 /// solution looks alike, so the class-relative threshold can reach 100 % and miss copies. Honest apple solutions
@@ -39,6 +54,7 @@ struct SimilarityReport {
     double threshold = 0;             ///< the class-relative threshold (similarityThreshold)
     double floor = kSimilarityFloor;  ///< the absolute floor
     std::vector<SimilarPair> flagged;  ///< at or above the floor or the threshold, with their shared runs
+    std::map<std::string, std::set<int>> starterLines;  ///< each file's lines the starter's code took whole
 };
 
 /// Which rule flagged a pair: "floor", "class", "floor, class", or "" when neither did.
@@ -48,22 +64,23 @@ std::string flaggedBy(const SimilarPair& pair);
 /// 50 % and at most 100 % (a class made from one file still shows its identical copies).
 double similarityThreshold(double median, double spread);
 
-/// `text` without the lines the starter has (compared without the spaces at their ends; blank lines dropped).
+/// `text` as it is compared: its tokens on their own lines, without the starter's code (the places where the file
+/// holds a run of the starter's tokens, identifiers, numbers and strings compared by kind), literals emptied.
 std::string withoutStarter(const std::string& text, const std::string& starter);
 
 /// The runs of `sim_c++ -n` output ("3.cpp: line 4-9 |5.cpp: line 2-7 [40]") by file number, the lower first.
 std::map<std::pair<std::size_t, std::size_t>, std::vector<SharedRun>> parseSimRuns(const std::string& output);
 
-/// Compares every pair of `files` (id -> the file's text), the starter's lines removed, with sim_c++ run in the
-/// sandbox (it reads students' bytes), and flags a pair at or above `floor` or the class-relative threshold.
+/// Compares every pair of `files` (id -> the file's text), the starter's code removed by its tokens, with sim_c++ run
+/// in the sandbox (it reads students' bytes), and flags a pair at or above `floor` or the class-relative threshold.
 /// Throws UsageError in one line if sim_c++ is missing or fails.
 SimilarityReport compareSubmissions(const std::map<std::string, std::string>& files, const std::string& starter,
                                     double floor = kSimilarityFloor);
 
 /// The page: the flagged pairs and the rule that flagged each, each pair with both files side by side (its shared
-/// runs highlighted, the starter's lines dimmed), and the class's
+/// runs highlighted, the lines of the starter's code dimmed), and the class's
 /// spread of pairs; self-contained, as every page of simlab's.
 std::string similarityHtml(const std::string& title, const SimilarityReport& report,
-                           const std::map<std::string, std::string>& files, const std::string& starter);
+                           const std::map<std::string, std::string>& files);
 
 }  // namespace simlab::engine

@@ -20,12 +20,12 @@ namespace simlab::engine {
 
 /// How a test ended. Every outcome has a name in the report.
 enum class Outcome {
-    Passed, Failed, TimedOut, Stalled, OutOfMemory, Crashed, OutputTruncated, BadReport, DidNotFinish,
+    Passed, Failed, TimedOut, Stalled, OutOfMemory, OutOfDisk, Crashed, OutputTruncated, BadReport, DidNotFinish,
     DidNotCompile, Refused, MissingFile
 };
 
-/// "passed", "failed", "timed out", "stalled", "killed for memory", "crashed", "output truncated", "bad report",
-/// "did not finish", "did not compile", "refused", "missing file".
+/// "passed", "failed", "timed out", "stalled", "killed for memory", "killed for disk", "crashed", "output
+/// truncated", "bad report", "did not finish", "did not compile", "refused", "missing file".
 std::string outcomeName(Outcome outcome);
 /// The outcome of that name; throws std::invalid_argument for another.
 Outcome outcomeNamed(const std::string& name);
@@ -136,12 +136,13 @@ void requireStudentId(const std::string& id);
 GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment, const Rubric& rubric,
                             const SubmissionFiles& files, const GradeOptions& options);
 
-/// What hidden tests must be kept from: everything simlab keeps from tests' code (courseSecrets: every
-/// assignment's hidden tests, solutions, judges and what the build made of them, the corpus, the object cache, the
-/// sources' history, the test logs), and `more` (the class's folder, the grades, a judge made apart). Tried as a
-/// test's probe is run (isolation::readableInSandbox, every file of a folder): where any of them can be read, one
-/// line saying which and how to close it, for the caller to refuse hidden tests with; empty where none can.
-std::string secretsExposed(const Manifest& manifest, const std::vector<std::string>& more = {});
+/// Where files are kept apart by their modes alone (limits only), what hidden tests must be kept from: every file
+/// of simlab's places (isolation/reach.h: the course, its build and installation, its caches, the labs' folders, a
+/// class and its grades, each added before) but what a grading's tools are lent (lentToTools), tried as a test's
+/// throwaway user (isolation::exposedPlaces). One line naming the first file it could read and the command that
+/// closes the places (`simlab lock`), for the caller to refuse hidden tests with; empty where none can be read,
+/// and in the modes whose sandbox keeps the places out of reach whatever their modes (bubblewrap, Landlock).
+std::string placesExposed(const Manifest& manifest);
 /// Round a score to hundredths, as reports show it.
 double roundScore(double points);
 

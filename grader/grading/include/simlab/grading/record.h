@@ -80,6 +80,7 @@ struct ClassResult {
     int reused = 0;                      ///< records kept as they were: up to date with the files and the grader
     int graded = 0;                      ///< students graded by this run (with --only, those asked for)
     std::vector<std::string> warnings;   ///< one line each, for the instructor (a manual.csv row that counts for nothing)
+    std::vector<std::string> handIns;    ///< what the run says of the hand-in times, one line each naming the students
 };
 
 }  // namespace simlab::engine

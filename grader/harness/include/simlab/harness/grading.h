@@ -11,6 +11,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace simlab {
 struct Plot;
@@ -38,6 +39,21 @@ bool atLeast(double value, double floor, double target, const std::string& unit)
 /// A figure that should not exceed `allowed`: records it as "<what> <value>, allowed <allowed>".
 /// Returns value <= allowed (false for NaN).
 bool atMost(double value, double allowed, const std::string& what);
+
+/// A measured value beside the one expected: "y(4) = +88.4 m, expected -68.4 m" for
+/// compared("y(4)", 88.4, -68.4, "m"). Each is shown to as many significant digits (3 at least, 17 at most) as it
+/// takes to tell them apart, and signed where their signs differ.
+std::string compared(const std::string& what, double value, double expected, const std::string& unit);
+
+/// compared() for vectors: "w_B(4) = (6.91, 0.2, 0.15) rad/s, expected (7, 0.2, 0.15) rad/s", every component to as
+/// many digits as it takes to tell the two apart, all signed where any two differ in sign.
+std::string compared(const std::string& what, const std::vector<double>& value, const std::vector<double>& expected,
+                     const std::string& unit);
+
+/// The value that reveals a failed figure's mistake, at its worst point (a compared(), and what it means): a
+/// failing test's reason shows it after its figure, "0.0 digits, need 10: y(4) = +88.4 m, expected -68.4 m"; a
+/// passing test's shows the figure alone. The last call of a test counts.
+void worstPoint(const std::string& text);
 
 /// A file for the student's feedback folder, e.g. attach("schematic-tree.svg", svg): a plain name (letters,
 /// digits, '.', '-', '_'; no leading dot), at most 256 KiB, three per test. simlab writes it beside the report.
@@ -67,5 +83,8 @@ StudentVariant studentVariant();
 
 /// Format a number the way reports show it: 3 significant digits, scientific when small or large.
 std::string show(double value);
+
+/// "y(4)" for at("y", 4): a quantity at a time, as a reason names it (the time to 6 significant digits).
+std::string at(const std::string& quantity, double time);
 
 }  // namespace simlab::grading

@@ -37,6 +37,90 @@ inline RunSettings settingsFor(RunSettings base, double finalTime, double dt, do
     return base;
 }
 
+/// A figure over many points kept at its worst - the fewest accuracy digits, or the largest drift - with the
+/// comparison of measured and expected values that had it, which a failing test's reason shows beside the figure
+/// (grading::worstPoint): "0.0 digits, need 10: y(4) = +88.4 m, expected -68.4 m".
+///
+///     WorstDigits worst;
+///     for (const Sample& s : run.samples) {
+///         const double exact = ...;
+///         worst.add(accuracyDigits(s.y, exact), grading::at("y", s.time), s.y, exact, "m");
+///     }
+///     CHECK(atLeast(worst, grading::param("floor"), grading::param("target"), "digits at the worst sample"));
+class WorstPoint {
+public:
+    /// Keeps `figure` if it is the first or the worst so far (NaN is the worst there is), with the comparison of
+    /// `value` and `expected` that gave it: `what` ("y(4)") in `unit`, then `context` ("(dropped from 2.5 m)"), if
+    /// any. Returns whether it was.
+    bool add(double figure, const std::string& what, double value, double expected, const std::string& unit,
+             const std::string& context = "") {
+        if (!worse(figure)) return false;
+        point_ = grading::compared(what, value, expected, unit) + (context.empty() ? "" : " " + context);
+        return true;
+    }
+    /// add() with the comparison already written (a grading::compared of vectors, say).
+    bool add(double figure, const std::string& comparison) {
+        if (!worse(figure)) return false;
+        point_ = comparison;
+        return true;
+    }
+    /// A figure with no values to compare (nothing was measured: the check that says why is the reason).
+    void add(double figure) {
+        if (worse(figure)) point_.clear();
+    }
+    /// Another's worst (one scene's of several), in this one's place if it is worse, with `context` after it.
+    void add(const WorstPoint& other, const std::string& context = "") {
+        if (!other.any_ || !worse(other.figure_)) return;
+        point_ = other.point_.empty() ? "" : other.point_ + (context.empty() ? "" : " " + context);
+    }
+    /// The worst figure (where nothing was added: kMaxDigits digits, a drift of 0).
+    double figure() const { return figure_; }
+    /// Its comparison; empty when nothing was added.
+    const std::string& point() const { return point_; }
+
+protected:
+    WorstPoint(bool fewest, double none) : fewest_(fewest), figure_(none) {}
+
+private:
+    // Takes `figure` if it is the first or worse than the worst so far (NaN is the worst there is).
+    bool worse(double figure) {
+        if (std::isnan(figure)) figure = fewest_ ? 0.0 : INFINITY;
+        if (any_ && !(fewest_ ? figure < figure_ : figure > figure_)) return false;
+        any_ = true;
+        figure_ = figure;
+        return true;
+    }
+
+    bool fewest_;
+    bool any_ = false;
+    double figure_;
+    std::string point_;
+};
+
+/// The fewest accuracy digits over many points (simlab/digits.h).
+class WorstDigits : public WorstPoint {
+public:
+    WorstDigits() : WorstPoint(true, kMaxDigits) {}
+};
+
+/// The largest drift over many points: a relative departure from a value that should hold (an energy, say).
+class WorstDrift : public WorstPoint {
+public:
+    WorstDrift() : WorstPoint(false, 0.0) {}
+};
+
+/// grading::atLeast on the fewest digits of `worst`, whose comparison a failing test's reason shows.
+inline bool atLeast(const WorstDigits& worst, double floor, double target, const std::string& unit) {
+    if (!worst.point().empty()) grading::worstPoint(worst.point());
+    return grading::atLeast(worst.figure(), floor, target, unit);
+}
+
+/// grading::atMost on the largest drift of `worst`, whose comparison a failing test's reason shows.
+inline bool atMost(const WorstDrift& worst, double allowed, const std::string& what) {
+    if (!worst.point().empty()) grading::worstPoint(worst.point());
+    return grading::atMost(worst.figure(), allowed, what);
+}
+
 /// Fails the test unless the simulation recorded something.
 template <class Sample>
 void requireSamples(const RunResult<Sample>& run) {
@@ -250,8 +334,8 @@ inline const trade::Scene& studentScene(const trade::Question& q) {
 }
 
 /// Points for the trade question on scene `s` of `q` (tradeCredit): the figure is the cost against the front. An
-/// answer that keeps the digits asked for goes on the leaderboard: its evaluations, the digits it kept (to a tenth,
-/// counted up to `beyond` past those asked, as the front is read) and its cost against the front.
+/// answer that keeps the digits asked for goes on the leaderboard: its cost against the front first, then its
+/// evaluations and the digits it kept (to a tenth, counted up to `beyond` past those asked, as the front is read).
 template <class Sample, class Scene>
 void gradeTrade(const trade::Question& q, const trade::Scene& s, const TradeDigits<Sample, Scene>& digitsOf) {
     TradeCredit c = tradeCredit<Sample, Scene>(q, s, digitsOf);
@@ -259,9 +343,11 @@ void gradeTrade(const trade::Question& q, const trade::Scene& s, const TradeDigi
     grading::measured(c.ratio, "x the front", c.line);
     if (std::isfinite(c.evaluations) && std::isfinite(c.ratio)) {
         const double kept = std::min(c.digits, q.digits + grading::param("beyond"));
+        // The cost against the front leads: it is the one figure comparable across students' scenes (a partial
+        // answer on a cheap scene may take fewer evaluations than the front of a dear one).
+        grading::leaderboard("trade: x the front", std::round(c.ratio * 100) / 100, "asc");
         grading::leaderboard("trade: evaluations", c.evaluations, "asc");
         grading::leaderboard("trade: digits kept", std::floor(kept * 10) / 10, "desc");
-        grading::leaderboard("trade: x the front", std::round(c.ratio * 100) / 100, "asc");
     }
     if (c.credit >= 1) return;
     if (c.credit > 0) grading::partialCredit(c.credit);

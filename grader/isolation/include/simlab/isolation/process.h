@@ -7,8 +7,8 @@
 //  - no student's code runs as root or with a capability: a probe's host holds none of it and loads it only as
 //    the test's own user, after every capability is gone (host/probe_host.cpp); a program built from a student's
 //    file is started as a user of its own (as root) or as the user who started simlab;
-//  - the paths simlab hides (hideFromSandboxes: its sources, build or installation, caches, the class and the
-//    grades) are not in the sandbox, whatever folder holds them; a path lent to the process is;
+//  - it reads the system, what it is lent and its own folder, and nothing of simlab's places (its sources, build or
+//    installation, the labs' folders, caches, the class and the grades), whatever folder holds them (reach.h);
 //  - code built from a student's file runs under the students' system-call filter, an allow-list (filter.h);
 //  - each process is in a session of its own with no terminal, its limits its own and its processes' together.
 //
@@ -26,6 +26,7 @@
 #include <thread>
 #include <vector>
 
+#include "simlab/isolation/reach.h"
 #include "simlab/rubric/rubric.h"
 
 namespace simlab::isolation {
@@ -85,17 +86,6 @@ struct ProcessResult {
 
 /// Run the request to completion. Never throws for anything the child does.
 ProcessResult runProcess(const ProcessRequest& request);
-
-/// Paths no sandboxed process may see from now on, added to those before: bubblewrap binds nothing of them (an
-/// empty folder or file stands in where a system folder holds them), Landlock grants nothing of them, and what a
-/// process is lent inside one is still lent. Relative paths are taken from the working directory. The engine adds
-/// simlab's own places when it reads its manifest and a class's folder and grades when it grades them.
-void hideFromSandboxes(const std::vector<std::string>& paths);
-/// What is hidden so far, each an absolute, normal path.
-std::vector<std::string> hiddenFromSandboxes();
-/// Whether every sandbox shows `path` without lending it: inside a system folder (/usr, /bin, /lib...) and not
-/// inside a hidden path.
-bool visibleInSandboxes(const std::string& path);
 
 /// simlab-probe-host, which the engine names when it reads its manifest: where bubblewrap, run as root, hands a
 /// program built from a student's file over to its user (setpriv), the host loads the students' filter after the

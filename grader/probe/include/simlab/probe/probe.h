@@ -34,6 +34,11 @@ void seal();
 /// {"id": N, "threw": {"type": ..., "message": ...}} when the handler threw.
 std::string answer(const std::string& request);
 
+/// Called with each exception of the student's code that answer() turns into the answer, and the name of its type;
+/// the probe's main sets it (to tell where it was thrown), a floor leaves it unset.
+using ThrowReporter = void (*)(const std::exception& caught, const std::string& type);
+void reportThrows(ThrowReporter reporter);
+
 /// "std::runtime_error" for typeid(std::runtime_error): the name an exception's type has in C++.
 std::string typeName(const std::type_info& type);
 

@@ -23,5 +23,17 @@ std::string pageEnd();
 
 /// The class of an outcome's badge: "pass", "fail" (a wrong answer) or "error" (did not run to a verdict).
 const char* outcomeClass(const std::string& outcome);
+/// An outcome's badge: its word after a symbol that says the same without colour (a check mark for passed, a
+/// cross for failed, a warning sign for the rest), coloured by outcomeClass.
+std::string outcomeBadge(const std::string& outcome);
+
+/// A picture in a page with its text alternative. A plot simlab drew (simlab/plot.h's drawPlot: an SVG whose
+/// <metadata id="simlab-plot-data"> holds its points) is shown with its title as the image's alt, its description
+/// (the SVG's <desc>) beside it, and a link to its points as tables, in a <details> after the figure; another SVG
+/// with a <desc> of its own gets that description; any other picture gets `alt`. `src` is the image's source (a data
+/// URI, or a path the page resolves), `svg` the picture's text when it is an SVG (else empty), `id` a name unique in
+/// the page, and `link` a file to link in the caption (empty: none).
+std::string figureHtml(const std::string& id, const std::string& src, const std::string& svg, const std::string& alt,
+                       const std::string& link = "");
 
 }  // namespace simlab::engine::writers

@@ -28,7 +28,8 @@ std::vector<std::vector<std::string>> readCsv(const std::string& text);
 
 /// The roster `text` holds. A row with an empty simlab id is kept (the student has no grade from simlab); the same
 /// simlab id on several rows is a group's folder. Throws UsageError, in one line naming `name` and the row, if a
-/// required column is missing, a row has more cells than the header, or a row names no student.
+/// required column is missing, a row has more cells than the header, a row names no student, or an ID, SIS User ID
+/// or SIS Login ID is another row's too.
 std::vector<RosterEntry> readRoster(const std::string& text, const std::string& name);
 
 }  // namespace simlab::engine
