@@ -5,8 +5,10 @@
 #include <array>
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
+#include <vector>
 
 #include "pendulum/program/exact.h"
+#include "pendulum/program/period.h"
 
 namespace {
 
@@ -104,4 +106,24 @@ TEST_CASE("a release to the other side swings as the mirror image, at 50-digit t
     }
     // The period does not depend on the side.
     CHECK(pendulum::exact::period_s(released(-150)) == pendulum::exact::period_s(released(150)));
+}
+
+TEST_CASE("the period the samples show is the exact one, at any amplitude down to 1e-300 degrees", "[pendulum][period]") {
+    // The exact swing sampled every 0.01 s for 10 s, from rest as a run starts: its turning points, placed by linear interpolation of theta',
+    // give the period 4 K(k) / w0 to the interpolation's third order (about 1e-7 s here). At 1e-300 degrees theta' is
+    // about 1e-302 rad/s, and the product of two samples' rates, 1e-604, is no double: the crossings are found by sign.
+    for (const double angle_deg : {150.0, 10.0, -10.0, 1e-6, 1e-300, -1e-300}) {
+        const pendulum::Scene scene = released(angle_deg);
+        std::vector<pendulum::Sample> samples;
+        for (int i = 0; i <= 1000; ++i) {
+            const double t_s = 0.01 * i;
+            const pendulum::exact::Angle a = pendulum::exact::at(scene, t_s);
+            samples.push_back({t_s, a.theta_rad, i == 0 ? 0.0 : a.thetaDot_radps, 0});  // released at rest
+        }
+        const pendulum::MeasuredPeriod measured = pendulum::measuredPeriod(samples);
+        const double exact_s = pendulum::exact::period_s(scene);
+        INFO("released at " << angle_deg << " deg: " << measured.turningPoints << " turning points");
+        CHECK(measured.turningPoints == static_cast<int>(std::floor(2 * 10 / exact_s)));
+        CHECK(std::abs(measured.period_s - exact_s) < 1e-6 * exact_s);
+    }
 }

@@ -390,6 +390,7 @@ int main(int argc, char** argv) {
     app.add_option("--omega", o.omega, "rad/s: w_B at t = 0 as wx,wy,wz, instead of --spin")
         ->delimiter(',')
         ->expected(3)
+        ->check(simlab::finite())
         ->excludes(spin);
     app.add_option("--dimensions", o.dimensions, "m: the book's height (x), width (y) and thickness (z) as Lx,Ly,Lz")
         ->delimiter(',')
