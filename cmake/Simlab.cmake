@@ -279,10 +279,19 @@ function(simlab_add_assignment id)
   add_library(${id}_program_main OBJECT ${A_MAIN})
   target_link_libraries(${id}_program_main PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
   simlab_use_pch(${id}_program_main)
-  # The course's side includes its lab's files as "<id>/program/exact.h": from the folder that holds the lab's.
+  # The course's side includes its lab's files as "<id>/program/exact.h": from the folder that holds the lab's, or,
+  # where the folder is named otherwise (a copy of examples/pendulum in my_lab/), from one of the build's where
+  # <id> leads to it.
   get_filename_component(labs_dir ${dir} DIRECTORY)
+  get_filename_component(folder_name ${dir} NAME)
+  if(NOT folder_name STREQUAL id)
+    set(labs_dir ${CMAKE_CURRENT_BINARY_DIR}/lab-include)
+    file(MAKE_DIRECTORY ${labs_dir})
+    file(CREATE_LINK ${dir} ${labs_dir}/${id} SYMBOLIC)
+  endif()
   target_include_directories(${id}_program_main PRIVATE ${labs_dir})
 
+  set_property(GLOBAL APPEND PROPERTY SIMLAB_LAB_PROGRAMS "${id} ${A_PROGRAM} ${A_SOURCE}")  # simlab_write_editor_labs
   # The lab program, built from the student file in this tree (the starter unless told otherwise) ...
   set(SIMLAB_${id}_SOURCE ${starter} CACHE FILEPATH "Student file the ${A_PROGRAM} program is built from")
   set(object ${CMAKE_CURRENT_BINARY_DIR}/${A_PROGRAM}_student.o)
@@ -422,6 +431,14 @@ function(simlab_study_target target)
   if(NOT SIMLAB_BUILD_STUDIES)
     set_target_properties(${target} PROPERTIES EXCLUDE_FROM_ALL TRUE)
   endif()
+endfunction()
+
+# simlab_write_editor_labs(): <build>/editor/labs, a line "<id> <program> <student file's name>" for each lab: what
+# the editor's tasks (scripts/editor-task) check, build and run for a file open in starter/<id>/.
+function(simlab_write_editor_labs)
+  get_property(labs GLOBAL PROPERTY SIMLAB_LAB_PROGRAMS)
+  list(JOIN labs "\n" text)
+  file(WRITE ${PROJECT_BINARY_DIR}/editor/labs "${text}\n")
 endfunction()
 
 # simlab_write_manifest(): the build manifest the simlab engine reads to compile and link student code.

@@ -608,6 +608,7 @@ std::vector<std::string> lentToTools(const Manifest& manifest, const Assignment&
     std::vector<std::string> lent = includeFolders(assignment.compile);
     lent.push_back(assignment.contractInclude);
     lent.insert(lent.end(), assignment.probeObjects.begin(), assignment.probeObjects.end());
+    lent.insert(lent.end(), assignment.programObjects.begin(), assignment.programObjects.end());
     lent.insert(lent.end(), manifest.probeLibraries.begin(), manifest.probeLibraries.end());
     for (const std::string& flag : manifest.probeLink) {
         const std::size_t file = flag.find("--version-script=");

@@ -193,6 +193,7 @@ Assignment buildLab(const Manifest& manifest, const std::string& dir) {
         if (secret.rfind(root + "/", 0) == 0) closeToOthers(secret);  // a build made before it was built private
     }
     std::vector<std::string> lent = a.probeObjects;
+    lent.insert(lent.end(), a.programObjects.begin(), a.programObjects.end());  // simlab build links the lab program
     lent.push_back(a.contractInclude);
     if (!a.precompiledHeader.empty()) lent.push_back(fs::path(a.precompiledHeader).parent_path().string());
     for (const std::string& path : lent) {

@@ -176,7 +176,23 @@ const Assignment& Manifest::find(const std::string& id) const {
         for (const auto& lab : labs) {
             if (!error && lab->dir == dir) return *lab;  // built once a run
         }
-        labs.push_back(std::make_unique<Assignment>(buildLab(*this, id)));
+        Assignment lab = buildLab(*this, id);
+        // Its id is the declaration's, whatever its folder is called; one the course's labs have would mix the two
+        // in every output named by it.
+        for (const Assignment& a : assignments) {
+            if (a.id == lab.id) {
+                throw UsageError("the lab in " + printable(lab.dir) + " declares the id '" + printable(lab.id) +
+                                 "', which is one of this course's labs: give it another in its CMakeLists.txt "
+                                 "(simlab_add_assignment)");
+            }
+        }
+        for (const auto& other : labs) {
+            if (other->id == lab.id) {
+                throw UsageError("the labs in " + printable(other->dir) + " and " + printable(lab.dir) +
+                                 " both declare the id '" + printable(lab.id) + "': give one another");
+            }
+        }
+        labs.push_back(std::make_unique<Assignment>(std::move(lab)));
         // The lab's folder whole (its history, corpus and solution too) and its build are simlab's places.
         isolation::addPlaces({labs.back()->dir, labBuildFolder(*this, id)});
         return *labs.back();

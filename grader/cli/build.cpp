@@ -32,6 +32,12 @@ void runBuild(const BuildOptions& o) {
     const Rubric rubric = loadRubric(assignment.rubric);
     const engine::SubmissionFiles files = readSubmission(source, rubric, rubric.limits);
     const std::string output = o.output.empty() ? assignment.program : o.output;
+    // Never onto a folder (from the folder above a lab, ./<program> may be the lab's own), and said before the build.
+    std::error_code error;
+    if (std::filesystem::is_directory(output, error)) {
+        throw UsageError("'" + printable(output) + "' is a folder, not where a program can be written: give -o PATH " +
+                         "(say -o " + printable(assignment.program) + "-program)");
+    }
     const std::filesystem::path parent = std::filesystem::absolute(output).parent_path();
     if (!std::filesystem::is_directory(parent)) {
         throw UsageError("cannot write '" + output + "': no directory " + parent.string());

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "simlab/common/text.h"
 #include "simlab/grading/grade.h"
 #include "simlab/rubric/rubric.h"
 
@@ -39,8 +40,7 @@ int cores();
 /// This simlab's full path (from /proc/self/exe; "simlab" if it cannot be read).
 std::string selfPath();
 
-/// `word` as a POSIX shell reads it back as one word: as it is where that is safe, else in single quotes.
-std::string shellWord(const std::string& word);
+using engine::shellWord;  // `word` as a POSIX shell reads it back as one word (simlab/common/text.h)
 
 /// Replaces this process with the program at `path`, run with `args` (its name first), after flushing standard
 /// output; throws std::runtime_error, in one line, if it cannot be run.

@@ -77,18 +77,22 @@ std::string sbatchLines(const std::vector<std::string>& extra) {
     return lines;
 }
 
+// A job's script, from the template simlab holds (grader/cli/scripts/slurm-job.sh, made text at build time).
+const char* const kJobScript =
+#include "slurm-job.sh.inc"
+    ;
+
 std::string script(const std::string& header, const std::string& name, const std::string& logs,
                    const std::string& logName, const std::string& array, int cpus, const std::string& chdir,
                    const std::vector<std::string>& extra, const std::vector<std::string>& command) {
-    std::ostringstream s;
-    s << "#!/bin/bash\n" << header << "#SBATCH --job-name=" << name << "\n";
-    if (!array.empty()) s << "#SBATCH --array=" << array << "\n";
-    s << "#SBATCH --cpus-per-task=" << cpus << "\n"
-      << "#SBATCH --output=" << shellWord(logs + "/" + logName) << "\n"
-      << "#SBATCH --chdir=" << shellWord(chdir) << "\n"
-      << sbatchLines(extra) << "set -euo pipefail\n"
-      << "exec " << commandLine(command) << "\n";
-    return s.str();
+    return engine::filledTemplate(kJobScript, {{"HEADER", header},
+                                               {"NAME", name},
+                                               {"ARRAY", array.empty() ? "" : "#SBATCH --array=" + array},
+                                               {"CPUS", std::to_string(cpus)},
+                                               {"OUTPUT", shellWord(logs + "/" + logName)},
+                                               {"CHDIR", shellWord(chdir)},
+                                               {"EXTRA", sbatchLines(extra)},
+                                               {"COMMAND", commandLine(command)}});
 }
 
 // `name` on the PATH, as an absolute path; empty if it is not there.

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <stdexcept>
 #include <string_view>
 
 namespace simlab::engine {
@@ -137,9 +138,12 @@ std::string markdownText(const std::string& text) {
         // written, for the student who reads the file as text.
         const bool reference =
             i + 1 < shown.size() && (std::isalnum(static_cast<unsigned char>(shown[i + 1])) || shown[i + 1] == '#');
+        // '<' starts a tag, a comment or an autolink only before a letter, '/', '!' or '?': "i < n" and a student's
+        // "p->x" stay as written; '>' means nothing inline (a quote's marker only at a line's start, below).
+        const bool markup = i + 1 < shown.size() && (std::isalpha(static_cast<unsigned char>(shown[i + 1])) ||
+                                                     std::string_view("/!?").find(shown[i + 1]) != std::string_view::npos);
         switch (c) {
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
+            case '<': out += markup ? "&lt;" : "<"; break;
             case '&':
                 out += reference ? "&amp;" : "&";
                 break;
@@ -154,7 +158,7 @@ std::string markdownText(const std::string& text) {
     // or, after four spaces, an indented code block).
     const std::size_t digits = out.find_first_not_of("0123456789");
     if (!out.empty() && out[0] == ' ') out.replace(0, 1, "&#32;");
-    else if (!out.empty() && std::string_view("#+-=~").find(out[0]) != std::string::npos) out.insert(0, 1, '\\');
+    else if (!out.empty() && std::string_view("#+-=~>").find(out[0]) != std::string::npos) out.insert(0, 1, '\\');
     else if (digits != 0 && digits != std::string::npos && (out[digits] == '.' || out[digits] == ')')) {
         out.insert(digits, 1, '\\');
     }
@@ -182,6 +186,46 @@ std::string xmlText(const std::string& text) {
         at += u.length;
     }
     return out;
+}
+
+std::string shellWord(const std::string& word) {
+    if (!word.empty() &&
+        word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789/._+-=:,@%") ==
+            std::string::npos) {
+        return word;
+    }
+    std::string quoted = "'";
+    for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+std::string filledTemplate(std::string text, const std::map<std::string, std::string>& values) {
+    for (const auto& [name, value] : values) {
+        const std::string word = "@" + name + "@";
+        std::size_t at = text.find(word);
+        if (at == std::string::npos) throw std::logic_error("the template holds no " + word);
+        for (; at != std::string::npos; at = text.find(word, at)) {
+            const bool alone = (at == 0 || text[at - 1] == '\n') &&
+                               (at + word.size() == text.size() || text[at + word.size()] == '\n');
+            if (alone && value.empty()) {
+                text.erase(at, word.size() + (at + word.size() < text.size() ? 1 : 0));
+                continue;
+            }
+            std::string put = value;
+            if (alone && !put.empty() && put.back() == '\n') put.pop_back();
+            text.replace(at, word.size(), put);
+            at += put.size();
+        }
+    }
+    for (std::size_t at = text.find('@'); at != std::string::npos; at = text.find('@', at + 1)) {
+        const std::size_t end = text.find('@', at + 1);
+        if (end == std::string::npos) break;
+        const std::string name = text.substr(at + 1, end - at - 1);
+        if (!name.empty() && name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZ_") == std::string::npos) {
+            throw std::logic_error("the template's @" + name + "@ was given no value");
+        }
+    }
+    return text;
 }
 
 }  // namespace simlab::engine

@@ -59,6 +59,17 @@ PackageSummary copyFiles(const Manifest& manifest, const std::vector<Rule>& rule
     return summary;
 }
 
+// The scripts a platform runs, as the tree holds them (grader/course/scripts/, made text at build time).
+const char* const kGradescopeSetup =
+#include "gradescope-setup.sh.inc"
+    ;
+const char* const kGradescopeRun =
+#include "gradescope-run_autograder.sh.inc"
+    ;
+const char* const kPrairieLearnRun =
+#include "prairielearn-run_autograder.sh.inc"
+    ;
+
 std::vector<Rule> instructorOnly(const Manifest& manifest) {
     // A worked example's solution (simlab_add_assignment's WORKED_EXAMPLE) is given to students; every other
     // solution is no student's (secretPaths, `simlab list --secrets`).
@@ -419,52 +430,18 @@ PackageSummary writeGradescopeZip(const Manifest& manifest, const Assignment& as
                          }});
     }
     PackageSummary summary = copyFiles(manifest, rules, staging.path());
-    std::string named = assignment.id, setup;
+    // The two scripts Gradescope runs, from the templates simlab holds (grader/course/scripts/).
+    std::string targets = "simlab " + assignment.id + "_grader", lab;
     if (own) {
         addLab(assignment, staging.path(), true, summary);
-        named = "\"$root/source/" + labPlace(assignment) + "\"";
-        setup = "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" SIMLAB_TARGETS=\"simlab_kit\" \\\n"
-                "  \"$source_dir/scripts/setup\" --lean\n"
-                "\"$source_dir/build/bin/simlab\" assignment build \"$source_dir/" + labPlace(assignment) + "\"\n";
-        for (const std::string& hidden : assignment.hiddenTests) {
-            setup += "chmod -R go-rwx \"$source_dir/" + labPlace(assignment) + "/" +
-                     fs::path(hidden).lexically_relative(assignment.dir).generic_string() + "\"\n";
-        }
-    } else {
-        setup = "SIMLAB_CMAKE_ARGS=\"-DBUILD_TESTING=OFF ${SIMLAB_CMAKE_ARGS:-}\" SIMLAB_TARGETS=\"simlab " + assignment.id +
-                "_grader\" \\\n  \"$source_dir/scripts/setup\" --lean\n";
+        targets = "simlab_kit";
+        lab = labPlace(assignment);
     }
-    setup += "# The hidden tests, solutions and judges readable by root alone, should neither bubblewrap nor Landlock run.\n"
-             "\"$source_dir/scripts/lock-course\"\n";
-
     writeFileAtomically(staging.path() + "/setup.sh",
-        "#!/usr/bin/env bash\n"
-        "# Gradescope runs this once, as root, to build the autograder image. Choose an Ubuntu 24.04 (or newer)\n"
-        "# base image: simlab needs CMake 3.25 and libtomlplusplus-dev.\n"
-        "set -euo pipefail\n"
-        "# The base image first, in one line, rather than a build that fails far down.\n"
-        "os_release=${SIMLAB_OS_RELEASE:-/etc/os-release}\n"
-        "ID=unknown VERSION_ID=0 PRETTY_NAME=unknown\n"
-        "[ -r \"$os_release\" ] && . \"$os_release\"\n"
-        "case \"$ID\" in\n"
-        "  ubuntu) minimum=24.04 ;;\n"
-        "  debian) minimum=12 ;;\n"
-        "  *) minimum=\"\" ;;\n"
-        "esac\n"
-        "if [ -z \"$minimum\" ] || ! dpkg --compare-versions \"$VERSION_ID\" ge \"$minimum\"; then\n"
-        "  echo \"simlab: the autograder's base image is $PRETTY_NAME: choose Ubuntu 24.04 (or newer) in the\" \\\n"
-        "       \"autograder's settings (simlab needs CMake 3.25 and libtomlplusplus-dev)\" >&2\n"
-        "  exit 1\n"
-        "fi\n"
-        "source_dir=$(cd \"$(dirname \"${BASH_SOURCE[0]}\")\" && pwd)\n" + setup);
+                        filledTemplate(kGradescopeSetup, {{"TARGETS", shellWord(targets)}, {"LAB", shellWord(lab)}}));
     writeFileAtomically(staging.path() + "/run_autograder",
-        "#!/usr/bin/env bash\n"
-        "# Gradescope runs this for every submission: it grades /autograder/submission on every test of the\n"
-        "# " + assignment.id + " assignment and writes /autograder/results/results.json.\n"
-        "# AUTOGRADER_ROOT replaces /autograder (for testing).\n"
-        "root=${AUTOGRADER_ROOT:-/autograder}\n"
-        "exec \"$root/source/build/bin/simlab\" autograde " + named +
-            " --submission \"$root/submission\" --results \"$root/results/results.json\"\n");
+                        filledTemplate(kGradescopeRun, {{"ASSIGNMENT_NAME", assignment.id},
+                                                        {"ASSIGNMENT", shellWord(own ? lab : assignment.id)}}));
     addCatch2(manifest, staging.path(), summary);
     makeExecutable(staging.path() + "/setup.sh");
     makeExecutable(staging.path() + "/run_autograder");
@@ -531,30 +508,9 @@ PackageSummary writePrairieLearnQuestion(const Manifest& manifest, const Assignm
     }
 
     // The entry point: PrairieLearn copies the question's tests/ to /grade/tests and runs it there.
-    const std::string results = "$root/results/results.json";
-    const auto notGradable = [&](const std::string& why) {
-        return "  echo '{\"gradable\": false, \"score\": 0, \"message\": \"The autograder could not grade this "
-               "submission: " + why + ".\", \"format_errors\": [\"" + why + "\"]}' >\"" + results + "\"\n"
-               "  exit 1\n";
-    };
     writeFileAtomically(outDir + "/tests/run_autograder",
-        "#!/usr/bin/env bash\n"
-        "# PrairieLearn runs this in the grading container for every submission: it grades /grade/student on every\n"
-        "# test of the " + assignment.id + " assignment, the hidden ones with the judge in this folder, and writes\n"
-        "# /grade/results/results.json.\n"
-        "#   GRADE_ROOT  replaces /grade (for testing)\n"
-        "#   SIMLAB      the simlab command (default: the grading image's)\n"
-        "root=${GRADE_ROOT:-/grade}\n"
-        "simlab=${SIMLAB:-/simlab/build/bin/simlab}\n"
-        "mkdir -p \"$root/results\"\n"
-        "if [[ ! -x $simlab ]]; then\n" + notGradable("simlab is not in the grading image") + "fi\n"
-        "if [[ ! -f $root/tests/judge ]]; then\n" +
-            notGradable("the question has no judge of its hidden tests (tests/judge): make it once with "
-                        "scripts/prairielearn-judge, as image/Dockerfile says") + "fi\n"
-        "# The hidden tests' judge is root's alone, should the container allow neither bubblewrap nor Landlock.\n"
-        "chmod -R go-rwx \"$root/tests\" 2>/dev/null\n"
-        "exec \"$simlab\" autograde " + assignment.id + " --format prairielearn --judge \"$root/tests/judge\" "
-        "--submission \"$root/student\" --results \"" + results + "\"\n");
+                        filledTemplate(kPrairieLearnRun,
+                                       {{"ASSIGNMENT_NAME", assignment.id}, {"ASSIGNMENT", shellWord(assignment.id)}}));
     makeExecutable(outDir + "/tests/run_autograder");
 
     const nlohmann::json info = {

@@ -7,12 +7,14 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "simlab/common/files.h"
 #include "simlab/study/study.h"
 
 namespace simlab::study {
@@ -50,6 +52,20 @@ int runStudyProgram(const std::vector<std::string>& argv, bool sandboxed,
 /// `cmake --build BUILD --target simlab_studies -j CORES`, with the build's lines on standard error.
 void ensureStudiesBuilt(const engine::Manifest& m, const std::vector<const engine::Assignment*>& labs, bool ofAFile,
                         int cores);
+
+/// A student's file built into a study program of its own, as `simlab build` builds its lab program, with grading's
+/// object check, to run in grading's sandbox: the program's folder and its path (both empty for a study of the
+/// reference solution).
+struct StudyProgram {
+    std::unique_ptr<engine::TempDir> folder;
+    std::string path;
+};
+
+/// `file`, a student's file of lab `a`, built into a study program (StudyProgram). Throws engine::UsageError, in one
+/// line, for a file that is not a C++ source, does not compile or link, or is refused by the object check (its
+/// compiler's first lines on standard error), or where the sandbox could reach what it must not.
+StudyProgram buildStudyOfFile(const engine::Manifest& manifest, const engine::Assignment& a, const std::string& file,
+                              const CommandLine& command);
 
 /// How far a study has come, on standard error at least every two seconds while it runs - "point n of N measured,
 /// about S s left", the time left read from the pace so far - and once more when it ends.
@@ -89,8 +105,13 @@ std::string number(const json& value, const char* format = "%.6g");
 /// A text; "" for what is not one.
 std::string text(const json& value);
 
-/// trade.csv, the tables and (unless o.plots is off) the plots of `runs`, into `dir`.
-void writeTrade(const StudyOptions& o, const fs::path& dir, const std::vector<SubjectRun>& runs);
+/// The digits a study's table gives the cheapest setting for, unless it is told others.
+inline const std::vector<double> kTableDigits = {4, 6, 8, 10, 12};
+
+/// trade.csv, the tables and (unless o.plots is off) the plots of `runs`, into `dir`: a table gives the cheapest
+/// setting for each of `targets` digits (a question's study: those it asks, and each digit past them its grader reads).
+void writeTrade(const StudyOptions& o, const fs::path& dir, const std::vector<SubjectRun>& runs,
+                const std::vector<double>& targets = kTableDigits);
 /// `study minimal`'s files and table from its rows, into `dir`.
 void writeMinimal(const fs::path& dir, const std::vector<json>& rows);
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -57,8 +58,10 @@ void writeCsv(const fs::path& path, const std::vector<SubjectRun>& runs) {
 }
 
 /// Draws the subject's points from trade.csv: worst digits against evaluations and against time, one curve per
-/// integrator (dashed: its fixed-step sweep), as PNG and SVG. Returns the files made, or says why none were.
-std::vector<std::string> plot(const fs::path& dir, const std::string& name) {
+/// integrator and sweep that measured a point (dashed: a fixed-step sweep), each named in the key, as PNG and SVG.
+/// Returns the files made, or says why none were.
+std::vector<std::string> plot(const fs::path& dir, const SubjectRun& run) {
+    const std::string name = text(run.subject["subject"]);
     const std::string gnuplot = "/usr/bin/gnuplot";  // Debian's gnuplot-nox (scripts/install-deps)
     if (!fs::exists(gnuplot)) return {};
     // A subject's name is a plain word (wellFormedLine); quoted as gnuplot quotes (a ' doubled) all the same, and
@@ -68,14 +71,26 @@ std::vector<std::string> plot(const fs::path& dir, const std::string& name) {
         if (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-') subject += c;
     }
     if (subject.empty() || subject[0] == '.') return {};
-    std::string names;
-    for (const char* n : kIntegrators) names += std::string(names.empty() ? "" : " ") + n;
+    // The curves: each integrator's accuracy sweep, then each one's fixed steps, where the sweep has a point ok.
+    struct Curve {
+        int integrator;  // 1-based, its colour
+        const char* mode;
+    };
+    std::vector<Curve> curves;
+    for (const char* mode : {"accuracy", "fixed step"}) {
+        for (int i = 0; i < static_cast<int>(std::size(kIntegrators)); ++i) {
+            const bool measured = std::any_of(run.points.begin(), run.points.end(), [&](const json& p) {
+                return text(p["integrator"]) == kIntegrators[i] && text(p["mode"]) == mode && text(p["status"]) == "ok";
+            });
+            if (measured) curves.push_back({i + 1, mode});
+        }
+    }
+    if (curves.empty()) return {};
     std::ostringstream gp;
     gp << "# Work-precision plots of " << subject << ", drawn from trade.csv by simlab study trade.\n"
        << "set datafile separator ','\nset logscale x\nset grid\nset key outside right\n"
        << "set ylabel 'worst digits over the run'\nset yrange [0:16]\n"
        << "set linetype 9 lc rgb '#8b4513' pt 9\n"  // nine integrators: a ninth colour, not the first again
-       << "names = '" << names << "'\n"
        << "ok(mode, name) = strcol(2) eq '" << subject << "' && strcol(3) eq name && strcol(4) eq mode && "
        << "strcol(7) eq 'ok'\n";
     std::vector<std::string> made;
@@ -87,12 +102,16 @@ std::vector<std::string> plot(const fs::path& dir, const std::string& name) {
         for (const char* format : {"pngcairo size 960,600", "svg size 960,600"}) {
             const std::string file =
                 subject + "-" + axis + (std::string(format).rfind("svg", 0) == 0 ? ".svg" : ".png");
-            gp << "set terminal " << format << "\nset output '" << file << "'\n"
-               << "plot for [i=1:words(names)] 'trade.csv' every ::1 using (ok('accuracy', word(names, i)) ? $"
-               << column << " : NaN):10 with linespoints lt i lw 2 title word(names, i), \\\n"
-               << "     for [i=1:words(names)] 'trade.csv' every ::1 using (ok('fixed step', word(names, i)) ? $"
-               << column << " : NaN):10 with linespoints lt i dt 2 notitle\n"
-               << "set output\n";
+            gp << "set terminal " << format << "\nset output '" << file << "'\nplot ";
+            for (std::size_t c = 0; c < curves.size(); ++c) {
+                const std::string integrator = kIntegrators[curves[c].integrator - 1];
+                const bool fixed = std::string(curves[c].mode) == "fixed step";
+                gp << (c ? ", \\\n     " : "") << "'trade.csv' every ::1 using (ok('" << curves[c].mode << "', '"
+                   << integrator << "') ? $" << column << " : NaN):10 with linespoints lt " << curves[c].integrator
+                   << " lw 2" << (fixed ? " dt 2" : "") << " title '" << integrator << (fixed ? ", fixed steps" : "")
+                   << "'";
+            }
+            gp << "\nset output\n";
             made.push_back(file);
         }
     }
@@ -138,10 +157,11 @@ std::string notMonotone(const std::vector<const json*>& ok, const json& chosen, 
 }
 
 /// A lab's study table for one figure (`key`: worst_digits, the fewest kept at the measured steps; or
-/// final_digits, the figure the lab reports at the end): the cheapest setting for 4 to 12 digits, a mark where the
+/// final_digits, the figure the lab reports at the end): the cheapest setting for each of `targets`, a mark where the
 /// method's digits are not monotone about the target (with the cheapest setting whose method's are), then the Pareto
 /// front of evaluations against digits with the stretches of digits no measured setting keeps.
-void printFigureTable(std::ostream& out, std::vector<const json*> ok, double referenceDigits, const char* key) {
+void printFigureTable(std::ostream& out, std::vector<const json*> ok, double referenceDigits, const char* key,
+                      const std::vector<double>& targets) {
     ok.erase(std::remove_if(ok.begin(), ok.end(), [key](const json* p) { return !(*p)[key].is_number(); }), ok.end());
     char line[320];
     std::snprintf(line, sizeof line, "  %-7s %-40s %12s %8s %12s\n", "digits", "cheapest setting", "evaluations",
@@ -154,20 +174,20 @@ void printFigureTable(std::ostream& out, std::vector<const json*> ok, double ref
                       number(p["seconds"], "%.3g").c_str(), mark);
         out << line;
     };
-    for (const int target : {4, 6, 8, 10, 12}) {
+    for (const double target : targets) {
+        const std::string label = number(json(target), "%g");
         if (target > referenceDigits) {
-            std::snprintf(line, sizeof line, "  %-7d beyond the reference's own accuracy: not judged\n", target);
+            std::snprintf(line, sizeof line, "  %-7s beyond the reference's own accuracy: not judged\n", label.c_str());
             out << line;
             continue;
         }
         const auto reaches = [target, key](const json* p) { return (*p)[key].get<double>() >= target; };
         const auto found = std::find_if(ok.begin(), ok.end(), reaches);
         if (found == ok.end()) {
-            std::snprintf(line, sizeof line, "  %-7d no setting reached it within the cap\n", target);
+            std::snprintf(line, sizeof line, "  %-7s no setting reached it within the cap\n", label.c_str());
             out << line;
             continue;
         }
-        const std::string label = std::to_string(target);
         const std::string dip = notMonotone(ok, **found, key, target);
         row(label.c_str(), **found, dip.empty() ? "" : "  *");
         if (dip.empty()) continue;
@@ -205,7 +225,7 @@ void printFigureTable(std::ostream& out, std::vector<const json*> ok, double ref
 }
 
 /// A lab's study table: the subject and how its figures were measured, then a table and front for each figure.
-void printTable(std::ostream& out, const SubjectRun& run) {
+void printTable(std::ostream& out, const SubjectRun& run, const std::vector<double>& targets) {
     const json& s = run.subject;
     const double referenceDigits = s["reference_digits"].is_number() ? s["reference_digits"].get<double>() : 0;
     const double starts = s["starts"].is_number() ? s["starts"].get<double>() : 1;
@@ -234,10 +254,10 @@ void printTable(std::ostream& out, const SubjectRun& run) {
     std::stable_sort(ok.begin(), ok.end(), [](const json* a, const json* b) {
         return (*a)["evaluations"].get<double>() < (*b)["evaluations"].get<double>();
     });
-    printFigureTable(out, ok, referenceDigits, "worst_digits");
+    printFigureTable(out, ok, referenceDigits, "worst_digits", targets);
     if (!text(s["final_figure"]).empty()) {
         out << "  At the end of the run, " << engine::printable(text(s["final_figure"])) << ":\n";
-        printFigureTable(out, ok, referenceDigits, "final_digits");
+        printFigureTable(out, ok, referenceDigits, "final_digits", targets);
     }
     out << "  " << run.points.size() << " points: " << ok.size() << " ok, " << costly << " too costly (past "
         << number(s["max_evaluations"], "%.0f") << " evaluations), " << failed.size() << " failed or blew up"
@@ -417,12 +437,13 @@ void writeMinimalPointsCsv(const fs::path& path, const std::vector<json>& rows) 
 }  // namespace
 
 /// trade.csv, the tables and (unless --no-plots) the plots of `runs`, into `dir`.
-void writeTrade(const StudyOptions& o, const fs::path& dir, const std::vector<SubjectRun>& runs) {
+void writeTrade(const StudyOptions& o, const fs::path& dir, const std::vector<SubjectRun>& runs,
+                const std::vector<double>& targets) {
     writeCsv(dir / "trade.csv", runs);
     for (const SubjectRun& run : runs) {
-        printTable(std::cout, run);
+        printTable(std::cout, run, targets);
         if (o.plots) {
-            const std::vector<std::string> files = plot(dir, text(run.subject["subject"]));
+            const std::vector<std::string> files = plot(dir, run);
             if (files.empty()) std::cout << "  (no plots: gnuplot failed or is not installed)\n";
         }
     }

@@ -10,9 +10,11 @@
 #include "internal.h"
 #include "simlab/common/errors.h"
 #include "simlab/common/files.h"
+#include "simlab/build/build.h"
 #include "simlab/build/manifest.h"
 #include "simlab/common/text.h"
 #include "simlab/isolation/process.h"
+#include "simlab/rubric/rubric.h"
 
 namespace simlab::study {
 
@@ -231,6 +233,29 @@ void ensureStudiesBuilt(const engine::Manifest& m, const std::vector<const engin
         throw std::runtime_error("building the studies failed (" + m.cmake + " --build " + m.buildDir + " --target " +
                                  m.studiesTarget + " says why)");
     }
+}
+
+StudyProgram buildStudyOfFile(const engine::Manifest& manifest, const engine::Assignment& a, const std::string& file,
+                              const CommandLine& command) {
+    engine::requireCppSource(file);
+    const Rubric rubric = loadRubric(a.rubric);
+    const engine::SubmissionFiles files = command.readSubmission(file, rubric, rubric.limits);
+    if (const std::string closed = engine::sandboxCannotReach(manifest, a); !closed.empty()) {
+        throw engine::UsageError(closed);
+    }
+    StudyProgram built;
+    built.folder = std::make_unique<engine::TempDir>("simlab-study-");
+    built.path = built.folder->path() + "/" + a.program + "-study";
+    const engine::BuildResult result = engine::Builder(manifest).buildStudy(a, files.name, files.text, built.path);
+    if (!result.ok) {
+        std::cerr << engine::printable(isolation::firstLines(result.log, 30), true);
+        throw engine::UsageError(engine::printable(file) + (result.stage == "link"    ? " did not link"
+                                                            : result.stage == "check" ? " is refused (forbidden code)"
+                                                                                      : " did not compile"));
+    }
+    // Grading's sandbox, where the program can read nothing but the system and its own folder.
+    fs::permissions(built.folder->path(), fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
+    return built;
 }
 
 }  // namespace simlab::study

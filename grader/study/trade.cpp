@@ -2,6 +2,7 @@
 // scene and its sweeps, the fronts of the question's data files, and each lab's study program at once.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -249,8 +250,8 @@ std::vector<const engine::Assignment*> studiedLabs(const engine::Manifest& manif
         const engine::Assignment& a = manifest.find(o.lab);
         if (a.studyProgramPath.empty() && (o.file.empty() || a.studyObjects.empty())) {
             throw engine::UsageError("no study of " + o.lab +
-                                     "'s reference solution, which is not in this tree: study "
-                                     "your own file with --file");
+                                     "'s reference solution, which is not in this tree: study your own file with "
+                                     "--file (e.g. --file " + engine::printable(a.starter) + ")");
         }
         labs.push_back(&a);
     }
@@ -300,42 +301,18 @@ void describeQuestion(const StudyOptions& o, const engine::Assignment& a) {
     }
 }
 
-/// A student's file built into a study program of its own, as `simlab build` builds its lab program, with grading's
-/// object check, to run in grading's sandbox: the program's folder (empty for a study of the reference solution)
-/// and its path.
-struct StudyProgram {
-    std::unique_ptr<engine::TempDir> folder;
-    std::string path;
-};
-
-StudyProgram buildStudyOfFile(const StudyOptions& o, const engine::Manifest& manifest,
-                              const std::vector<const engine::Assignment*>& labs, const CommandLine& command) {
-    StudyProgram built;
-    if (o.file.empty()) return built;
+/// A student's file built into a study program of its own (buildStudyOfFile), for `study trade` and `study
+/// minimal`: one lab's file, of a lab whose study is of the student's model (not biosim's, the baby boot's); empty
+/// for a study of the reference solution.
+StudyProgram studyProgramOf(const StudyOptions& o, const engine::Manifest& manifest,
+                            const std::vector<const engine::Assignment*>& labs, const CommandLine& command) {
+    if (o.file.empty()) return {};
     if (o.lab == "all" || labs.front()->id == "biosim") {
         throw engine::UsageError(
             "--file studies one lab's file: apple, projectile or book (biosim's study is the "
             "baby boot's)");
     }
-    const engine::Assignment& a = *labs.front();
-    engine::requireCppSource(o.file);
-    const Rubric rubric = loadRubric(a.rubric);
-    const engine::SubmissionFiles files = command.readSubmission(o.file, rubric, rubric.limits);
-    if (const std::string closed = engine::sandboxCannotReach(manifest, a); !closed.empty()) {
-        throw engine::UsageError(closed);
-    }
-    built.folder = std::make_unique<engine::TempDir>("simlab-study-");
-    built.path = built.folder->path() + "/" + a.program + "-study";
-    const engine::BuildResult result = engine::Builder(manifest).buildStudy(a, files.name, files.text, built.path);
-    if (!result.ok) {
-        std::cerr << engine::printable(isolation::firstLines(result.log, 30), true);
-        throw engine::UsageError(engine::printable(o.file) + (result.stage == "link"    ? " did not link"
-                                                              : result.stage == "check" ? " is refused (forbidden code)"
-                                                                                        : " did not compile"));
-    }
-    // Grading's sandbox, where the program can read nothing but the system and its own folder.
-    fs::permissions(built.folder->path(), fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
-    return built;
+    return buildStudyOfFile(manifest, *labs.front(), o.file, command);
 }
 
 /// The question's study, into `dir`: its sweeps on every core, each point under the grader's cap on an answer and
@@ -363,7 +340,10 @@ void studyQuestion(const StudyOptions& o, const engine::Assignment& a, const std
     }
     if (o.repeats > 0) argv.insert(argv.end(), {"--repeats", std::to_string(o.repeats)});
     std::cout << std::flush;  // the question's lines before the progress lines on a shared terminal or log
-    writeTrade(o, dir, {runSweeps(argv, !studentProgram.empty(), a.id, cores)});
+    // The table's rows: the digits asked, and each whole digit past them that the grader reads the front at.
+    std::vector<double> targets;
+    for (int past = 0; past <= static_cast<int>(std::floor(beyond + 1e-9)); ++past) targets.push_back(q.digits + past);
+    writeTrade(o, dir, {runSweeps(argv, !studentProgram.empty(), a.id, cores)}, targets);
 }
 
 /// Each lab's study program on a core of its own (--jobs at once), each measuring its points one at a time; the
@@ -441,7 +421,7 @@ void runTrade(const StudyOptions& o, const CommandLine& command) {
         writeFronts(o, withQuestions);
         return;
     }
-    const StudyProgram student = buildStudyOfFile(o, manifest, labs, command);
+    const StudyProgram student = studyProgramOf(o, manifest, labs, command);
     const fs::path dir = fs::absolute(o.output);
     fs::create_directories(dir);
     if (o.question) {

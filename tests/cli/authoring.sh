@@ -48,10 +48,10 @@ check "it carries the lab with its hidden tests, without its solution or corpus"
   bash -c "grep -qx labs/pendulum/grading/hidden.cpp listed.txt && grep -qx labs/pendulum/starter/Pendulum.cpp listed.txt &&
     ! grep -q '^labs/pendulum/solution/' listed.txt && ! grep -q '^labs/pendulum/corpus/' listed.txt"
 unzip -q -o autograder.zip setup.sh run_autograder
-check "its setup builds what a lab builds against, then the lab, and closes the hidden tests" \
-  bash -c "grep -q 'SIMLAB_TARGETS=\"simlab_kit\"' setup.sh && grep -q 'assignment build \"\$source_dir/labs/pendulum\"' setup.sh &&
-    grep -q 'chmod -R go-rwx \"\$source_dir/labs/pendulum/grading/hidden.cpp\"' setup.sh"
-check "and run_autograder grades with the lab's folder" grep -q 'autograde "$root/source/labs/pendulum"' run_autograder
+check "its setup builds what a lab builds against, then the lab, and closes simlab's places with the lab" \
+  bash -c "grep -qx 'targets=simlab_kit .*' setup.sh && grep -qx 'lab=labs/pendulum .*' setup.sh &&
+    grep -q 'assignment build \"\$source_dir/\$lab\"' setup.sh && grep -q 'lock-course\" \${lab:+' setup.sh"
+check "and run_autograder grades with the lab's folder" grep -qx 'assignment=labs/pendulum .*' run_autograder
 # Gradescope's side: setup.sh builds simlab and the lab from the archive (the objects it shares with the build
 # under test from that build's ccache: tests/smoke/lib.sh), and run_autograder grades the reference in full.
 root=$work/autograder
@@ -62,7 +62,7 @@ SIMLAB_SKIP_APT=1 SIMLAB_JOBS=2 SIMLAB_CMAKE_ARGS="$shared_objects" "$root/sourc
 check "setup.sh builds simlab and the lab" bash -c "test $? -eq 0 && test -x '$root/source/build/bin/simlab'" ||
   tail -20 setup.log
 check "and closes the lab's hidden tests to others" \
-  test "$(stat -c %a "$root/source/labs/pendulum/grading/hidden.cpp")" = 600
+  test $((8#$(stat -c %a "$root/source/labs/pendulum/grading/hidden.cpp") & 7)) -eq 0
 cp labs/pendulum/solution/Pendulum.cpp "$root/submission/"
 AUTOGRADER_ROOT=$root "$root/source/run_autograder" >autograde.out 2>autograde.err
 check "run_autograder grades the reference: 100/100 on 10 tests" \

@@ -20,15 +20,15 @@ for command in "" check grade build list "package student" "package gradescope" 
 done
 
 # The object cache keeps under its cap ($SIMLAB_CACHE_MIB): the least recently used entries go first, down to 80 %.
-mkdir cache
+mkdir -p cache/objects  # $SIMLAB_CACHE holds every cache; the objects' is objects/
 for age in 3 2 1; do  # three old entries of 600 KiB each, used 3, 2 and 1 days ago: 1.8 MiB against a 1 MiB cap
-  head -c 614400 /dev/zero >"cache/old$age.o" && echo "int x;" >"cache/old$age.cpp"
-  touch -d "$age days ago" "cache/old$age.o" "cache/old$age.cpp"
+  head -c 614400 /dev/zero >"cache/objects/old$age.o" && echo "int x;" >"cache/objects/old$age.cpp"
+  touch -d "$age days ago" "cache/objects/old$age.o" "cache/objects/old$age.cpp"
 done
 run_capture trimmed env SIMLAB_CACHE="$PWD/cache" SIMLAB_CACHE_MIB=1 "$SIMLAB" check apple "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp"
 check "a cache over its cap loses its least recently used entries, whole, down to 80 % of the cap" \
-  bash -c "test $(status_of trimmed) -eq 0 && ! test -e cache/old3.o -o -e cache/old3.cpp -o -e cache/old2.o && test -e cache/old1.o -a -e cache/old1.cpp"
-check "  and keeps the entry it has just made" bash -c "ls cache/*.o | grep -qv old"
+  bash -c "test $(status_of trimmed) -eq 0 && ! test -e cache/objects/old3.o -o -e cache/objects/old3.cpp -o -e cache/objects/old2.o && test -e cache/objects/old1.o -a -e cache/objects/old1.cpp"
+check "  and keeps the entry it has just made" bash -c "ls cache/objects/*.o | grep -qv old"
 run_capture badcap env SIMLAB_CACHE="$PWD/cache" SIMLAB_CACHE_MIB=lots "$SIMLAB" check apple
 check "a cap that is not a size is a one-line usage error" \
   bash -c "test $(status_of badcap) -eq 2 && grep -q 'SIMLAB_CACHE_MIB is .lots.: a size in MiB' badcap.err"

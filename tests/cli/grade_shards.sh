@@ -19,7 +19,7 @@ for i in 1 2 3; do
 done
 shares=$(( $(student_lines shard1.out) + $(student_lines shard2.out) + $(student_lines shard3.out) ))
 check "the shards graded every student once between them ($shares of $students)" test "$shares" -eq "$students"
-check "the shards are a fair split (7, 7 and 6 of 20)" \
+check "the shards are a fair split ($(( (students + 2) / 3 )), ... and $(( students / 3 )) of $students)" \
   test "$(student_lines shard1.out)-$(student_lines shard3.out)" = "$(( (students + 2) / 3 ))-$(( students / 3 ))"
 check "a shard writes no gradebook, summary or report" bash -c '! ls grades/gradebook.csv grades/summary.csv grades/report.html 2>/dev/null'
 check "every student has a record" test "$(ls grades/students/*/record.json | wc -l)" -eq "$students"
@@ -47,7 +47,8 @@ check "a copy of the judge elsewhere, with other times, regrades nothing (conten
 # Locks: shards share the folder; each shard is one process at a time; a whole-class run waits for no shard.
 run_capture beside flock -s grades/.simlab-lock "$SIMLAB" grade apple class --out grades --shard 1/3
 check "a shard runs while another shard holds the folder" test "$(status_of beside)" -eq 0
-check "and, run again, it grades nothing (7 up to date)" grep -q "^0 graded, 7 up to date and kept" beside.out
+check "and, run again, it grades nothing ($(( (students + 2) / 3 )) up to date)" \
+  grep -q "^0 graded, $(( (students + 2) / 3 )) up to date and kept" beside.out
 run_capture twice flock grades/.simlab-lock-shard-2-of-3 "$SIMLAB" grade apple class --out grades --shard 2/3
 check "a second copy of one shard stops in one line" \
   bash -c "test $(status_of twice) -eq 2 && test \$(wc -l <twice.err) -eq 1 && grep -q 'shard 2-of-3 of grades is being graded already' twice.err"

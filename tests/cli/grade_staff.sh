@@ -22,8 +22,8 @@ mkdir -p class/ada && cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" class/ad
 install -d -g $staff -m 2775 grades
 
 (umask 002 && "$SIMLAB" grade apple class -o grades/apple --rubric rubric.toml >first.out 2>&1)
-check "graded into the staff's folder: the grades folder and its outputs are the group's, writable by it" \
-  bash -c "test \"\$(stat -c '%a %g' grades/apple)\" = '2775 $staff' &&
+check "graded into the staff's folder: the grades folder is the group's alone, its outputs the group's, writable by it" \
+  bash -c "test \"\$(stat -c '%a %g' grades/apple)\" = '2770 $staff' &&
            test \"\$(stat -c '%a %g' grades/apple/manual.csv grades/apple/gradebook.csv grades/apple/report.html | sort -u)\" = '664 $staff' &&
            test \"\$(stat -c '%a %g' grades/apple/students/ada/feedback.html)\" = '664 $staff'"
 run_capture ta-edit as_ta python3 -c '

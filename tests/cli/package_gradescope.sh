@@ -24,7 +24,7 @@ check "on Ubuntu 22.04 setup.sh stops at once, in one line naming the image and 
 check "the archive carries Catch2 2.13's header, for images that ship Catch2 3" \
   bash -c "unzip -Z1 autograder.zip | grep -qx third_party/catch2/catch.hpp"
 check "setup.sh installs only what a check needs (no pages, schematics or test tools) and builds the lab's grader alone" \
-  bash -c "grep -q 'scripts/setup\" --lean' '$root/source/setup.sh' && grep -q 'SIMLAB_TARGETS=\"simlab apple_grader\"' '$root/source/setup.sh'"
+  bash -c "grep -q 'scripts/setup\" --lean' '$root/source/setup.sh' && grep -q \"^targets='simlab apple_grader'\" '$root/source/setup.sh'"
 # Build as on an image without Catch2 2 (Gradescope's Ubuntu 24.04 ships Catch2 3): from the carried header. The
 # objects it shares with the build under test come from that build's ccache (tests/smoke/lib.sh, shared_objects).
 shared_objects "$root/source"

@@ -18,7 +18,7 @@ check "the bundle keeps the starter and the handout" test -f bundle/starter/appl
 check "no line of the solution's model" bash -c "! grep -rqF 'model.apple.setOneQ(state, 0, scene.dropHeight);' bundle"
 # (The replay pages hold the reference runs' sampled values, among them a speed of -24.794 m/s: not a variant's.)
 check "no hidden variant's values (Jupiter's gravity, the long fall)" \
-  bash -c "! grep -rqE '24\.79|50000' --exclude-dir=third_party --exclude='*-replay.html' bundle"
+  bash -c "! grep -rqE '\b24\.79|\b50000\b' --exclude-dir=third_party --exclude='*-replay.html' bundle"
 if git -C "$SOURCE_DIR" rev-parse --git-dir >/dev/null 2>&1; then
   check "every file in it is one git tracks, or one the packaging made (no build log, no untracked file)" \
     python3 - "$SOURCE_DIR" bundle <<'PY'
@@ -56,12 +56,36 @@ SIMLAB_SKIP_APT=1 SIMLAB_JOBS=2 SIMLAB_CMAKE_ARGS="-DCMAKE_DISABLE_FIND_PACKAGE_
 check "the bundle builds with its own scripts/setup and its Catch2 header" \
   bash -c "test $? -eq 0 && grep -q 'Catch2 2.13: the header in third_party/catch2' build.log" || tail -20 build.log
 bundled=$FIXTURES/bundle/build/bin/simlab
+# What a student's setup builds: simlab, each lab's program and grader; no study program until one is asked for.
+check "  simlab, each lab's program and judge, and the worked example's program" bash -c \
+  "for f in bin/simlab bin/apple bin/projectile bin/book bin/project bin/babyboot judges/apple-judge judges/biosim-judge; do
+     test -x '$FIXTURES/bundle/build/'\$f || exit 1; done"
+check "  and no study program or object" python3 - "$FIXTURES/bundle/build/simlab-build.json" <<'PY'
+import json, os, sys
+m = json.load(open(sys.argv[1]))
+built = [p for a in m["assignments"] for p in a["study_objects"] + [a["study_program_path"]] if p and os.path.exists(p)]
+assert not built, built
+PY
 run_capture starter "$bundled" check apple
 check "the bundle's simlab checks its starter: 0/76" grep -q '^Score: 0/76$' starter.out
 cp "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" finished.cpp
 run_capture finished "$bundled" check apple finished.cpp
 check "a finished file scores 76/76 on the visible tests" grep -q '^Score: 76/76$' finished.out
 check "and 5 hidden tests worth 24 points are left" grep -q '5 hidden tests worth 24 points are left' finished.out
+# A student asks for a study of their file: the studies are built then, once; the trade question's table gives the
+# digits it asks (3). The bundle's pages run their examples with these studies (bundle/..., after this test).
+run_capture question "$bundled" study trade apple --question --quick --no-plots -o question --file finished.cpp
+check "a student's first study builds the studies, once, then studies their file" \
+  bash -c "test $(status_of question) -eq 0 && grep -q 'building the studies first, once' question.err &&
+           grep -qE '^  3 +ExplicitEuler, fixed step' question.out"
+run_capture nofile "$bundled" study trade apple --quick -o nofile
+run_capture nofile_long "$bundled" study long-run book --quick -o nofile
+check "a study with no file names the student's own, in one line: the bundle has no reference solution" \
+  bash -c "test $(status_of nofile) -eq 2 -a $(status_of nofile_long) -eq 2 &&
+           grep -q 'study your own file with --file (e.g. --file .*/starter/apple/NewtonsApple.cpp)' nofile.err &&
+           grep -q 'follow your own file with --file (e.g. --file .*/starter/book/BookSpin.cpp)' nofile_long.err"
+run_capture again_question "$bundled" study trade apple --question --quick --no-plots -o question --file finished.cpp
+check "  and the next builds nothing" bash -c "test $(status_of again_question) -eq 0 && ! grep -q 'building the studies' again_question.err"
 run_capture all "$bundled" check apple finished.cpp --all
 check "--all is refused: the bundle has no hidden tests" grep -q 'does not have' all.err
 run_capture grade "$bundled" grade apple

@@ -122,7 +122,7 @@ echo "sample class of $students on a one-node cluster (3 tasks, submission to as
      "$((cluster_s / 1000)).$(printf %03d $((cluster_s % 1000))) s"
 
 # The apple's quick study: 9 parts (one per integrator) over 3 tasks, then trade.csv from them. One machine's is
-# the apple handout's run (handouts/apple, $FIXTURES/handouts/apple).
+# the apple handout's run (handouts/apple, $FIXTURES/handouts/apple), of the finished file: the reference's points.
 run_capture study_submit "$SIMLAB" slurm study trade apple --quick --no-plots --output "$work/study" --tasks 3 --submit
 read -r array assemble < <(jobs_of study_submit.out)
 check "simlab slurm study trade --submit submits the array and the assembly" test -n "${array:-}" -a -n "${assemble:-}"
@@ -130,5 +130,5 @@ check "the study's jobs end" wait_for "${array:-0}" "${assemble:-0}"
 check "the 9 parts are measured" test "$(ls "$work"/study/parts/apple.*.json 2>/dev/null | wc -l)" -eq 9
 # Columns 1-15: everything but the seconds, the repeats and the message (which may name a time).
 check "trade.csv has the single machine's points" \
-  cmp -s <(cut -d, -f1-15 "$work/study/trade.csv") <(cut -d, -f1-15 "$FIXTURES/handouts/apple/starter-tree/study/trade.csv")
+  cmp -s <(cut -d, -f1-15 "$work/study/trade.csv") <(cut -d, -f1-15 "$FIXTURES/handouts/apple/solution-tree/study/trade.csv")
 finish

@@ -6,9 +6,10 @@
 # shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
 
-# The apple's quick study, as its handout runs it (handouts/apple, which compares the table it prints): kept in
-# $FIXTURES/handouts/apple.
-st=$FIXTURES/handouts/apple/starter-tree/study
+# The apple's quick study, as its handout runs it on a finished file (handouts/apple, which compares the table it
+# prints): kept in $FIXTURES/handouts/apple.
+handout=$FIXTURES/handouts/apple/solution-tree
+st=$handout/study
 check "simlab study trade apple --quick (the handout's run) wrote trade.csv" test -s "$st/trade.csv"
 check "trade.csv has a row for each of 9 integrators x 14 accuracies and 8 methods x 4 fixed steps" \
   test "$(tail -n +2 "$st/trade.csv" | wc -l)" -eq 158
@@ -24,21 +25,23 @@ check "explicit Euler at a fixed step of 0.4 s is first order: under 2 digits" \
   awk "BEGIN { exit !($(field ExplicitEuler 'fixed step' 0.4 10) < 2) }"
 check "ten times the steps buys explicit Euler one digit (0.4 s to 0.04 s)" \
   awk "BEGIN { d = $(field ExplicitEuler 'fixed step' 0.04 10) - $(field ExplicitEuler 'fixed step' 0.4 10); exit !(d > 0.8 && d < 1.2) }"
+apple_study=$handout/simlab-study-trade-apple-quick-no-plots-o-study-file-starter-apple-NewtonsApple-cpp.out
 check "the table gives the cheapest setting for 4 to 12 digits" \
-  bash -c "grep -q 'cheapest setting' $FIXTURES/handouts/apple/starter-tree/simlab-study-trade-apple-quick-no-plots-o-study.out &&
-           test \$(grep -cE '^  (4|6|8|10|12) ' $FIXTURES/handouts/apple/starter-tree/simlab-study-trade-apple-quick-no-plots-o-study.out) -eq 5"
+  bash -c "grep -q 'cheapest setting' $apple_study && test \$(grep -cE '^  (4|6|8|10|12) ' $apple_study) -eq 5"
 # The table marks what a front cannot promise (read from the handouts' runs): a method whose digits fall back below
 # a target as it tightens (on the book's question spin CPodes keeps 8.1 digits at 1e-11 and 7.9 at 1e-12), with the
 # cheapest setting of a steadier one; the stretches of digits no setting keeps; and the projectile's ground hit,
 # the lab's other figure, in a table and front of its own.
-bq=$FIXTURES/handouts/book/solution-tree/simlab-study-trade-book-question-quick-no-plots-o-question.out
+bq=$FIXTURES/handouts/book/solution-tree/simlab-study-trade-book-question-quick-no-plots-o-question-file-starter-book-BookSpin-cpp.out
+check "a question's table gives the digits it asks and each one its grader reads past them: 8, 9 and 10" \
+  bash -c "test \"\$(grep -oE '^  (8|9|10) ' '$bq' | tr -d ' ' | tr '\n' ' ')\" = '8 9 10 '"
 check "a method not monotone about a target is marked, with a steadier method's cheapest setting" \
   bash -c "grep -q \"^  8       CPodes, accuracy 1e-11 .* \\*\$\" '$bq' &&
            grep -q \"CPodes's digits are not monotone in its setting (accuracy 1e-11 keeps 8.1, accuracy 1e-12 keeps 7.9)\" '$bq' &&
            grep -q '(cheapest whose method gains digits steadily)' '$bq'"
 check "the stretches of a front no setting measured reaches are named" \
   grep -q 'no setting measured keeps 6.3 to 8.0 digits' "$bq"
-pq=$FIXTURES/handouts/projectile/starter-tree/simlab-study-trade-projectile-quick-no-plots-o-study.out
+pq=$FIXTURES/handouts/projectile/solution-tree/simlab-study-trade-projectile-quick-no-plots-o-study-file-starter-projectile-ProjectileMotion-cpp.out
 check "the projectile's ground hit has its own table: Verlet at 1e-1 keeps 15.5 digits of the flight, 10.2 of the hit" \
   bash -c "grep -q '^  At the end of the run, the ground hit' '$pq' &&
            test \$(grep -cE '^  4       Verlet, accuracy 1e-01 +29 +(15.5|10.2) ' '$pq') -eq 2"
@@ -50,9 +53,9 @@ if command -v gnuplot >/dev/null; then
     test -s plotted/apple-evaluations.png -a -s plotted/apple-evaluations.svg -a -s plotted/apple-time.png -a -s plotted/apple-time.svg
 fi
 
-run_capture file "$SIMLAB" study trade apple --quick --no-plots --file "$SOURCE_DIR/solutions/apple/NewtonsApple.cpp" -o fs
-check "--file studies a student's file: the solution's copy gives the reference's table" \
-  bash -c "test $(status_of file) -eq 0 && diff <(cut -d, -f1-15 '$st/trade.csv') <(cut -d, -f1-15 fs/trade.csv) >/dev/null"
+run_capture reference "$SIMLAB" study trade apple --quick --no-plots -o fs
+check "--file studies a student's file: the solution's copy (the handout's run) gives the reference's table" \
+  bash -c "test $(status_of reference) -eq 0 && diff <(cut -d, -f1-15 '$st/trade.csv') <(cut -d, -f1-15 fs/trade.csv) >/dev/null"
 run_capture starter "$SIMLAB" study trade apple --quick --no-plots --file "$SOURCE_DIR/starter/apple/NewtonsApple.cpp" -o fs2
 check "and an unfinished file stops the study, naming its first TODO" \
   bash -c "test $(status_of starter) -ne 0 && grep -q 'not done yet (NewtonsApple.cpp:' starter.err"
@@ -116,7 +119,7 @@ check "and is compared with the two Pins at equal digits, three digits or more a
            END { exit !(n >= 3 && hi - lo >= 3) }' "$boot/minimal.csv"
 check "the apple, which every accuracy follows exactly, is compared at the digits both models keep at their loosest" \
   bash -c "test \$(grep -c ',at a loosest accuracy,26,[0-9.e-]*,26,' '$st/minimal.csv') -eq 1 && \
-           grep -q 'the loosest accuracy already keeps these digits' $FIXTURES/handouts/apple/starter-tree/simlab-study-minimal-apple-repeats-1-o-study.out"
+           grep -q 'the loosest accuracy already keeps these digits' $handout/simlab-study-minimal-apple-repeats-1-o-study-file-starter-apple-NewtonsApple-cpp.out"
 
 # The extremes, without the slow cases (each of those runs into its cap): every outcome named, every promise kept.
 for lab in apple projectile book biosim; do

@@ -94,6 +94,25 @@ loose=$(k_change verlet1e-3.out) tight=$(k_change verlet1e-9.out)
 check "over 100 s Verlet's K changes twice as much solved to 1e-3 ($loose) as solved to 1e-9 ($tight), under 5e-6" \
   awk -v a="$loose" -v b="$tight" 'BEGIN { exit !(a != "" && b != "" && a >= 2 * b && b < 5e-6) }'
 
+# A student's own book file, followed the same way: built and run in grading's sandbox, its CSV read as data and
+# its figure drawn by simlab. The solution's file gives the reference's table, figure for figure.
+cp "$SOURCE_DIR/solutions/book/BookSpin.cpp" .
+run_capture own "$SIMLAB" study long-run book --quick -o own --file BookSpin.cpp
+check "simlab study long-run book --file ends well" test "$(status_of own)" -eq 0
+check "  with the reference solution's table, setting for setting" \
+  bash -c "diff <(grep -E '^  (RungeKuttaMerson|Verlet),' book.out | sed 's/ *[0-9.]*\$//') \
+                <(grep -E '^  (RungeKuttaMerson|Verlet),' own.out | sed 's/ *[0-9.]*\$//')"
+check "  its CSV, with the samples of the reference's" \
+  bash -c "diff <(cut -d, -f1-3,5- view/book-long-run.csv) <(cut -d, -f1-3,5- own/book-long-run.csv)"
+if command -v gnuplot >/dev/null; then
+  check "  and its figure, drawn from the CSV, a curve per setting" \
+    bash -c "grep -q '<svg' own/book-long-run.svg && grep -q 'Verlet, fixed step 0.001 s' own/book-long-run.svg"
+fi
+check "  and where they are, named as the output folder (not the sandbox's)" grep -q "^Written to $PWD/own: book-long-run.csv" own.out
+run_capture own_boot "$SIMLAB" study long-run biosim --quick --file BookSpin.cpp
+check "--file with the boot's view is refused in one line, exit 2" \
+  bash -c "test $(status_of own_boot) -eq 2 && test \$(wc -l <own_boot.err) -eq 1 && grep -q 'baby boot' own_boot.err"
+
 run_capture banana "$SIMLAB" study long-run apple --quick
 check "a lab without the view is refused in one line, exit 2" \
   bash -c "test $(status_of banana) -eq 2 && test \$(wc -l <banana.err) -eq 1 && grep -q 'book or biosim' banana.err"

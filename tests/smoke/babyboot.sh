@@ -57,6 +57,16 @@ fi
 run_capture trade "$boot" --trade --final-time 1 --repeats 1
 check "the trade table lists all nine integrators" \
   test "$(grep -cE '^(RungeKutta|ExplicitEuler|SemiExplicit|Verlet|CPodes)' trade.out)" -eq 9
+# Each run under a cost cap, a count of evaluations (by default the reference run's own): the error-controlled
+# methods of low order need tens of thousands of steps for 1e-7, and a cap of 2000 stops them, their rows saying so.
+check "  each run stopped past the reference run's evaluations, which it says, with the most the table can take" \
+  grep -qE '^babyboot: --trade: 9 integrators, 1 runs each, each stopped past [0-9]+ evaluations \(the reference run.s; ' trade.err
+run_capture capped "$boot" --trade --final-time 1 --repeats 1 --max-evaluations 2000
+check "--max-evaluations 2000: RungeKutta2 and explicit Euler are too costly, said where they stopped; Merson is not" \
+  bash -c "test $(status_of capped) -eq 0 &&
+           grep -qE '^RungeKutta2 +too costly: stopped past 2000 evaluations at t = [0-9.e-]+ s' capped.out &&
+           grep -qE '^ExplicitEuler +too costly: stopped past 2000 evaluations' capped.out &&
+           grep -qE '^RungeKuttaMerson +[0-9.]+ +[0-9]+ +[0-9]+ ' capped.out"
 
 run_capture template "$BIN_DIR/project"
 check "the template stops with status 3 at its first TODO" \

@@ -11,11 +11,16 @@
 // build/bin/<program> is the program built from the reference solution, and the in-tree student folder (what
 // `simlab check <id>` grades by default) holds a copy of the solution's folder.
 //
-//   handout-check HANDOUT.md [--keep DIR]
+//   handout-check HANDOUT.md [--keep DIR] [--finished SOLUTIONS]
 //
 // --keep DIR leaves the two trees in DIR (starter-tree, solution-tree) with what ran in them: the files the commands
 // wrote and each command's output, named by the command ("$ build/bin/simlab study trade apple --quick" prints to
 // simlab-study-trade-apple-quick.out), for tests that read a handout's runs instead of running them again.
+//
+// --finished SOLUTIONS takes each finished folder from SOLUTIONS/<id>/ and builds build/bin/<program> from it with
+// `simlab build`, as a student who finished would: so the examples run in a copy of simlab that holds no reference
+// solution, the student bundle (SIMLAB_MANIFEST names its build's manifest, and HANDOUT.md is its copy).
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -104,33 +109,57 @@ std::vector<std::string> splitLines(const std::string& text) {
     return lines;
 }
 
+// `simlab build ID SOURCE -o PROGRAM` with the simlab of `manifest`: the lab program of a finished file, as a student
+// builds it.
+void buildProgram(const Manifest& manifest, const std::string& id, const std::string& source,
+                  const std::string& program) {
+    ProcessRequest request;
+    request.argv = {manifest.buildDir + "/bin/simlab", "build", id, source, "--output", program};
+    request.env = childEnvironment({"SIMLAB_MANIFEST=" + manifest.path, "LC_ALL=C"});
+    request.workDir = fs::path(program).parent_path().string();
+    request.limits.cpuSeconds = 300;
+    request.limits.wallSeconds = 1500;
+    request.limits.processes = 64;
+    request.limits.memoryMiB = 8192;
+    const ProcessResult result = runProcess(request);
+    if (!result.exitedCleanly()) throw std::runtime_error("simlab build " + id + " " + source + ":\n" + result.output);
+}
+
 // A scratch tree for one mode: build/bin with the programs, handouts/, and a manifest whose student files are
-// the starters (or copies of the solutions).
-void prepare(const Manifest& manifest, const std::string& root, bool solution) {
+// the starters (or copies of the finished folders: the solutions', or those in `finished`).
+void prepare(const Manifest& manifest, const std::string& root, bool solution, const std::string& finishedDir) {
     fs::create_directories(root + "/build/bin");
     fs::create_symlink(manifest.sourceDir + "/handouts", root + "/handouts");
     fs::create_symlink(manifest.buildDir + "/bin/simlab", root + "/build/bin/simlab");
     nlohmann::json json = nlohmann::json::parse(readFile(manifest.path));
     for (nlohmann::json& a : json["assignments"]) {
         const std::string id = a["id"], program = a["program"], source = a["source"];
-        const std::string built = solution ? a["reference_program_path"] : a["program_path"];
-        if (solution && built.empty()) throw std::runtime_error("no reference solution for " + id);
-        fs::create_symlink(built, root + "/build/bin/" + program);
         // A reference program with a name of its own (the project's worked example, babyboot) is there too.
         const std::string reference = a["reference_program_path"];
         const std::string referenceName = fs::path(reference).filename().string();
         if (!reference.empty() && referenceName != program + "-reference" && referenceName != program) {
             fs::create_symlink(reference, root + "/build/bin/" + referenceName);
         }
-        if (solution) {
-            // The whole finished folder: the solution and what is handed in beside it (answers, say).
-            const fs::path finished = fs::path(a["solution"].get<std::string>()).parent_path();
-            const fs::path copy = fs::path(root) / "starter" / id;
-            fs::create_directories(copy);
-            for (const fs::directory_entry& file : fs::directory_iterator(finished)) {
-                if (file.is_regular_file()) fs::copy_file(file.path(), copy / file.path().filename());
-            }
-            a["starter"] = (copy / source).string();
+        if (!solution) {
+            fs::create_symlink(a["program_path"].get<std::string>(), root + "/build/bin/" + program);
+            continue;
+        }
+        // The whole finished folder: the solution and what is handed in beside it (answers, say).
+        const std::string solutionFile = a["solution"];
+        const fs::path finished = finishedDir.empty() ? fs::path(solutionFile).parent_path() : fs::path(finishedDir) / id;
+        if (finishedDir.empty() ? solutionFile.empty() : !fs::is_directory(finished)) {
+            throw std::runtime_error("no finished folder for " + id + (finishedDir.empty() ? "" : " in " + finishedDir));
+        }
+        const fs::path copy = fs::path(root) / "starter" / id;
+        fs::create_directories(copy);
+        for (const fs::directory_entry& file : fs::directory_iterator(finished)) {
+            if (file.is_regular_file()) fs::copy_file(file.path(), copy / file.path().filename());
+        }
+        a["starter"] = (copy / source).string();
+        if (finishedDir.empty()) {
+            fs::create_symlink(a["reference_program_path"].get<std::string>(), root + "/build/bin/" + program);
+        } else {
+            buildProgram(manifest, id, (copy / source).string(), root + "/build/bin/" + program);
         }
     }
     writeFileAtomically(root + "/manifest.json", json.dump(2));
@@ -150,23 +179,34 @@ std::string outputName(const std::string& command) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const bool keep = argc == 4 && std::string(argv[2]) == "--keep";
-    if (argc != 2 && !keep) {
-        std::cerr << "usage: handout-check HANDOUT.md [--keep DIR]\n";
+    std::string keepDir, finishedDir;
+    bool usage = argc < 2 || argc % 2 != 0;
+    for (int i = 2; i + 1 < argc && !usage; i += 2) {
+        const std::string option = argv[i];
+        if (option == "--keep") keepDir = argv[i + 1];
+        else if (option == "--finished") finishedDir = fs::absolute(argv[i + 1]).string();
+        else usage = true;
+    }
+    if (usage) {
+        std::cerr << "usage: handout-check HANDOUT.md [--keep DIR] [--finished SOLUTIONS]\n";
         return 2;
     }
+    const bool keep = !keepDir.empty();
     try {
         const Manifest manifest = loadManifest();
         const std::vector<Example> examples = parse(argv[1]);
         TempDir scratch("simlab-handout-");
-        const std::string top = keep ? fs::absolute(argv[3]).string() : scratch.path();
+        const std::string top = keep ? fs::absolute(keepDir).string() : scratch.path();
         if (keep) {
             fs::remove_all(top);
             fs::create_directories(top);
         }
         const std::string starterRoot = top + "/starter-tree", solutionRoot = top + "/solution-tree";
-        prepare(manifest, starterRoot, false);
-        prepare(manifest, solutionRoot, true);
+        prepare(manifest, starterRoot, false, finishedDir);
+        const bool anySolution = std::any_of(examples.begin(), examples.end(), [](const Example& e) {
+            return e.solution && !e.expected.empty();
+        });
+        if (anySolution) prepare(manifest, solutionRoot, true, finishedDir);
 
         int run = 0, failed = 0;
         for (const Example& e : examples) {

@@ -283,7 +283,9 @@ TEST_CASE("a panel whose values differ in the sixth digit is drawn less a refere
     const std::string svg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     std::remove(path.c_str());
     ::rmdir(folder);
-    CHECK(svg.find("J, less -2.12393142") != std::string::npos);
+    // Written to the digits the spread needs: its middle, -2.12393141999..., to 12 (what is left over is a
+    // thousandth of the 6e-9 spread or less).
+    CHECK(svg.find("J, less -2.12393141999") != std::string::npos);
     CHECK(svg.find(">-2.12393<") == std::string::npos);  // no tick label that says nothing
     CHECK(svg.find("e-09<") != std::string::npos);         // the ticks tell the values apart
 }

@@ -99,7 +99,11 @@ TEST_CASE("CSV cells never start a formula and are quoted when they need it", "[
 TEST_CASE("Markdown text renders as itself and cannot change the document's structure", "[text]") {
     CHECK(markdownText("plain words, 3.5") == "plain words, 3.5");
     CHECK(markdownText("a | b") == "a \\| b");
-    CHECK(markdownText("<script>alert(1)</script>") == "&lt;script&gt;alert(1)&lt;/script&gt;");
+    CHECK(markdownText("<script>alert(1)</script>") == "&lt;script>alert(1)&lt;/script>");
+    CHECK(markdownText("<!-- x --> <?php <https://x>") == "&lt;!-- x --> &lt;?php &lt;https://x>");
+    // What a student wrote reads as written: an arrow, a comparison (CommonMark starts no tag there).
+    CHECK(markdownText("state->getTime() < 4 > 3") == "state->getTime() < 4 > 3");
+    CHECK(markdownText("> quoted") == "\\> quoted");
     CHECK(markdownText("`x` & *y* _z_ [l](u)") == "\\`x\\` & \\*y\\* \\_z\\_ \\[l\\](u)");
     CHECK(markdownText("ok && done") == "ok && done");              // read as text too: no entity where none can start
     CHECK(markdownText("&copy; &#60;") == "&amp;copy; &amp;#60;");  // what would be a character reference is not

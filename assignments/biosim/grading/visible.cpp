@@ -125,9 +125,12 @@ bool moves(const std::vector<double>& c) {
 }
 
 /// The column an experiment is about, in one run: the course's own reading where the column is one (a coordinate,
-/// a speed, the energy), else the student's values; with the scale errors are measured against and its words.
-/// Near a zero a column's own magnitude is no scale: a column of the student's that starts at zero is measured
-/// against the scale its experiment states (.against), and without one it has none (`unscaled`).
+/// a speed, the energy), else the student's values; with the scale errors are measured against and its words: the
+/// column's largest magnitude in the run, as the handout says (a 0.5 degree swing is judged against 0.5 degree, not
+/// against one radian), the energy against the energy the motion exchanges. Near a zero a column's own magnitude is
+/// no scale: where a drift is measured from the start (`fromStart`, a conserved column) and the column starts at
+/// zero, or where it is zero all the way, it is measured against the scale its experiment states (.against); without
+/// one a coordinate or a speed against one radian or unit, and a column of the student's has none (`unscaled`).
 struct Series {
     std::vector<double> values;
     double scale = 1;
@@ -135,7 +138,7 @@ struct Series {
     bool unscaled = false;   ///< it starts at zero and nothing gives it a scale
 };
 
-Series seriesOf(const Observed& run, int column, const std::string& name, double stated) {
+Series seriesOf(const Observed& run, int column, const std::string& name, double stated, bool fromStart) {
     Series s;
     const std::vector<double> c = columnOf(run, static_cast<std::size_t>(column));
     const Reading reading = readingOf(run, c);
@@ -148,8 +151,10 @@ Series seriesOf(const Observed& run, int column, const std::string& name, double
         s.scaleWords = std::string(zero ? "it starts at zero: " : "") + "against the energy the motion exchanges, " +
                        show(s.scale) + " J";
     } else if (!reading.what.empty()) {
-        s.scale = std::max(reading.scale, largest);
-        s.scaleWords = "against " + std::string(s.scale == largest ? "its largest magnitude, " : "one radian or unit, ") +
+        const bool zero = !(largest > 0) || (fromStart && !(std::abs(s.values.front()) > 1e-9 * largest));
+        s.scale = !zero ? largest : stated > 0 ? stated : reading.scale;
+        s.scaleWords = std::string(zero ? name + " starts at zero: " : "") + "against " +
+                       (!zero ? "its largest magnitude, " : stated > 0 ? "the stated scale, " : "one radian or unit, ") +
                        show(s.scale);
     } else if (stated > 0) {
         s.scale = stated;
@@ -194,7 +199,7 @@ Verdict judgeExperiment(const Declaration& d, const ExperimentInfo& e, const Mut
     }
     if (e.kind == "periodic") {
         const Observed run = runWith(e.set, settingsFor(d, e.period), mutation);
-        const Series c = seriesOf(run, column, e.column, e.scale);
+        const Series c = seriesOf(run, column, e.column, e.scale, false);
         const auto [low, high] = std::minmax_element(c.values.begin(), c.values.end());
         if (!((*high - *low) / c.scale >= grading::param("least_variation"))) {
             return {false, e.column + " hardly changes over the period (a constant repeats with any period)"};
@@ -207,7 +212,7 @@ Verdict judgeExperiment(const Declaration& d, const ExperimentInfo& e, const Mut
     if (e.kind == "at rest") {
         return within(std::max(largestDrift(run.q), largestDrift(run.u)), "largest change of q or u");
     }
-    const Series c = seriesOf(run, column, e.column, e.scale);
+    const Series c = seriesOf(run, column, e.column, e.scale, e.kind == "conserved");
     if (e.kind == "conserved") {
         if (c.unscaled && moves(c.values)) {
             return {false, e.column + " starts at zero, and a drift measured against the drift itself is always 1: "
@@ -224,7 +229,7 @@ Verdict judgeExperiment(const Declaration& d, const ExperimentInfo& e, const Mut
         if (!(largestDifference(run.q, mirrored.q) >= grading::param("least_variation") * largestMagnitude(run.q))) {
             return {false, "the mirror changes nothing: the mirrored run moves as the first one does"};
         }
-        const Series m = seriesOf(mirrored, column, e.column, e.scale);
+        const Series m = seriesOf(mirrored, column, e.column, e.scale, false);
         double worst = 0;
         bool differ = false;
         for (std::size_t k = 0; k < std::min(c.values.size(), m.values.size()); ++k) {

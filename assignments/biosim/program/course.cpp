@@ -249,11 +249,14 @@ Observed observe(const Declaration& declaration, const Parameters& parameters, c
         try {
             while (true) {
                 stepper.stepTo(target);
+                if (hooks.afterStep) hooks.afterStep(*integrator);
                 if (stepper.getState().getTime() >= target || integrator->isSimulationOver()) break;
                 // A state interpolated between steps (a report time, the replay's frames) is not one the
                 // integrator computed: counting its energy would make the figure depend on what else is watching.
                 if (!integrator->isStateInterpolated()) atStep(stepper.getState());
             }
+        } catch (const simlab::TooCostly&) {
+            throw;
         } catch (const std::exception& e) {
             throw std::runtime_error("the integrator failed between t = " + show(stepper.getState().getTime()) +
                                      " s and " + show(target) + " s: " + simlab::oneLineMessage(e.what()));

@@ -132,6 +132,8 @@ struct ObserveHooks {
     std::function<void(Model&)> afterBuild;  ///< e.g. attach a visualizer
     std::function<void(SimTK::State&)> initial;  ///< change the initial state (the grader nudges it)
     std::function<void(double time, const std::vector<double>& row)> onRow;
+    /// After each step the integrator takes (a cost cap: what it throws, simlab::TooCostly, ends the run as it is).
+    std::function<void(const SimTK::Integrator&)> afterStep;
     std::function<void()> afterRun;
 };
 

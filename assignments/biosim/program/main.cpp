@@ -4,6 +4,7 @@
 // project's question (--answer).
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -14,7 +15,10 @@
 #include "biosim/program/course.h"
 #include "biosim/program/schematic.h"
 #include "simlab/reproducible_math.h"
+#include "simlab/cli_checks.h"
 #include "simlab/digits.h"
+#include "simlab/integrators.h"
+#include "simlab/messages.h"
 #include "simlab/plot.h"
 #include "simlab/program.h"
 #include "simlab/replay.h"
@@ -32,6 +36,7 @@ struct Options {
     bool schematic = false;
     bool listParameters = false;
     bool answer = false;
+    double maxEvaluations = 0;  ///< --trade's cost cap per run; 0: the reference run's own evaluations
 };
 
 Parameters parametersFrom(const Declaration& d, const Options& o) {
@@ -199,6 +204,7 @@ int runOnce(const Declaration& d, const Parameters& p, const Options& o) {
 }
 
 int runTrade(const Declaration& d, const Parameters& p, const Options& o) {
+    using Clock = std::chrono::steady_clock;
     // No exact solution is known for a project in general: digits are measured against the same model run with
     // Runge-Kutta-Merson at accuracy 1e-13, whose own error is far below what the table shows, in every generalized
     // coordinate and speed at the final time (see biosim::agreementDigits).
@@ -206,7 +212,17 @@ int runTrade(const Declaration& d, const Parameters& p, const Options& o) {
     best.integrator = "RungeKuttaMerson";
     best.accuracy = 1e-13;
     best.fixedStep = false;
+    simlab::tellUser(d.program + ": --trade: the reference run first (RungeKuttaMerson at accuracy 1e-13, to t = " +
+                     simlab::shortNumber(o.program.run.finalTime) + " s)");
+    const Clock::time_point began = Clock::now();
     const biosim::Observed reference = biosim::observe(d, p, best);
+    const double referenceSeconds = std::chrono::duration<double>(Clock::now() - began).count();
+    // The cost cap, in evaluations of the equations of motion: a count, so that which runs are too costly is the
+    // same on any machine. A setting that needs more evaluations than the reference run is no bargain: the
+    // reference keeps all the digits the table can show, for less.
+    const double cap = o.maxEvaluations > 0 ? o.maxEvaluations : reference.integrator.realizations;
+    const std::string capText = std::to_string(static_cast<long long>(cap));
+    const double perEvaluation = referenceSeconds / std::max(1, reference.integrator.realizations);
     // Conditioning: the parameters as a double holds them are the problem solved. Moving every one by a unit in its
     // last place (two patterns of signs) and running the reference again shows how many digits of q and u at the
     // final time the parameters themselves fix: a chaotic motion, or a start balanced near an unstable rest (the
@@ -227,13 +243,40 @@ int runTrade(const Declaration& d, const Parameters& p, const Options& o) {
                     "integrator on these doubles alone\n",
                     o.program.run.finalTime, fixedDigits);
     }
+    const int integrators = static_cast<int>(simlab::integratorNames().size());
+    const int runs = integrators * o.program.repeats;
+    simlab::tellUser(d.program + ": --trade: " + std::to_string(integrators) + " integrators, " +
+                     std::to_string(o.program.repeats) + " runs each, each stopped past " + capText + " evaluations (" +
+                     (o.maxEvaluations > 0 ? "--max-evaluations" : "the reference run's; --max-evaluations sets another") +
+                     "): at most about " + simlab::durationText(runs * cap * perEvaluation) + " at the reference's pace");
     char figure[96];
     std::snprintf(figure, sizeof figure, "q and u at t = %g s (against accuracy 1e-13)", o.program.run.finalTime);
+    // How far the table has come, before each integrator's first run: what is left, read from the pace so far.
+    std::string current;
+    int started = 0;
+    const Clock::time_point tableBegan = Clock::now();
     simlab::printTrade(std::cout, o.program.run, figure, [&](const simlab::RunSettings& run) {
-        const biosim::Observed observed = biosim::observe(d, p, run);
+        if (run.integrator != current) {
+            current = run.integrator;
+            const double elapsed = std::chrono::duration<double>(Clock::now() - tableBegan).count();
+            if (started > 0 && elapsed > 2) {
+                simlab::tellUser(d.program + ": --trade: " + run.integrator + ", " + std::to_string(started + 1) +
+                                 " of " + std::to_string(integrators) + ", about " +
+                                 simlab::durationText(elapsed / started * (integrators - started)) + " left");
+            }
+            ++started;
+        }
+        biosim::ObserveHooks hooks;
+        hooks.afterStep = [cap, &capText](const SimTK::Integrator& integrator) {
+            if (integrator.getNumRealizations() > cap) {
+                throw simlab::TooCostly("stopped past " + capText + " evaluations at t = " +
+                                        simlab::shortNumber(integrator.getTime()) + " s (--max-evaluations)");
+            }
+        };
+        const biosim::Observed observed = biosim::observe(d, p, run, hooks);
         return simlab::TradePoint{biosim::agreementDigits(observed, reference), observed.integrator.stepsTaken,
                                   observed.integrator.realizations};
-    }, o.program.repeats);
+    }, o.program.repeats, d.program);
     return 0;
 }
 
@@ -272,6 +315,10 @@ int main(int argc, char** argv) {
         app.add_flag("--schematic", o.schematic,
                      "draw the model: <program>-tree.svg (the multibody tree) and <program>-t0.svg (the model at t = 0)");
         app.add_flag("--answer", o.answer, "compute the number that answers the project's question");
+        app.add_option("--max-evaluations", o.maxEvaluations,
+                       "with --trade: the evaluations of the equations of motion one run may take before it is "
+                       "stopped and its row says too costly (default: the reference run's own, at accuracy 1e-13)")
+            ->check(simlab::between(100.0, 1e10));
         if (const int status = simlab::parseCommandLine(app, argc, argv); status >= 0) return status;
 
         if (const int status = simlab::checkRunSettings(program, o.program.run); status >= 0) return status;

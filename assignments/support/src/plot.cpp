@@ -37,15 +37,17 @@ std::string quoted(const std::string& text) {
     return out + "'";
 }
 
-std::string number(double v) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.10g", v);
+std::string number(double v, int digits = 10) {
+    char buffer[40];
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
     return buffer;
 }
 
 // Where a panel's values differ by less than a ten-thousandth of their size (a conserved energy, say), six-digit
 // tick labels would all read the same: the panel then draws each value less one reference value, in the middle
-// of their range and written to 10 digits in the axis label, with ticks in scientific notation. Else 0 and "".
+// of their range and written in the axis label to as many digits as the range needs (10 at least, 17 at most: what
+// the written value leaves over is a thousandth of the range or less, so that the ticks show the values' spread,
+// not its rounding), with ticks in scientific notation. Else 0 and "".
 struct Offset {
     double value = 0;
     std::string label;
@@ -63,8 +65,26 @@ Offset panelOffset(const PlotPanel& panel) {
     for (const PlotMark& mark : panel.marks) see(mark.y);
     const double size = std::max(std::abs(low), std::abs(high));
     if (!(high >= low) || !(size > 0) || high - low >= 1e-4 * size) return {};
-    const std::string written = number(low + (high - low) / 2);
+    const int digits = high > low ? static_cast<int>(std::ceil(std::log10(size / (high - low)))) + 3 : 17;
+    const std::string written = number(low + (high - low) / 2, std::clamp(digits, 10, 17));
     return {std::strtod(written.c_str(), nullptr), written};
+}
+
+// The y axis's tick labels of `panel`, as `script` formats them: how many characters the widest takes.
+std::size_t tickWidth(const PlotPanel& panel, const Offset& offset) {
+    if (panel.logY) return 5;                                   // "1e-16"
+    if (panel.scientificY || !offset.label.empty()) return 8;  // "-1.2e-08"
+    double low = 0, high = 0;
+    for (const PlotCurve& curve : panel.curves) {
+        for (const double y : curve.y) {
+            if (std::isfinite(y)) low = std::min(low, y), high = std::max(high, y);
+        }
+    }
+    // A tick is a round number within a step of the range's ends: as wide as they are in '% g', and its fraction.
+    char text[40];
+    std::size_t widest = 0;
+    for (const double y : {low, high}) widest = std::max(widest, static_cast<std::size_t>(std::snprintf(text, sizeof text, "% g", y)));
+    return widest + 2;
 }
 
 // Whether (x, y) can be drawn on `panel`'s axes: finite, and above zero on a logarithmic one.
@@ -78,18 +98,27 @@ std::string script(const Plot& plot, const std::string& terminal, const std::str
     std::ostringstream gp;
     const int panels = static_cast<int>(plot.panels.size());
     const int height = panels > 1 ? 330 * panels + 60 : 560;
+    std::vector<Offset> offsets;
+    std::size_t ticks = 0;
+    for (const PlotPanel& panel : plot.panels) {
+        offsets.push_back(panelOffset(panel));
+        ticks = std::max(ticks, tickWidth(panel, offsets.back()));
+    }
+    // The panels line up: one left margin for all, wide enough for the widest tick labels and the axis label beside
+    // them (about 7 px a character of the 11-point font, and 44 px for the label and the gaps), so that no label
+    // is cut at the figure's edge.
+    const double left = std::max(0.09, (7.0 * static_cast<double>(ticks) + 44) / 960);
     gp << "set terminal " << terminal << " size 960," << height << " font 'sans,11' background '#ffffff'\n"
        << "set termoption noenhanced\n"  // names like w_B and y'' are printed as written
        << "set output " << quoted(output) << "\n"
        << "set grid\nset key below\nset datafile missing 'NaN'\n"
        // Every curve at least 3:1 against the white (WCAG 1.4.11): gnuplot's third to fifth colours are lighter.
        << "set linetype 3 lc rgb '#1f6fb4'\nset linetype 4 lc rgb '#b35900'\nset linetype 5 lc rgb '#8a6d00'\n"
-       << "set lmargin at screen 0.09\nset rmargin at screen 0.96\n";  // panels line up
+       << "set lmargin at screen " << number(left, 4) << "\nset rmargin at screen 0.96\n";
     int block = 0;
-    std::vector<Offset> offsets;
-    for (const PlotPanel& panel : plot.panels) {
-        const Offset offset = panelOffset(panel);
-        offsets.push_back(offset);
+    for (std::size_t p = 0; p < plot.panels.size(); ++p) {
+        const PlotPanel& panel = plot.panels[p];
+        const Offset& offset = offsets[p];
         for (const PlotCurve& curve : panel.curves) {
             gp << "$d" << block++ << " << EOD\n";
             for (std::size_t i = 0; i < curve.x.size() && i < curve.y.size(); ++i) {

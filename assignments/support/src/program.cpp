@@ -369,6 +369,9 @@ void printTrade(std::ostream& out, const RunSettings& base, const std::string& f
             std::snprintf(line, sizeof line, "%-20s %10.2f %10d %14d %12.2f\n", name.c_str(), point.digits,
                           point.steps, point.realizations, ms[ms.size() / 2]);
             out << line << std::flush;
+        } catch (const TooCostly& e) {
+            out << name << std::string(name.size() < 20 ? 21 - name.size() : 1, ' ')
+                << "too costly: " << oneLineMessage(e.what()) << '\n' << std::flush;
         } catch (const std::exception& e) {
             out << name << std::string(name.size() < 20 ? 21 - name.size() : 1, ' ')
                 << "failed: " << oneLineMessage(e.what()) << '\n' << std::flush;

@@ -23,6 +23,11 @@
 
 namespace simlab {
 
+/// What a run stopped at its cost cap throws (a trade table's run, say): too costly, and where it stopped.
+struct TooCostly : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
 /// What the integrator reports once a run is over.
 struct IntegratorStats {
     std::string method;  ///< Simbody's name for it, e.g. "RungeKuttaMerson"

@@ -63,7 +63,7 @@ struct TradePoint {
 
 /// For every integrator, run `once` with `base` changed to that integrator `repeats` times and print one row:
 /// digits of `figure`, steps, evaluations of the equations of motion and the median wall time. An integrator
-/// that fails is listed with its error.
+/// that fails is listed with its error; one whose run throws TooCostly (driver.h) as too costly, with the reason.
 /// Each row is flushed as it is done; when `program` is given and a run takes more than a few seconds, a line on
 /// stderr says how long the rest of the table will take.
 void printTrade(std::ostream& out, const RunSettings& base, const std::string& figure,

@@ -29,8 +29,8 @@ struct BuildResult {
 };
 
 /// What a grading's sandboxed processes are lent of simlab's places (isolation/reach.h) beside their own folders:
-/// the contract's headers and the precompiled header (the compiler), the course's objects and the probe's export
-/// list (the linker), the probe's host. The rest of the places is none of theirs; the audit of limits only and
+/// the contract's headers and the precompiled header (the compiler), the course's objects of the probe and of the
+/// lab program and the probe's export list (the linker), the probe's host. The rest of the places is none of theirs; the audit of limits only and
 /// `simlab lock` keep these open to throwaway users and nothing else.
 std::vector<std::string> lentToTools(const Manifest& manifest, const Assignment& assignment);
 

@@ -4,6 +4,7 @@
 // function here, and the writer of that format calls it on every text it did not write itself.
 #pragma once
 
+#include <map>
 #include <string>
 
 namespace simlab::engine {
@@ -48,10 +49,12 @@ std::string csvCellValue(const std::string& cell);
 /// Inline Markdown text for a table cell, a heading or a line after a label ("- " + markdownText(x)): printable on
 /// one line (a newline shows as "\n": in Markdown it would end the cell or start a block), then escaped so it
 /// renders as the same characters and cannot change the document's structure: '\', '`', '|', '*', '_', '[' and
-/// ']' get a backslash, and '<', '>', '&' become "&lt;", "&gt;", "&amp;". So "a|b" is "a\|b", "<script>" is
-/// "&lt;script&gt;" and a student's "\|" is "\\\|". In case the text starts a line, a first character that would
-/// begin a block ('#', '+', '-', '=', '~', or digits then '.' or ')') gets a backslash and a first space becomes
-/// "&#32;" (no indented code block). For multi-line text, indent printable(text, true) as a code block instead.
+/// ']' get a backslash, a '<' that could start a tag or an autolink (before a letter, '/', '!' or '?') becomes
+/// "&lt;", and a '&' that could start a character reference "&amp;"; the rest stays as written, for a reader of the
+/// file as text. So "a|b" is "a\|b", "<script>" is "&lt;script>", "p->x" and "i < n" stay, and a student's "\|" is
+/// "\\\|". In case the text starts a line, a first character that would begin a block ('#', '+', '-', '=', '~', '>',
+/// or digits then '.' or ')') gets a backslash and a first space becomes "&#32;" (no indented code block). For
+/// multi-line text, indent printable(text, true) as a code block instead.
 std::string markdownText(const std::string& text);
 
 /// Text for XML 1.0 content or a double- or single-quoted attribute (JUnit): validUtf8, '&', '<', '>', '"' and '\''
@@ -59,5 +62,13 @@ std::string markdownText(const std::string& text);
 /// of a reader turning them into spaces); the characters XML 1.0 forbids (other C0 controls, U+FFFE, U+FFFF) as
 /// U+FFFD. Everything else, C1 and bidirectional controls included, is kept.
 std::string xmlText(const std::string& text);
+
+/// `word` as a POSIX shell reads it back as one word: as it is where that is safe, else in single quotes.
+std::string shellWord(const std::string& word);
+
+/// A file simlab writes from a template of its own (a platform's script, grader/*/scripts/): `text` with each
+/// @NAME@ of `values` in its place. A @NAME@ alone on its line with an empty value takes its line with it. Throws
+/// std::logic_error naming a @NAME@ the template holds and `values` has not, or one of `values` it never holds.
+std::string filledTemplate(std::string text, const std::map<std::string, std::string>& values);
 
 }  // namespace simlab::engine

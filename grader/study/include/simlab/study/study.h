@@ -65,10 +65,18 @@ struct LongRunOptions {
     bool quick = false;
     std::string output = "long-run";
     bool plots = true;
+    std::string file;  ///< a student file to follow instead of the reference solution
 };
 
-/// `simlab study long-run`: the lab checked and its study program built where it is not yet; returns the program
-/// and its arguments (its name first), for the command to hand over to.
+/// `simlab study long-run` of the lab's reference solution: the lab checked and its study program built where it is
+/// not yet; returns the program and its arguments (its name first), for the command to hand over to.
 std::vector<std::string> longRunCommand(const LongRunOptions& o, int cores);
+
+/// `simlab study long-run --file`: the student's file built into a study program of its own, with grading's object
+/// check, and run in grading's sandbox, where it writes the CSV and the figure in a scratch folder; its lines are
+/// printed as they come (made printable: they are data), and the two files are copied into o.output where they are
+/// what the view writes. Returns the view's exit status (0, or 1 when a setting stopped short or the run failed);
+/// throws engine::UsageError, in one line, for a lab with no such view or a file that does not build.
+int runLongRunOfFile(const LongRunOptions& o, const CommandLine& command);
 
 }  // namespace simlab::study
