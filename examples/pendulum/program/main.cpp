@@ -102,6 +102,13 @@ int runOnce(const Options& o) {
         std::printf("period: none: released at 0 degrees the bob hangs at rest and stays there (a small swing about "
                     "it would take %.10g s)\n",
                     exactPeriod_s);
+    } else if (std::isnan(period.period_s) && std::floor(last.time / (exactPeriod_s / 2)) >= 2) {
+        // Turning points came, but no sample fell between two of them: the samples are farther apart than they.
+        const double dt_s = result.samples.size() > 1 ? result.samples[1].time - result.samples[0].time : last.time;
+        std::printf("period: exact %.10g s; the samples, %g s apart, are too far apart to show it: %d turning point%s "
+                    "seen by t = %g s, where %.0f came (every half period, %.4g s); a --dt under %.4g s shows each\n",
+                    exactPeriod_s, dt_s, period.turningPoints, period.turningPoints == 1 ? "" : "s", last.time,
+                    std::floor(last.time / (exactPeriod_s / 2)), exactPeriod_s / 2, exactPeriod_s / 2);
     } else if (std::isnan(period.period_s)) {
         std::printf("period: exact %.10g s; the run is too short to show it: %d turning point%s by t = %g s, where "
                     "two are needed (they come every half period, %.4g s)\n",
