@@ -43,6 +43,21 @@ std::string bookProblem(const book::Scene& scene) {
                       "--dimensions nearer a metre", smallest, largest);
         return why;
     }
+    // Simbody forms the kinetic energy and the gyroscopic terms, I w^2: worked out in long double, they must fit a
+    // double with room to spare.
+    long double energy = 0, spin2 = 0;
+    for (int i = 0; i < 3; ++i) {
+        const long double w = scene.w_B0[i];
+        energy += 0.5L * I[i] * w * w;
+        spin2 += w * w;
+    }
+    if (!(energy <= 1e300L)) {
+        std::snprintf(why, sizeof why,
+                      "a spin of %.3Lg rad/s gives the book a kinetic energy of %.3Lg J, past 1e300 J, where the terms "
+                      "Simbody's dynamics form overflow a double: give a smaller --omega (its size only sets the "
+                      "motion's pace)", std::sqrt(spin2), energy);
+        return why;
+    }
     return "";
 }
 
@@ -407,6 +422,7 @@ int main(int argc, char** argv) {
     if (const int status = simlab::checkRunSettings("book", o.program.run); status >= 0) return status;
     book::Scene asked = o.scene;
     if (!o.dimensions.empty()) asked.dimensions = SimTK::Vec3(o.dimensions[0], o.dimensions[1], o.dimensions[2]);
+    if (!o.omega.empty()) asked.w_B0 = SimTK::Vec3(o.omega[0], o.omega[1], o.omega[2]);
     if (const std::string problem = bookProblem(asked); !problem.empty() && o.program.from.empty()) {
         std::cerr << "book: error: " << problem << '\n';
         return 2;
