@@ -56,9 +56,9 @@ replay() {
   done < <(rows "$csv" "$subject")
 }
 
-apple=$FIXTURES/handouts/apple/starter-tree/study/trade.csv
-projectile=$FIXTURES/handouts/projectile/starter-tree/study/trade.csv
-book=$FIXTURES/handouts/book/starter-tree/study/trade.csv
+apple=$FIXTURES/handouts/apple/solution-tree/study/trade.csv
+projectile=$FIXTURES/handouts/projectile/solution-tree/study/trade.csv
+book=$FIXTURES/handouts/book/solution-tree/study/trade.csv
 for csv in "$apple" "$projectile" "$book"; do check "the handout's quick study wrote $csv" test -s "$csv"; done
 
 replay apple "$apple" apple 4 'accurate digits' "$BIN_DIR/apple-reference"
