@@ -28,10 +28,13 @@ std::string text(const json& value) { return value.is_string() ? value.get<std::
 
 namespace {
 
-/// The one line a point's setting takes: "accuracy 1e-06" or "fixed step 0.004 s".
+/// The one line a point's setting takes: "accuracy 1e-06" or "fixed step 0.004 s", and for a fixed step that reads
+/// the accuracy too (Verlet's: the study program gives it its accuracy), "fixed step 0.04 s at accuracy 1e-03".
 std::string setting(const json& p) {
     if (text(p["mode"]) == "accuracy") return "accuracy " + number(p["accuracy"], "%.0e");
-    return "fixed step " + number(p["step"], "%.3g") + " s";
+    const bool reads = p["accuracy"].is_number() && p["accuracy"].get<double>() > 0;
+    return "fixed step " + number(p["step"], "%.3g") + " s" +
+           (reads ? " at accuracy " + number(p["accuracy"], "%.0e") : "");
 }
 
 void writeCsv(const fs::path& path, const std::vector<SubjectRun>& runs) {
@@ -234,7 +237,10 @@ void printTable(std::ostream& out, const SubjectRun& run, const std::vector<doub
         << " s\n  measured: the fewest digits kept at the run's steps (up to about a "
         << "thousand, spread over the run)"
         << (starts > 1 ? ", the worst of " + number(json(starts), "%.0f") + " starts" : "")
-        << ", each setting's evaluations counted by Simbody\n";
+        << ", each setting's evaluations counted by Simbody\n"
+        << "  replay: the lab program takes a row's steps at its setting with --dt equal to the final time (a fixed "
+        << "step: --fixed-step --dt STEP, and --accuracy where the row names one); a smaller --dt ends steps at its "
+        << "samples\n";
     std::vector<const json*> ok, failed;
     int costly = 0;
     for (const json& p : run.points) {

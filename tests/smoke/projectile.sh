@@ -27,7 +27,7 @@ for launch in "--angle 0.001" "--speed 1e-6"; do
 done
 run_capture short_fixed "$projectile" --angle 0.001 --fixed-step --quiet --output short.txt
 check "at fixed steps longer than the flight it says so and what to do" \
-  grep -q '^No ground hit: the flight lasts t\* = 0.000159 s, too short for fixed steps of --dt 0.01 s.*use --dt' short_fixed.out
+  grep -q '^No ground hit: .*: the flight lasts t\* = 0.000159 s, too short for fixed steps of --dt 0.01 s.*use --dt' short_fixed.out
 
 # A flight of 5e10 s under g = 1e-9 is followed to its end.
 run_capture weak "$projectile" --gravity 1e-9 --quiet --output weak.txt
@@ -59,6 +59,11 @@ check "a launch a tenth of a microdegree short of vertical states the scale of x
   grep -qE 'exact x\* .*accurate digits of v0 t\* = 407\.773 m \(x\* is near 0\)' vertical.out
 check "and its banner shows the angle as given, not rounded to 90" grep -q '89\.9999999 degrees' vertical.out
 check "at 35 degrees x*'s digits are its own" grep -qE 'exact x\* .*: [0-9.]+ accurate digits$' default.out
+# The table and the hit are one run where its event ends the table: at fixed steps of 2 s, too coarse for a run on to
+# the ground, the table's own run landed, and that is the hit reported.
+run_capture coarse "$projectile" --fixed-step --dt 2 --final-time 10 --quiet --output coarse.txt
+check "at fixed steps of 2 s the hit is the table's own run's, never 'No ground hit' beside it" \
+  bash -c "grep -q 'Ground hit .*(RungeKuttaMerson, 3 steps: the run above)' coarse.out && ! grep -q 'No ground hit' coarse.out"
 # A tiny energy (a ball at 1e-8 m/s) whose terms cancel is no blow-up: the run ends with its ground hit.
 run_capture slow "$projectile" --speed 1e-8 --quiet --output slow.txt
 check "a ball at 1e-8 m/s runs to its ground hit (its energy's rounding is not growth)" \

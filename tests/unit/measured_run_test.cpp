@@ -1,7 +1,9 @@
 // A measured run (the work-precision study's and the trade question's): what it checks, where it stops, and the
 // judge's check of the counts a student's process reports.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "Simbody.h"
 #include "simlab/measured_run.h"
@@ -79,6 +81,60 @@ TEST_CASE("a measured run stops past its cap of evaluations, says where, and che
     CHECK(lastTime == run.reached);
     CHECK(run.integrator.realizations > 100);
     CHECK(run.integrator.realizations < 110);
+}
+
+TEST_CASE("a fixed step ends where a lab program's samples end it, at whole multiples of the step") {
+    // Adding up steps of 0.1 s strays from k * 0.1 in the last bits; a lab program's samples, at k * dt, end each
+    // step there, and so does a measured run: the same run, to the last bit.
+    Fall fall;
+    auto integrator = simlab::integratorFor(choice("ExplicitEuler", 1e-7, true, 0.1), fall.system, 1.0);
+    simlab::MeasureLimits limits;
+    limits.checks = 100000;  // every step
+    std::vector<double> times;
+    const simlab::MeasuredRun run = simlab::measureRun(
+        fall.system, *integrator, fall.initial, 1.0, limits,
+        [&](const State& s, bool) { times.push_back(s.getTime()); }, 0.1);
+    CHECK(run.status == "ok");
+    REQUIRE(times.size() == 11);
+    for (int k = 0; k < 10; ++k) CHECK(times[static_cast<std::size_t>(k)] == k * 0.1);
+    CHECK(times.back() == 1.0);
+    CHECK(run.integrator.stepsTaken == 10);
+    CHECK(simlab::nextStepEnd(0.1, 1.0, 0.30000000000000004) == 0.4);
+    CHECK(simlab::nextStepEnd(0.1, 1.0, 0.95) == 1.0);
+    CHECK(simlab::nextStepEnd(0, 1.0, 0.5) == 1.0);  // error control: its own steps to the final time
+}
+
+TEST_CASE("Verlet's fixed step is solved to the accuracy it is given, which decides its digits") {
+    // A ball on a Slider slowed by a damper: u' = -(c/m) u, so the trapezoid rule for u is implicit, and Simbody
+    // iterates it to min(1e-4, accuracy / 10). Exact: q(t) = q0 + (m/c) u0 (1 - exp(-c t / m)), here with m = 1 kg,
+    // c = 5 N s/m, u0 = 1 m/s, q0 = 0: 0.19865 m at 1 s. Steps of 0.1 s (c h / m = 0.5) leave Verlet's explicit
+    // position update an error of about 6 % of that either way; how well the velocity's is solved moves it further.
+    MultibodySystem system;
+    SimbodyMatterSubsystem matter(system);
+    GeneralForceSubsystem forces(system);
+    MobilizedBody::Slider ball(matter.Ground(), Transform(),
+                               Body::Rigid(MassProperties(1, Vec3(0), UnitInertia::sphere(0.05))), Transform());
+    Force::MobilityLinearDamper(forces, ball, 0, 5.0);
+    State initial = system.realizeTopology();
+    ball.setOneU(initial, 0, 1.0);
+    const double exact = 0.2 * (1 - std::exp(-5.0));
+    auto error = [&](double accuracy) {
+        auto integrator = simlab::integratorFor(choice("Verlet", accuracy, true, 0.1), system, 1.0);
+        double q = NAN;
+        const simlab::MeasuredRun run = simlab::measureRun(
+            system, *integrator, initial, 1.0, simlab::MeasureLimits{},
+            [&](const State& s, bool last) {
+                if (last) q = ball.getOneQ(s, 0);
+            },
+            0.1);
+        CHECK(run.integrator.accuracyInUse == accuracy);
+        return std::abs(q - exact);
+    };
+    const double loose = error(1e-1), tight = error(1e-12);
+    INFO("errors: " << loose << " m solved to 1e-1, " << tight << " m solved to 1e-12");
+    CHECK(tight < 0.1 * exact);
+    CHECK(loose < 0.1 * exact);
+    CHECK(std::abs(loose - tight) > 1e-6);  // far past rounding: the accuracy changes the fixed-step run
 }
 
 TEST_CASE("a choice that is not a setting is refused, naming what is wrong") {

@@ -84,6 +84,65 @@ TEST_CASE("the results file holds every value at full double precision", "[resul
     std::remove(path.c_str());
 }
 
+TEST_CASE("a conserved column that starts at zero is judged against the scene's scale, never its own rounding",
+          "[results]") {
+    // A pendulum released at 90 degrees: E(0) = -m g L cos(90 deg) is zero but for rounding (-6e-16 J), its terms are
+    // m g L = 9.81 J. A drift of 1e-5 J (1e-6 of them) is an ordinary run's; 1e7 J, past 1e6 times 9.81 J, is not.
+    const std::string path = "simlab-growth-test.txt";
+    {
+        simlab::ResultsTable table({"time", "E"}, path, nullptr);
+        table.watchGrowth("E", 1e6, 9.81);
+        CHECK_NOTHROW(table.add({0, -6.00689e-16}));
+        CHECK_NOTHROW(table.add({856, 9.97161e-06}));
+        CHECK_THROWS_WITH(table.add({900, 1e7}),
+                          Catch::StartsWith("the run broke at t = 900 s: E moved from -6.00689e-16 to 1e+07, more than "
+                                            "1e+06 times its scale in this scene (9.81)"));
+    }
+    {
+        // An apple at rest at y = 0 with no gravity: nothing in the scene has a size, and nothing is judged.
+        simlab::ResultsTable table({"time", "E"}, path, nullptr);
+        table.watchGrowth("E", 1e6, 0);
+        CHECK_NOTHROW(table.add({0, 0}));
+        CHECK_NOTHROW(table.add({1, 1e-300}));
+    }
+    {
+        // A scale below the first value's: the first value is the scale (a spin's kinetic energy).
+        simlab::ResultsTable table({"time", "K"}, path, nullptr);
+        table.watchGrowth("K", 1e6, 0);
+        CHECK_NOTHROW(table.add({0, 2.0}));
+        CHECK_NOTHROW(table.add({1, 1.9e6}));
+        CHECK_THROWS(table.add({2, 2.1e6}));
+    }
+    std::remove(path.c_str());
+}
+
+TEST_CASE("a run's settings are said, with the accuracy wherever a fixed step reads it", "[settings]") {
+    simlab::RunSettings run;
+    run.integrator = "Verlet";
+    run.fixedStep = true;
+    run.dt = 0.04;
+    run.accuracy = 1e-3;
+    // Verlet solves its implicit velocity update to the accuracy, at a fixed step too.
+    CHECK(simlab::describeRun(run) == "Verlet, fixed step 0.04 s at accuracy 0.001");
+    run.integrator = "ExplicitEuler";
+    CHECK(simlab::describeRun(run) == "ExplicitEuler, fixed step 0.04 s");
+    // Where the model has events, any method's fixed step localizes them to the accuracy.
+    CHECK(simlab::describeRun(run, true) == "ExplicitEuler, fixed step 0.04 s at accuracy 0.001");
+    run.fixedStep = false;
+    run.integrator = "RungeKuttaMerson";
+    run.dt = 0.01;
+    run.accuracy = 1e-7;
+    CHECK(simlab::describeProgramRun(run) == "RungeKuttaMerson, accuracy 1e-07, dt 0.01 s, 0 <= t <= 4 s");
+    // Fixed steps of 3 s to 4 s: samples at 0, 3 and 4 s, the last step 1 s.
+    run.fixedStep = true;
+    run.dt = 3;
+    CHECK(simlab::shortLastStep(run) == 1.0);
+    CHECK(simlab::describeProgramRun(run) == "RungeKuttaMerson, fixed step 3 s (the last 1 s), 0 <= t <= 4 s");
+    run.dt = 0.01;  // 400 whole steps, though 4 / 0.01 is not 400 in doubles
+    CHECK(simlab::shortLastStep(run) == 0.0);
+    CHECK(simlab::describeProgramRun(run) == "RungeKuttaMerson, fixed step 0.01 s, 0 <= t <= 4 s");
+}
+
 TEST_CASE("a results file that cannot be written is an error saying why", "[results]") {
     CHECK_THROWS_WITH(simlab::ResultsTable({"time"}, "/nonexistent-dir/results.txt", nullptr),
                       "cannot write results file '/nonexistent-dir/results.txt': No such file or directory");

@@ -22,6 +22,20 @@ inline double yVelocity(const Scene& scene, double t) { return -scene.gravity * 
 
 inline double mechanicalEnergy(const Scene& scene) { return scene.mass * scene.gravity * scene.dropHeight; }
 
+/// m: what the digits of y at time `t` are relative to. y itself, unless it is under a tenth of the height the fall
+/// spans by then (the apple passes y = 0): then that height, so that a y near zero is never judged by its own size.
+/// 0 stands for y itself.
+inline double yScale(const Scene& scene, double t) {
+    const double span = std::max(std::abs(scene.dropHeight), std::abs(yLocation(scene, t)));
+    return std::abs(yLocation(scene, t)) < 0.1 * span ? span : 0.0;
+}
+
+/// Digits of y at the end of a run, the figure the lab program reports and the study's final digits: against the
+/// exact y, on yScale's scale.
+inline double finalDigits(const Scene& scene, const Sample& s) {
+    return simlab::accuracyDigits(s.yLocation, yLocation(scene, s.time), yScale(scene, s.time));
+}
+
 /// Digits of a sample against the exact fall, the worse of y and vy. y passes zero as the apple falls past
 /// Ground's origin: positions count against the largest height the fall spans by `finalTime`, speeds against g T.
 inline double sampleDigits(const Scene& scene, const Sample& s, double finalTime) {

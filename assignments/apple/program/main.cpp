@@ -31,8 +31,7 @@ std::vector<double> resultsRow(const apple::Scene& scene, const apple::Sample& s
 
 double finalDigits(const apple::Scene& scene, const std::vector<apple::Sample>& samples) {
     if (samples.empty()) throw std::runtime_error("the simulation recorded no samples");
-    const apple::Sample& last = samples.back();
-    return simlab::accuracyDigits(last.yLocation, apple::exact::yLocation(scene, last.time));
+    return apple::exact::finalDigits(scene, samples.back());
 }
 
 const std::vector<std::string> kColumns = {"time", "yLocation", "yVelocity", "mechanicalEnergy", "yDifferenceFromExact"};
@@ -41,9 +40,8 @@ int runOnce(const Options& o) {
     const simlab::RunSettings& run = o.program.run;
     char banner[256];
     std::snprintf(banner, sizeof banner,
-                  "Newton's apple: %g kg dropped from %g m, g = %g m/s^2; %s, accuracy %g, dt %g s, 0 <= t <= %g s",
-                  o.scene.mass, o.scene.dropHeight, o.scene.gravity, run.integrator.c_str(), run.accuracy, run.dt,
-                  run.finalTime);
+                  "Newton's apple: %g kg dropped from %g m, g = %g m/s^2; %s", o.scene.mass, o.scene.dropHeight,
+                  o.scene.gravity, simlab::describeProgramRun(run).c_str());
     simlab::Tabulation<apple::Sample, apple::Model> tabulation;
     tabulation.columns = kColumns;
     tabulation.row = [&](const apple::Sample& s) { return resultsRow(o.scene, s); };
@@ -72,13 +70,21 @@ int runOnce(const Options& o) {
     tabulation.conservedScale = [&](const apple::Sample& s) {
         return 0.5 * o.scene.mass * s.yVelocity * s.yVelocity + o.scene.mass * o.scene.gravity * std::abs(s.yLocation);
     };
+    // The same terms' size over the whole exact fall (an apple dropped at rest from y = 0 starts with none): its
+    // kinetic energy at the end, m (g T)^2 / 2, and its potential energy where it is farthest from y = 0.
+    const double g = o.scene.gravity, T = run.finalTime;
+    const double farthest = std::max(std::abs(o.scene.dropHeight), std::abs(yEnd));
+    tabulation.conservedSize = 0.5 * o.scene.mass * (g * T) * (g * T) + o.scene.mass * g * farthest;
     apple::Model model;
     const auto result = simlab::runTabulated(o.scene, model, o.program, tabulation);
 
     const double digits = finalDigits(o.scene, result.samples);
     const apple::Sample& last = result.samples.back();
-    std::printf("y(%g s) = %.15g m; exact %.15g m: %.1f accurate digits (%s, %d steps)\n", last.time, last.yLocation,
-                apple::exact::yLocation(o.scene, last.time), digits, result.integrator.method.c_str(),
+    const double yScale = apple::exact::yScale(o.scene, last.time);
+    char of[96] = "";
+    if (yScale > 0) std::snprintf(of, sizeof of, " of the %.6g m the fall spans (y is near 0)", yScale);
+    std::printf("y(%g s) = %.15g m; exact %.15g m: %.1f accurate digits%s (%s, %d steps)\n", last.time, last.yLocation,
+                apple::exact::yLocation(o.scene, last.time), digits, of, result.integrator.method.c_str(),
                 result.integrator.stepsTaken);
     if (!o.program.plot.empty()) {
         simlab::drawPlot(apple::runPlot(o.scene, simlab::describeRun(run), result.samples), o.program.plot);

@@ -29,6 +29,10 @@ public:
     double digits(const SimTK::State& state) override {
         return apple::exact::sampleDigits(scene_, apple::readState(model_, state), finalTime_);
     }
+    /// The lab program's figure at the end: y's digits (apple::exact::finalDigits).
+    double finalDigits(const SimTK::State& state) override {
+        return apple::exact::finalDigits(scene_, apple::readState(model_, state));
+    }
     double conserved(const SimTK::State& state) override { return apple::readState(model_, state).mechanicalEnergy; }
 
 private:

@@ -169,8 +169,7 @@ void drawRequestedPlot(const Declaration& d, const Options& o, const std::string
 int runOnce(const Declaration& d, const Parameters& p, const Options& o) {
     const simlab::RunSettings& run = o.program.run;
     simlab::ResultsTable table(headerOf(d), o.program.output, o.program.quiet ? nullptr : &std::cout);
-    std::printf("%s: %s; %s, accuracy %g, dt %g s, 0 <= t <= %g s\n", d.program.c_str(), d.title.c_str(),
-                run.integrator.c_str(), run.accuracy, run.dt, run.finalTime);
+    std::printf("%s: %s; %s\n", d.program.c_str(), d.title.c_str(), simlab::describeProgramRun(run).c_str());
     std::fflush(stdout);
     biosim::ObserveHooks hooks;
     std::function<void()> finishAnimation;
@@ -249,7 +248,7 @@ int runTrade(const Declaration& d, const Parameters& p, const Options& o) {
     simlab::tellUser(d.program + ": --trade: " + std::to_string(integrators) + " integrators, " +
                      std::to_string(o.program.repeats) + " runs each, each stopped past " + capText + " evaluations (" +
                      (o.maxEvaluations > 0 ? "--max-evaluations" : "the reference run's; --max-evaluations sets another") +
-                     "): at most about " + simlab::duration(runs * cap * perEvaluation) + " at the reference's pace");
+                     "): at most about " + simlab::durationText(runs * cap * perEvaluation) + " at the reference's pace");
     char figure[96];
     std::snprintf(figure, sizeof figure, "q and u at t = %g s (against accuracy 1e-13)", o.program.run.finalTime);
     // How far the table has come, before each integrator's first run: what is left, read from the pace so far.
@@ -263,7 +262,7 @@ int runTrade(const Declaration& d, const Parameters& p, const Options& o) {
             if (started > 0 && elapsed > 2) {
                 simlab::tellUser(d.program + ": --trade: " + run.integrator + ", " + std::to_string(started + 1) +
                                  " of " + std::to_string(integrators) + ", about " +
-                                 simlab::duration(elapsed / started * (integrators - started)) + " left");
+                                 simlab::durationText(elapsed / started * (integrators - started)) + " left");
             }
             ++started;
         }

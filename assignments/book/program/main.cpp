@@ -43,6 +43,21 @@ std::string bookProblem(const book::Scene& scene) {
                       "--dimensions nearer a metre", smallest, largest);
         return why;
     }
+    // Simbody forms the kinetic energy and the gyroscopic terms, I w^2: worked out in long double, they must fit a
+    // double with room to spare.
+    long double energy = 0, spin2 = 0;
+    for (int i = 0; i < 3; ++i) {
+        const long double w = scene.w_B0[i];
+        energy += 0.5L * I[i] * w * w;
+        spin2 += w * w;
+    }
+    if (!(energy <= 1e300L)) {
+        std::snprintf(why, sizeof why,
+                      "a spin of %.3Lg rad/s gives the book a kinetic energy of %.3Lg J, past 1e300 J, where the terms "
+                      "Simbody's dynamics form overflow a double: give a smaller --omega (its size only sets the "
+                      "motion's pace)", std::sqrt(spin2), energy);
+        return why;
+    }
     return "";
 }
 
@@ -278,11 +293,9 @@ int runOnce(const Options& o) {
     const SimTK::Vec3 I = book::exact::principalMoments(o.scene);
     char banner[400];
     std::snprintf(banner, sizeof banner,
-                  "Book: %g kg, %g x %g x %g m (I = %.6g, %.6g, %.6g kg m^2), w0 = (%g, %g, %g) rad/s; %s, accuracy %g, "
-                  "dt %g s, 0 <= t <= %g s",
+                  "Book: %g kg, %g x %g x %g m (I = %.6g, %.6g, %.6g kg m^2), w0 = (%g, %g, %g) rad/s; %s",
                   o.scene.mass, o.scene.dimensions[0], o.scene.dimensions[1], o.scene.dimensions[2], I[0], I[1], I[2],
-                  o.scene.w_B0[0], o.scene.w_B0[1], o.scene.w_B0[2], run.integrator.c_str(), run.accuracy, run.dt,
-                  run.finalTime);
+                  o.scene.w_B0[0], o.scene.w_B0[1], o.scene.w_B0[2], simlab::describeProgramRun(run).c_str());
     simlab::Tabulation<Sample, book::Model> tabulation;
     tabulation.columns = kColumns;
     tabulation.row = resultsRow;
@@ -392,6 +405,7 @@ int main(int argc, char** argv) {
     app.add_option("--omega", o.omega, "rad/s: w_B at t = 0 as wx,wy,wz, instead of --spin")
         ->delimiter(',')
         ->expected(3)
+        ->check(simlab::finite())
         ->excludes(spin);
     app.add_option("--dimensions", o.dimensions, "m: the book's height (x), width (y) and thickness (z) as Lx,Ly,Lz")
         ->delimiter(',')
@@ -408,6 +422,7 @@ int main(int argc, char** argv) {
     if (const int status = simlab::checkRunSettings("book", o.program.run); status >= 0) return status;
     book::Scene asked = o.scene;
     if (!o.dimensions.empty()) asked.dimensions = SimTK::Vec3(o.dimensions[0], o.dimensions[1], o.dimensions[2]);
+    if (!o.omega.empty()) asked.w_B0 = SimTK::Vec3(o.omega[0], o.omega[1], o.omega[2]);
     if (const std::string problem = bookProblem(asked); !problem.empty() && o.program.from.empty()) {
         std::cerr << "book: error: " << problem << '\n';
         return 2;

@@ -58,9 +58,21 @@ inline double flightDigits(const Scene& s, const Sample& sample) {
                      simlab::accuracyDigits(sample.yVelocity, yVelocity(s, sample.time), v0)});
 }
 
-/// Digits of a ground hit found at time `t` (s) and range `x` (m), the worse of the two against t* and x*.
+/// m: what the range's digits are relative to. x* itself, unless the launch is so near vertical that x* is under a
+/// tenth of v0 t* (at 90 degrees it is zero): then v0 t*, the distance the ball travels. 0 stands for x* itself.
+inline double rangeScale(const Scene& s) {
+    const double travelled = s.launchSpeed * flightTime(s);
+    return std::abs(range(s)) < 0.1 * travelled ? travelled : 0.0;
+}
+
+/// Digits of a ground hit's time `t` (s) against t*, and of its range `x` (m) against x* (on rangeScale).
+inline double hitTimeDigits(const Scene& s, double t) { return simlab::accuracyDigits(t, flightTime(s)); }
+inline double hitRangeDigits(const Scene& s, double x) { return simlab::accuracyDigits(x, range(s), rangeScale(s)); }
+
+/// Digits of a ground hit found at time `t` (s) and range `x` (m), the worse of the two: the figure the lab program
+/// reports and the study measures.
 inline double hitDigits(const Scene& s, double t, double x) {
-    return std::min(simlab::accuracyDigits(t, flightTime(s)), simlab::accuracyDigits(x, range(s)));
+    return std::min(hitTimeDigits(s, t), hitRangeDigits(s, x));
 }
 
 }  // namespace projectile::exact

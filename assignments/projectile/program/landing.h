@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <functional>
 #include <stdexcept>
+#include <string>
 
 #include "projectile/contract/ProjectileMotion.h"
 #include "projectile/program/exact.h"
@@ -50,22 +51,32 @@ inline void startBelowGround(const Model& model, SimTK::State& state, double dep
 /// days. At fixed steps (--fixed-step, or an integrator without error control: SemiExplicitEuler) dt is the step
 /// the user asked for and is kept, and a flight it cannot resolve is an error (std::invalid_argument). With a
 /// `depth`, the ball starts that far below the ground's level (startBelowGround) and rises through it first.
+/// Why fixed steps of `run` cannot follow a flight of `tStar` s to the ground, or "": steps past a quarter of it
+/// (a step may jump over the whole flight), or over ten million of them.
+inline std::string fixedStepProblem(const simlab::RunSettings& run, double tStar) {
+    if (!simlab::takesFixedSteps(run)) return "";
+    char what[200];
+    if (run.dt > tStar / 4) {
+        std::snprintf(what, sizeof what, "the flight lasts t* = %.3g s, too short for fixed steps of --dt %g s to "
+                      "see it; use --dt %.2g or smaller", tStar, run.dt, tStar / 20);
+        return what;
+    }
+    if ((2 * tStar + std::min(1.0, 100 * std::min(run.dt, tStar / 20))) / run.dt > 1e7) {
+        std::snprintf(what, sizeof what, "the flight lasts t* = %.3g s: at fixed steps of --dt %g s that is %.2g "
+                      "steps, over ten million; use a larger --dt", tStar, run.dt, tStar / run.dt);
+        return what;
+    }
+    return "";
+}
+
 inline Landing simulateLanding(const Scene& scene, simlab::RunSettings run,
                                const std::function<void(const Sample&)>& onSample = {}, double depth = 0) {
     const double tStar = depth > 0 ? exact::flightTimeFrom(scene, depth) : exact::flightTime(scene);
     run.finalTime = 2 * tStar + std::min(1.0, 100 * std::min(run.dt, tStar / 20));
     if (!simlab::takesFixedSteps(run)) {
         run.dt = std::max(std::min(run.dt, tStar / 20), run.finalTime / 1e5);
-    } else if (run.dt > tStar / 4) {
-        char what[200];
-        std::snprintf(what, sizeof what, "the flight lasts t* = %.3g s, too short for fixed steps of --dt %g s to "
-                      "see it; use --dt %.2g or smaller", tStar, run.dt, tStar / 20);
-        throw std::invalid_argument(what);
-    } else if (run.finalTime / run.dt > 1e7) {
-        char what[200];
-        std::snprintf(what, sizeof what, "the flight lasts t* = %.3g s: at fixed steps of --dt %g s that is %.2g "
-                      "steps, over ten million; use a larger --dt", tStar, run.dt, tStar / run.dt);
-        throw std::invalid_argument(what);
+    } else if (const std::string problem = fixedStepProblem(run, tStar); !problem.empty()) {
+        throw std::invalid_argument(problem);
     }
     Model model;
     simlab::RunHooks<Model> hooks;

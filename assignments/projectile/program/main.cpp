@@ -38,15 +38,20 @@ struct HitDigits {
     double rangeScale = 0;  ///< m: what the range's digits are relative to where x* is near zero (0: x* itself)
 };
 
-// Digits of the hit's time and range. The range's are relative to x* itself, unless the launch is so near
-// vertical that x* is under a tenth of v0 t* (at 90 degrees it is zero): then relative to v0 t*, the distance
-// the ball travels, which the report states beside them.
+// Digits of the hit's time and range (projectile::exact::hitDigits's, the study's figure): the range's relative to x*
+// itself, unless the launch is so near vertical that x* is under a tenth of v0 t*: then relative to v0 t*, the
+// distance the ball travels, which the report states beside them.
 HitDigits hitDigits(const Scene& scene, const projectile::GroundHit& hit) {
     if (!hit.found) return {};
-    const double tStar = projectile::exact::flightTime(scene), xStar = projectile::exact::range(scene);
-    const double travelled = scene.launchSpeed * tStar;
-    const double scale = std::abs(xStar) < 0.1 * travelled ? travelled : 0.0;
-    return {simlab::accuracyDigits(hit.time, tStar), simlab::accuracyDigits(hit.x, xStar, scale), scale};
+    return {projectile::exact::hitTimeDigits(scene, hit.time), projectile::exact::hitRangeDigits(scene, hit.x),
+            projectile::exact::rangeScale(scene)};
+}
+
+// A size for a line, worked out in long double (to 1e4932): "1.97e+298", and past a double's range too, "1.15e+600".
+std::string sizeText(long double value) {
+    char text[48];
+    std::snprintf(text, sizeof text, "%.3Lg", value);
+    return text;
 }
 
 // Why the event machinery cannot follow this flight, or "". Simbody tells event times apart to about its
@@ -58,9 +63,12 @@ std::string flightProblem(const Scene& scene) {
     const double tStar = projectile::exact::flightTime(scene);
     char why[240];
     if (!(tStar <= 1e150)) {
+        // In long double, which holds the quotient even where a double overflows.
+        const long double flight = 2.0L * scene.launchSpeed * std::sin(static_cast<long double>(
+                                       projectile::exact::launchAngle(scene))) / scene.gravity;
         std::snprintf(why, sizeof why,
-                      "the flight lasts %.3g s (2 v0 sin(theta)/g), longer than Simbody's event handling can follow "
-                      "(1e+150 s): give a larger --gravity or a smaller --speed", tStar);
+                      "the flight lasts %s s (2 v0 sin(theta)/g), longer than Simbody's event handling can follow "
+                      "(1e+150 s): give a larger --gravity or a smaller --speed", sizeText(flight).c_str());
         return why;
     }
     if (!(tStar >= 1e-9)) {
@@ -79,43 +87,61 @@ std::string flightProblem(const Scene& scene) {
 // 1e153 (measured: a flight of 1.9e151 m runs to 15 digits; a speed of 1e80 m/s, flying 1e159 m, and 1e140 m/s
 // under 1e-5 m/s^2 end in an assertion of Simbody's interpolation).
 std::string extentProblem(const Scene& scene, const simlab::RunSettings& run) {
-    namespace exact = projectile::exact;
-    const double tEnd = std::max(run.finalTime, 2.1 * exact::flightTime(scene) + 1);
-    const double vy0 = exact::yVelocity0(scene);
-    const double extent = std::max({std::abs(exact::x(scene, tEnd)), vy0 * vy0 / (2 * scene.gravity),
-                                    std::abs(exact::y(scene, tEnd)), scene.launchSpeed, scene.gravity * tEnd,
-                                    std::abs(exact::yVelocity(scene, tEnd))});
-    if (extent <= 1e153) return "";
+    // In long double (to 1e4932), so that the check itself cannot overflow where the values it checks would.
+    using Real = long double;
+    const Real theta = projectile::exact::launchAngle(scene), v0 = scene.launchSpeed, g = scene.gravity;
+    const Real vx = v0 * std::cos(theta), vy0 = v0 * std::sin(theta);
+    const Real tEnd = std::max<Real>(run.finalTime, 2.1L * 2 * vy0 / g + 1);
+    const Real extent = std::max({std::abs(vx * tEnd), vy0 * vy0 / (2 * g), std::abs(vy0 * tEnd - g * tEnd * tEnd / 2),
+                                  v0, g * tEnd, std::abs(vy0 - g * tEnd)});
+    if (extent <= 1e153L) return "";
     char why[300];
     std::snprintf(why, sizeof why,
-                  "the ball would reach %.3g (m or m/s) by t = %.3g s, past 1e+153, whose square Simbody's "
+                  "the ball would reach %s (m or m/s) by t = %s s, past 1e+153, whose square Simbody's "
                   "integrators form and a double cannot hold: give a smaller --speed or --final-time, or a larger "
-                  "--gravity", extent, tEnd);
+                  "--gravity", sizeText(extent).c_str(), sizeText(tEnd).c_str());
     return why;
 }
 
-projectile::GroundHit reportLanding(const Options& o) {
+// The ground hit: the one the run above recorded where its event handler ended it there, so that the table and the
+// hit are one run (with its steps, as the study measures a setting); else, where the table ends before the ball
+// lands, a run on to the ground (simulateLanding).
+projectile::GroundHit reportLanding(const Options& o, const projectile::GroundHit& tableHit, double tableEnd,
+                                    const simlab::IntegratorStats& tableStats) {
     const double tStar = projectile::exact::flightTime(o.scene), xStar = projectile::exact::range(o.scene);
     projectile::Landing landing;
-    simlab::SolverChatter chatter(o.program.run.integrator == "CPodes");
-    try {
-        simlab::Progress progress("projectile", tStar, "the run to the ground hit");
-        landing = projectile::simulateLanding(o.scene, o.program.run, [&](const Sample& s) { progress.at(s.time); });
-    } catch (const std::invalid_argument& e) {
-        std::printf("No ground hit: %s\n", e.what());
-        return {};
-    }
-    if (const std::string said = chatter.finish(); !said.empty()) simlab::tellUser("projectile: " + said);
-    if (!landing.hit.found) {
-        std::printf("No ground hit: the simulation ran to t = %g s and nothing recorded the ball coming back to "
-                    "y = 0 (exact: t* = %.10g s). Does buildModel add an event handler that records it?\n",
-                    landing.endTime, tStar);
-        return {};
+    std::string which = "the run above";
+    if (tableHit.found) {
+        landing = {tableHit, tableEnd, tableStats};
+    } else {
+        // The table ends before the ball lands, or its run went past the landing without its event: a flight shorter
+        // than its first sample interval leaves the launch, at y = 0, for below the ground in one step, where the
+        // event never sees the ball above it. A run on to the ground samples the flight finely enough to see it.
+        const bool passed = tableEnd > tStar + o.scene.groundHitWindow;
+        which = passed ? "a run on to the ground: the run above passed the landing without its event"
+                       : "a run on to the ground, past the table's end";
+        simlab::SolverChatter chatter(o.program.run.integrator == "CPodes");
+        try {
+            simlab::Progress progress("projectile", tStar, "the run to the ground hit");
+            landing = projectile::simulateLanding(o.scene, o.program.run,
+                                                  [&](const Sample& s) { progress.at(s.time); });
+        } catch (const std::invalid_argument& e) {
+            std::printf("No ground hit: the table %s, and a run on to the ground cannot see the landing: %s\n",
+                        passed ? "went past the landing without its event" : "ends before the ball lands", e.what());
+            return {};
+        }
+        if (const std::string said = chatter.finish(); !said.empty()) simlab::tellUser("projectile: " + said);
+        if (!landing.hit.found) {
+            std::printf("No ground hit: a run on to the ground went to t = %g s and nothing recorded the ball coming "
+                        "back to y = 0 (exact: t* = %.10g s). Does buildModel add an event handler that records it?\n",
+                        landing.endTime, tStar);
+            return {};
+        }
     }
     const HitDigits digits = hitDigits(o.scene, landing.hit);
-    std::printf("Ground hit (event window %g s): t = %.12g s, x = %.12g m (%s, %d steps)\n",
+    std::printf("Ground hit (event window %g s): t = %.12g s, x = %.12g m (%s, %d steps: %s)\n",
                 o.scene.groundHitWindow, landing.hit.time, landing.hit.x, landing.integrator.method.c_str(),
-                landing.integrator.stepsTaken);
+                landing.integrator.stepsTaken, which.c_str());
     std::printf("  exact t* = 2 v0 sin(theta)/g = %.12g s: %.1f accurate digits\n", tStar, digits.time);
     // Conditioning: x* = v0^2 sin(2 theta) / g magnifies a relative change of theta by |2 theta cot(2 theta)|, so near
     // 90 degrees the angle's own rounding (half a unit in its last place) leaves x* fewer digits than a double holds,
@@ -168,10 +194,9 @@ int runOnce(const Options& o) {
     const simlab::RunSettings& run = o.program.run;
     char banner[320];
     std::snprintf(banner, sizeof banner,
-                  "Projectile: a %g kg baseball at %g m/s, %.12g degrees, g = %g m/s^2; %s, accuracy %g, dt %g s, "
-                  "0 <= t <= %g s",
+                  "Projectile: a %g kg baseball at %g m/s, %.12g degrees, g = %g m/s^2; %s",
                   o.scene.mass, o.scene.launchSpeed, o.scene.launchAngleDegrees, o.scene.gravity,
-                  run.integrator.c_str(), run.accuracy, run.dt, run.finalTime);
+                  simlab::describeProgramRun(run, /*events=*/true).c_str());
     simlab::Tabulation<Sample, projectile::Model> tabulation;
     tabulation.columns = kColumns;
     tabulation.row = [&](const Sample& s) { return resultsRow(o.scene, s); };
@@ -192,6 +217,7 @@ int runOnce(const Options& o) {
                                                  Vec3(span / 80, span / 80, 0))});
     };
     tabulation.program = "projectile";
+    tabulation.expectedEnd = projectile::exact::flightTime(o.scene);  // the ground-hit event ends the run there
     tabulation.conserved = "mechanicalEnergy";
     tabulation.conservedScale = [&](const projectile::Sample& s) {
         return 0.5 * o.scene.mass * (s.xVelocity * s.xVelocity + s.yVelocity * s.yVelocity) +
@@ -202,9 +228,10 @@ int runOnce(const Options& o) {
 
     const Sample& last = result.samples.back();
     if (last.time < run.finalTime * (1 - 1e-12)) {
-        std::printf("The table ends at t = %.12g s, before the final time %g s: the simulation ended there (the "
-                    "ground-hit event ends it when the ball lands).\n",
-                    last.time, run.finalTime);
+        std::printf("The table ends at t = %.12g s, before the final time %g s: the simulation ended there (%s).\n",
+                    last.time, run.finalTime,
+                    model.groundHit.found ? "the ground-hit event ended it as the ball landed"
+                                          : "and nothing recorded a ground hit");
     }
     // Positions are measured against the distance the ball has flown, v0 t, so that a coordinate whose exact
     // value is (near) zero, y at the ground or x of a vertical launch, still gets its digits.
@@ -214,9 +241,10 @@ int runOnce(const Options& o) {
                 yExact, simlab::accuracyDigits(last.y, yExact, scale), scale);
     std::printf("x(%g s) = %.15g m; exact %.15g m: %.1f accurate digits (of v0 t = %.6g m)\n", last.time, last.x,
                 xExact, simlab::accuracyDigits(last.x, xExact, scale), scale);
-    const projectile::GroundHit hit = reportLanding(o);
+    const projectile::GroundHit hit = reportLanding(o, model.groundHit, last.time, result.integrator);
     if (!o.program.plot.empty()) {
-        simlab::drawPlot(projectile::runPlot(o.scene, simlab::describeRun(run), result.samples, hit), o.program.plot);
+        simlab::drawPlot(projectile::runPlot(o.scene, simlab::describeRun(run, /*events=*/true), result.samples, hit),
+                         o.program.plot);
         std::printf("Plot drawn in %s\n", o.program.plot.c_str());
     }
     return 0;

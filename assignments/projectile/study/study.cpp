@@ -56,6 +56,7 @@ simlab::study::Subject flightOf(const projectile::Scene& scene, double finalTime
     flight.finalFigure = "the ground hit's time and range against t* and x*";
     flight.conservedName = "mechanical energy (relative to the launch's kinetic energy)";
     flight.conservedScale = projectile::exact::mechanicalEnergy(scene);
+    flight.events = true;  // the ground hit: localized by the accuracy at any step
     flight.reference = "the exact parabola and its hit, t* = 2 v0 sin(theta) / g, x* = v0 cos(theta) t*";
     flight.referenceDigits = [] { return simlab::kMaxDigits; };
     flight.make = [scene] { return std::make_unique<Flight>(scene, false); };

@@ -44,6 +44,11 @@ bool hasErrorControl(const std::string& name) {
     return false;
 }
 
+bool fixedStepUsesAccuracy(const std::string& name) {
+    requireIntegratorName(name);
+    return name == "Verlet";
+}
+
 std::unique_ptr<SimTK::Integrator> integratorNamed(const std::string& name, const SimTK::System& system,
                                                    double fixedStep) {
     using namespace SimTK;

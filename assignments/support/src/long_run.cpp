@@ -39,9 +39,10 @@ struct Setting {
     RunSettings tighter;  ///< a tenth of the accuracy, or half the fixed step
 };
 
-/// A state the run stepped to.
+/// A state the run stepped to: the first of its own step ends at or after a sample time.
 struct Sample {
-    double time = 0;      ///< s
+    double asked = 0;     ///< s, the sample time (kPerDecade a decade): what the table reads it for
+    double time = 0;      ///< s, the step end whose state was read
     double drift = 0;     ///< |E(t) - E(0)| / the subject's scale
     double largest = 0;   ///< the largest drift at the samples up to this one
     double digits = 0;    ///< of the trajectory, against the reference or the tighter run
@@ -71,11 +72,12 @@ RunSettings fixedStepOf(const std::string& integrator, double step) {
 }
 
 /// Merson, error-controlled (each step's error kept under the accuracy, its sign left to chance), at a loose and a
-/// tight accuracy; Verlet, second order and time-reversible, at a fixed step.
+/// tight accuracy; Verlet, second order and time-reversible, at a fixed step, its implicit velocity update solved to
+/// the view's accuracy for it (simlab::fixedStepUsesAccuracy), its tighter run at the same.
 std::vector<Setting> settingsOf(const LongRunView& view) {
-    return {{accuracyOf(1e-6), accuracyOf(1e-7)},
-            {accuracyOf(1e-9), accuracyOf(1e-10)},
-            {fixedStepOf("Verlet", view.fixedStep), fixedStepOf("Verlet", view.fixedStep / 2)}};
+    RunSettings verlet = fixedStepOf("Verlet", view.fixedStep), finer = fixedStepOf("Verlet", view.fixedStep / 2);
+    verlet.accuracy = finer.accuracy = view.fixedStepAccuracy;
+    return {{accuracyOf(1e-6), accuracyOf(1e-7)}, {accuracyOf(1e-9), accuracyOf(1e-10)}, {verlet, finer}};
 }
 
 /// kPerDecade times per decade from kFirstSample up to `finalTime`, which ends the list; for a fixed-step run each
@@ -101,24 +103,39 @@ bool finite(const SimTK::State& state) {
     return true;
 }
 
-/// A run of `run` on a new instance of `subject`, stepped to each time asked for without interpolation.
+/// A run of `run` on a new instance of `subject`. With `ownSteps`, each state it gives is the one at the first of the
+/// run's own step ends at or after the time asked for, so that no sample cuts a step short (a fixed step stays fixed,
+/// bar the last, which lands on the final time); without, the run is stepped to the time exactly, its step there cut
+/// short (interpolation off): what the tighter run, the reference for self-convergence, does at the run's sample times.
 class Stepped {
 public:
-    Stepped(const Subject& subject, const RunSettings& run)
+    Stepped(const Subject& subject, const RunSettings& run, bool ownSteps)
         : instance_(subject.make()),
           integrator_(integratorFor(run, instance_->system(), subject.finalTime)),
-          stepper_(instance_->system(), *integrator_) {
+          stepper_(instance_->system(), *integrator_),
+          finalTime_(subject.finalTime),
+          fixedStep_(takesFixedSteps(run) ? run.dt : 0.0),
+          ownSteps_(ownSteps) {
         integrator_->setAllowInterpolation(false);
+        if (ownSteps_) {
+            integrator_->setReturnEveryInternalStep(true);
+            stepper_.setReportAllSignificantStates(true);
+        }
         stepper_.initialize(instance_->initial());
     }
-    /// Steps to `t`; throws std::runtime_error, in one line, where the run cannot get there.
+    /// Steps to `t` (see above); throws std::runtime_error, in one line, where the run cannot get there.
     const SimTK::State& to(double t) {
-        while (stepper_.getState().getTime() < t && !integrator_->isSimulationOver()) stepper_.stepTo(t);
+        // A step end within a trillionth of `t` is at `t`: n fixed steps of h add up to n h but for rounding.
+        const double by = t * (1 - 1e-12);
+        while (stepper_.getState().getTime() < by && !integrator_->isSimulationOver()) {
+            // Its own steps: at a fixed step each ends at k h, as a lab program's do (nextStepEnd).
+            stepper_.stepTo(ownSteps_ ? nextStepEnd(fixedStep_, finalTime_, stepper_.getState().getTime()) : t);
+        }
         const SimTK::State& state = stepper_.getState();
         char where[64];
         std::snprintf(where, sizeof where, " at t = %.4g s", state.getTime());
         if (!finite(state)) throw std::runtime_error(std::string("the state is not finite") + where);
-        if (state.getTime() < t * (1 - 1e-12)) {
+        if (state.getTime() < by) {
             throw std::runtime_error(std::string("the integrator stopped") + where + " (" +
                                      SimTK::Integrator::getTerminationReasonString(
                                          integrator_->getTerminationReason()) +
@@ -133,6 +150,9 @@ private:
     std::unique_ptr<Instance> instance_;
     std::unique_ptr<SimTK::Integrator> integrator_;
     SimTK::TimeStepper stepper_;
+    double finalTime_;
+    double fixedStep_;  // s, or 0 for a run with error control
+    bool ownSteps_;
 };
 
 std::string againstOf(const LongRunView& view, const Setting& s) {
@@ -148,26 +168,36 @@ SettingRun runSetting(const std::string& lab, const Subject& subject, const Long
     Clock::time_point told = began;
     double reached = 0;
     try {
-        Stepped run(subject, s.run);
+        Stepped run(subject, s.run, true);
+        // The tighter run's fixed steps end where the run's do (half the step), so it too is read at its own step
+        // ends; an error-controlled one is stepped to the run's step ends exactly.
         std::unique_ptr<Stepped> tighter;
-        if (view.trajectory == TrajectoryCheck::tighterRun) tighter = std::make_unique<Stepped>(subject, s.tighter);
+        if (view.trajectory == TrajectoryCheck::tighterRun) {
+            tighter = std::make_unique<Stepped>(subject, s.tighter, takesFixedSteps(s.tighter));
+        }
         const double start = run.instance().conserved(run.to(0));
         for (const double t : sampleTimes(subject.finalTime, s.run)) {
             const SimTK::State& state = run.to(t);
             reached = state.getTime();
             Sample sample;
+            sample.asked = t;
             sample.time = reached;
-            sample.drift = std::abs(run.instance().conserved(state) - start) / subject.conservedScale;
-            if (!std::isfinite(sample.drift)) throw std::runtime_error("the energy is not finite");
+            const double change = std::abs(run.instance().conserved(state) - start);
+            if (!std::isfinite(change)) throw std::runtime_error("the energy is not finite");
+            sample.drift = relativeDrift(change, subject.conservedScale);
             sample.largest = std::max(sample.drift, out.samples.empty() ? 0.0 : out.samples.back().largest);
-            sample.digits = tighter ? run.instance().agreementDigits(state, tighter->to(t))
+            sample.digits = tighter ? run.instance().agreementDigits(state, tighter->to(reached))
                                     : run.instance().digits(state);
             out.samples.push_back(sample);
             out.steps = run.steps();
             if (Clock::now() - told > std::chrono::duration<double>(kProgressSeconds)) {
+                // The time left at the pace so far: a setting's work (its steps, its tighter run's or the reference's)
+                // grows in proportion to the time simulated.
                 told = Clock::now();
-                std::fprintf(stderr, "  %s: %s: t = %.4g s of %g s\n", lab.c_str(), describeRun(s.run).c_str(),
-                             reached, subject.finalTime);
+                const double elapsed = std::chrono::duration<double>(told - began).count();
+                std::fprintf(stderr, "  %s: %s: t = %.4g s of %g s, about %s left\n", lab.c_str(),
+                             describeRun(s.run).c_str(), reached, subject.finalTime,
+                             durationText(elapsed * (subject.finalTime - reached) / reached).c_str());
             }
         }
     } catch (const std::exception& e) {
@@ -181,13 +211,12 @@ SettingRun runSetting(const std::string& lab, const Subject& subject, const Long
     return out;
 }
 
-/// The last sample at or before `t` (s), or nullptr.
+/// The sample taken for time `t` (s), or nullptr where the run did not get there.
 const Sample* sampleAt(const SettingRun& r, double t) {
-    const Sample* found = nullptr;
     for (const Sample& s : r.samples) {
-        if (s.time <= t * (1 + 1e-9)) found = &s;
+        if (std::abs(s.asked - t) <= 1e-9 * t) return &s;
     }
-    return found;
+    return nullptr;
 }
 
 /// The first sample at which the trajectory keeps less than 1 digit, or nullptr.
@@ -219,35 +248,36 @@ void printTable(const std::string& lab, const Subject& subject, const LongRunVie
         std::printf("  trajectory: %s, against the same method run tighter (the column 'against')\n",
                     subject.figure.c_str());
     }
-    std::printf("  %-38s", "setting");
+    std::printf("  %-46s", "setting");
     for (const double t : times) {
         char head[32];
         std::snprintf(head, sizeof head, "drift %g s", t);
         std::printf(" %11s", head);
     }
-    std::printf("  %-22s %-21s %8s\n", "trajectory < 1 digit", "against", "run (s)");
+    std::printf("  %-22s %-37s %8s\n", "trajectory < 1 digit", "against", "run (s)");
     std::vector<const SettingRun*> failed;
     for (const SettingRun& r : runs) {
-        std::printf("  %-38s", describeRun(r.setting.run).c_str());
+        std::printf("  %-46s", describeRun(r.setting.run).c_str());
         for (const double t : times) {
             const Sample* s = sampleAt(r, t);
-            const bool reached = s && s->time >= t * (1 - 1e-9);
-            if (reached) std::printf(" %11.1e", s->largest);
+            if (s && std::isfinite(s->largest)) std::printf(" %11.1e", s->largest);
+            else if (s) std::printf(" %11s", "no scale");
             else std::printf(" %11s", "not reached");
         }
         char lost[64];
         if (const Sample* s = trajectoryLost(r)) {
-            std::snprintf(lost, sizeof lost, "by %.3g s", s->time);
+            std::snprintf(lost, sizeof lost, "by %.3g s", s->asked);
         } else if (!r.samples.empty()) {
-            std::snprintf(lost, sizeof lost, "kept (%.1f at %g s)", r.samples.back().digits, r.samples.back().time);
+            std::snprintf(lost, sizeof lost, "kept (%.1f at %g s)", r.samples.back().digits, r.samples.back().asked);
         } else {
             std::snprintf(lost, sizeof lost, "no sample");
         }
-        std::printf("  %-22s %-21s %8.1f\n", lost, againstOf(view, r.setting).c_str(), r.seconds);
+        std::printf("  %-22s %-37s %8.1f\n", lost, againstOf(view, r.setting).c_str(), r.seconds);
         if (!r.failure.empty()) failed.push_back(&r);
     }
-    std::printf("  'by T': the first sample time (%d a decade from %g s) with under 1 digit left.\n", kPerDecade,
-                kFirstSample);
+    std::printf("  'by T': the first sample time (%d a decade from %g s) with under 1 digit left. A sample is the "
+                "state at the run's first own step end at or after its time: sampling cuts no step.\n",
+                kPerDecade, kFirstSample);
     for (const SettingRun* r : failed) {
         std::printf("  %s %s\n", describeRun(r->setting.run).c_str(), r->failure.c_str());
     }
@@ -260,11 +290,13 @@ void writeCsv(const fs::path& path, const std::string& lab, const LongRunView& v
     const fs::path partial = path.string() + ".partial";
     {
         std::ofstream out(partial);
-        out << "lab,integrator,stepping,trajectory_against,t_s,energy_drift,energy_drift_largest,trajectory_digits\n";
-        char line[128];
+        out << "lab,integrator,stepping,trajectory_against,t_s,energy_drift,energy_drift_largest,trajectory_digits,"
+               "step_end_s\n";
+        char line[160];
         for (const SettingRun& r : runs) {
             for (const Sample& s : r.samples) {
-                std::snprintf(line, sizeof line, "%.10g,%.4g,%.4g,%.3f\n", s.time, s.drift, s.largest, s.digits);
+                std::snprintf(line, sizeof line, "%.10g,%.4g,%.4g,%.3f,%.10g\n", s.asked, s.drift, s.largest, s.digits,
+                              s.time);
                 out << lab << ',' << r.setting.run.integrator << ',' << describeStepping(r.setting.run) << ','
                     << againstOf(view, r.setting) << ',' << line;
             }

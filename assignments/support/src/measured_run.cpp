@@ -2,6 +2,7 @@
 
 #include <time.h>
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -43,25 +44,37 @@ std::unique_ptr<SimTK::Integrator> integratorFor(const RunSettings& choice, cons
           << choice.dt;
         throw std::invalid_argument(s.str());
     }
-    if (!fixed && !(choice.accuracy > 0 && choice.accuracy < 1)) {
+    // The accuracy, as a lab program sets it: a fixed step reads it too (Verlet's implicit velocity update is solved
+    // to it, fixedStepUsesAccuracy; events are localized and constraints projected by it). Where only rounding
+    // would show it (another method's fixed step), one outside (0, 1) is left at Simbody's default.
+    const bool valid = choice.accuracy > 0 && choice.accuracy < 1;
+    if (!valid && (!fixed || fixedStepUsesAccuracy(choice.integrator))) {
         std::ostringstream s;
         s << "accuracy must be between 0 and 1, got " << choice.accuracy;
         throw std::invalid_argument(s.str());
     }
     std::unique_ptr<SimTK::Integrator> integrator =
         integratorNamed(choice.integrator, system, fixed ? choice.dt : finalTime / 1000);
-    if (fixed) {
-        integrator->setFixedStepSize(choice.dt);
-    } else {
-        integrator->setAccuracy(choice.accuracy);
-    }
+    if (valid) integrator->setAccuracy(choice.accuracy);
+    if (fixed) integrator->setFixedStepSize(choice.dt);
     integrator->setFinalTime(finalTime);
     return integrator;
 }
 
+double nextStepEnd(double fixedStep, double finalTime, double time) {
+    if (!(fixedStep > 0)) return finalTime;
+    RunSettings grid;
+    grid.dt = fixedStep;
+    grid.finalTime = finalTime;
+    // The first k * fixedStep past `time` (by more than rounding), counted as the lab program counts its samples.
+    int k = static_cast<int>(std::floor(time / fixedStep));
+    while (k < grid.sampleCount() && grid.sampleTime(k) <= time * (1 + 1e-15) + 1e-300) ++k;
+    return grid.sampleTime(k);
+}
+
 MeasuredRun measureRun(const SimTK::System& system, SimTK::Integrator& integrator, const SimTK::State& initial,
                        double finalTime, const MeasureLimits& limits,
-                       const std::function<void(const SimTK::State&, bool)>& check) {
+                       const std::function<void(const SimTK::State&, bool)>& check, double fixedStep) {
     MeasuredRun out;
     integrator.setReturnEveryInternalStep(true);
     SimTK::TimeStepper stepper(system, integrator);
@@ -73,7 +86,7 @@ MeasuredRun measureRun(const SimTK::System& system, SimTK::Integrator& integrato
     const double began = cpuSeconds();
     while (true) {
         const double before = stepper.getState().getTime();
-        stepper.stepTo(finalTime);
+        stepper.stepTo(nextStepEnd(fixedStep, finalTime, before));
         const SimTK::State& state = stepper.getState();
         out.reached = state.getTime();
         if (!finite(state)) {

@@ -74,6 +74,15 @@ std::string shortNumber(double value) {
     return text;
 }
 
+std::string durationText(double seconds) {
+    char text[64];
+    if (seconds < 10) std::snprintf(text, sizeof text, "%.1f s", seconds);
+    else if (seconds < 120) std::snprintf(text, sizeof text, "%.0f s", seconds);
+    else if (seconds < 7200) std::snprintf(text, sizeof text, "%.0f min", seconds / 60);
+    else std::snprintf(text, sizeof text, "%.1f h", seconds / 3600);
+    return text;
+}
+
 std::string markupEscaped(const std::string& text) {
     std::string out;
     out.reserve(text.size());

@@ -53,17 +53,24 @@ void addProgramOptions(CLI::App& app, ProgramOptions& options) {
             }
         })
         ->capture_default_str();
-    app.add_option("--accuracy", run.accuracy, "relative accuracy of the error-controlled integrators")
+    app.add_option("--accuracy", run.accuracy,
+                   "relative accuracy each step of an error-controlled integrator keeps; at a fixed step Verlet "
+                   "still solves its implicit velocity update to it (to min(1e-4, accuracy / 10)), and events are "
+                   "timed by it")
         ->check(between(1e-15, 0.5))
         ->capture_default_str();
-    app.add_option("--dt", run.dt, "seconds between samples; also the step of fixed-step integration")
+    app.add_option("--dt", run.dt,
+                   "seconds between samples, each of which ends an integrator's step (so a smaller --dt shortens an "
+                   "error-controlled integrator's steps; --dt equal to --final-time leaves them its own); also the "
+                   "step of fixed-step integration")
         ->check(positive())
         ->capture_default_str();
     app.add_option("--final-time", run.finalTime, "seconds to simulate")
         ->check(positive())
         ->capture_default_str();
     app.add_flag("--fixed-step", run.fixedStep,
-                 "step at exactly --dt without error control (SemiExplicitEuler always does)");
+                 "step at exactly --dt without error control (SemiExplicitEuler always does); --accuracy still counts "
+                 "for Verlet's implicit step and for the times of events");
     app.add_option("--output,-o", options.output, "results file (tab-separated columns)")->capture_default_str();
     app.add_flag("--quiet,-q", options.quiet, "do not print the table on the screen");
     app.add_flag("--animate", options.animate, "show the motion in Simbody's visualizer (needs a display)");
@@ -297,15 +304,6 @@ Progress::~Progress() {
     watch_->thread.join();
 }
 
-std::string duration(double seconds) {
-    char text[64];
-    if (seconds < 10) std::snprintf(text, sizeof text, "%.1f s", seconds);
-    else if (seconds < 120) std::snprintf(text, sizeof text, "%.0f s", seconds);
-    else if (seconds < 7200) std::snprintf(text, sizeof text, "%.0f min", seconds / 60);
-    else std::snprintf(text, sizeof text, "%.1f h", seconds / 3600);
-    return text;
-}
-
 void Progress::at(double t) {
     if (program_.empty() || !(t > 0) || !(finalTime_ > 0)) return;
     if (watch_ && !decided_) {
@@ -317,15 +315,21 @@ void Progress::at(double t) {
     }
     const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
     const double elapsed = now - start_;
+    if (firstWall_ < 0) {
+        firstWall_ = now;
+        firstTime_ = t;
+    }
     if (!decided_) {
-        if (elapsed < 0.2) return;  // the pilot: the pace over the first ~0.2 s of wall time
+        // The pilot: the pace over ~0.2 s of wall time from the first sample, which the time before it (building
+        // the model, starting the run) would only blur.
+        if (now - firstWall_ < 0.2 || !(t > firstTime_)) return;
         decided_ = true;
-        const double estimate = elapsed * finalTime_ / t;
+        const double estimate = elapsed + (now - firstWall_) * (finalTime_ - t) / (t - firstTime_);
         long_ = estimate > longRun_;
         if (long_) {
             std::ostringstream line;
-            line << program_ << ": " << what_ << " will take about " << duration(estimate) << " (t = " << t << " of "
-                 << finalTime_ << " s simulated in " << duration(elapsed) << ")";
+            line << program_ << ": " << what_ << " will take about " << durationText(estimate) << " (t = " << t
+                 << " of " << finalTime_ << " s simulated in " << durationText(elapsed) << ")";
             tellUser(line.str());
         }
     }
@@ -335,7 +339,7 @@ void Progress::at(double t) {
         tenths_ = tenths;
         std::ostringstream line;
         line << program_ << ": t = " << t << " of " << finalTime_ << " s (" << 10 * tenths << " %), about "
-             << duration(elapsed * (finalTime_ - t) / t) << " left";
+             << durationText(elapsed * (finalTime_ - t) / t) << " left";
         tellUser(line.str());
     }
 }
@@ -363,7 +367,8 @@ void printTrade(std::ostream& out, const RunSettings& base, const std::string& f
                 const std::chrono::duration<double, std::milli> took = std::chrono::steady_clock::now() - start;
                 ms.push_back(took.count());
                 if (r == 0 && !program.empty() && took.count() > 5000 && repeats > 1) {
-                    tellUser(program + ": " + name + " took " + duration(took.count() / 1000) + " a run; its row needs " +
+                    tellUser(program + ": " + name + " took " + durationText(took.count() / 1000) +
+                             " a run; its row needs " +
                              std::to_string(repeats - 1) + " more (--repeats 1 for one)");
                 }
             }

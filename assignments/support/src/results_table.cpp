@@ -13,7 +13,6 @@ namespace simlab {
 
 namespace {
 constexpr int kScreenWidth = 16;  // characters per column on the screen
-constexpr double kRounding = 1e-12;  // of a sum's terms: what rounding can leave of terms that cancel
 }
 
 ResultsTable::ResultsTable(std::vector<std::string> columns, const std::string& path, std::ostream* screen)
@@ -30,7 +29,7 @@ ResultsTable::~ResultsTable() {
     if (file_) std::fclose(file_);
 }
 
-void ResultsTable::add(const std::vector<double>& values, double scale) {
+void ResultsTable::add(const std::vector<double>& values) {
     if (values.size() != columns_.size()) {
         throw std::logic_error("results row has " + std::to_string(values.size()) + " values for " +
                                std::to_string(columns_.size()) + " columns");
@@ -47,14 +46,16 @@ void ResultsTable::add(const std::vector<double>& values, double scale) {
     if (watched_ >= 0) {
         const double v = values[static_cast<std::size_t>(watched_)];
         if (rows_ == 0) watchedFirst_ = v;
-        // A quantity that starts at zero has no growth to measure (as before); one that starts tiny beside the
-        // terms it sums is judged against their rounding, which can exceed it.
-        const double bound = std::max(std::abs(watchedFirst_), kRounding * std::abs(scale));
-        if (watchedFirst_ != 0 && std::abs(v) > watchedFactor_ * bound) {
-            char what[240];
-            std::snprintf(what, sizeof what, "the run broke at t = %g s: %s grew from %.6g to %.6g, more than %g times",
+        // Against the scene's own size for the quantity, or its first value where that is larger: never a size
+        // that can be zero while the scene has one.
+        const double scale = std::max(std::abs(watchedFirst_), watchedScale_);
+        if (scale > 0 && std::abs(v - watchedFirst_) > watchedFactor_ * scale) {
+            char what[280];
+            std::snprintf(what, sizeof what,
+                          "the run broke at t = %g s: %s moved from %.6g to %.6g, more than %g times its scale in "
+                          "this scene (%.3g)",
                           values[0], columns_[static_cast<std::size_t>(watched_)].c_str(), watchedFirst_, v,
-                          watchedFactor_);
+                          watchedFactor_, scale);
             note(what);
             throw std::runtime_error(std::string(what) + " (the results file keeps the rows before it)");
         }
@@ -80,11 +81,12 @@ void ResultsTable::add(const std::vector<double>& values, double scale) {
     ++rows_;
 }
 
-void ResultsTable::watchGrowth(const std::string& column, double factor) {
+void ResultsTable::watchGrowth(const std::string& column, double factor, double scale) {
     const auto found = std::find(columns_.begin(), columns_.end(), column);
     if (found == columns_.end()) throw std::logic_error("results table has no column '" + column + "'");
     watched_ = static_cast<int>(found - columns_.begin());
     watchedFactor_ = factor;
+    watchedScale_ = std::isfinite(scale) ? std::abs(scale) : 0.0;
 }
 
 void ResultsTable::note(const std::string& text) {

@@ -20,9 +20,11 @@ double RunSettings::sampleTime(int k) const {
 
 bool takesFixedSteps(const RunSettings& run) { return run.fixedStep || !hasErrorControl(run.integrator); }
 
-std::string describeStepping(const RunSettings& run) {
-    char text[64];
-    if (takesFixedSteps(run)) {
+std::string describeStepping(const RunSettings& run, bool events) {
+    char text[80];
+    if (takesFixedSteps(run) && (events || fixedStepUsesAccuracy(run.integrator))) {
+        std::snprintf(text, sizeof text, "fixed step %g s at accuracy %g", run.dt, run.accuracy);
+    } else if (takesFixedSteps(run)) {
         std::snprintf(text, sizeof text, "fixed step %g s", run.dt);
     } else {
         std::snprintf(text, sizeof text, "accuracy %g", run.accuracy);
@@ -30,7 +32,29 @@ std::string describeStepping(const RunSettings& run) {
     return text;
 }
 
-std::string describeRun(const RunSettings& run) { return run.integrator + ", " + describeStepping(run); }
+std::string describeRun(const RunSettings& run, bool events) {
+    return run.integrator + ", " + describeStepping(run, events);
+}
+
+double shortLastStep(const RunSettings& run) {
+    if (!takesFixedSteps(run)) return 0;
+    const int steps = run.sampleCount();
+    const double last = run.finalTime - run.sampleTime(steps - 1);
+    // A last step within a billionth of a step of a whole one is a whole one (sampleCount's own tolerance).
+    return last < run.dt * (1 - 1e-9) ? last : 0;
+}
+
+std::string describeProgramRun(const RunSettings& run, bool events) {
+    char text[160];
+    if (!takesFixedSteps(run)) {
+        std::snprintf(text, sizeof text, ", dt %g s, 0 <= t <= %g s", run.dt, run.finalTime);
+    } else if (const double last = shortLastStep(run); last > 0) {
+        std::snprintf(text, sizeof text, " (the last %.6g s), 0 <= t <= %g s", last, run.finalTime);
+    } else {
+        std::snprintf(text, sizeof text, ", 0 <= t <= %g s", run.finalTime);
+    }
+    return describeRun(run, events) + text;
+}
 
 void validate(const RunSettings& run) {
     auto fail = [](const std::string& what) { throw std::invalid_argument(what); };

@@ -51,9 +51,15 @@ struct Settings {
 struct Point {
     std::string integrator;
     std::string mode;  ///< "accuracy" or "fixed step"
-    double accuracy = 0;
+    double accuracy = 0;  ///< for a fixed step too (kFixedStepAccuracy)
     double step = 0;   ///< s, for "fixed step"
+    bool namesAccuracy = true;  ///< a fixed step whose figures read the accuracy (Verlet's; any, with events)
 };
+
+/// The accuracy of the fixed-step sweeps: Simbody's default, which the study has always run them at, so that the
+/// trade questions' fronts stay what they were measured to be. Verlet solves its implicit velocity update to it
+/// (simlab::fixedStepUsesAccuracy), and events are localized by it at any step: where it counts, the tables name it.
+constexpr double kFixedStepAccuracy = 1e-3;
 
 /// What a point measured. A figure the point did not measure is NaN, an empty cell in trade.csv: a point not run
 /// reached no time, and a run that did not reach the final time has no final digits.
@@ -101,11 +107,8 @@ simlab::RunSettings choiceOf(const Point& p) {
     simlab::RunSettings choice;
     choice.integrator = p.integrator;
     choice.fixedStep = p.mode == "fixed step";
-    if (choice.fixedStep) {
-        choice.dt = p.step;
-    } else {
-        choice.accuracy = p.accuracy;
-    }
+    if (choice.fixedStep) choice.dt = p.step;
+    if (p.accuracy > 0) choice.accuracy = p.accuracy;
     return choice;
 }
 
@@ -120,16 +123,18 @@ void measure(const Subject& subject, const Point& point, const Settings& setting
     simlab::MeasureLimits limits;
     limits.maxEvaluations = settings.maxEvaluations;
     limits.cpuSeconds = settings.cap;
+    const simlab::RunSettings choice = choiceOf(point);
     const simlab::MeasuredRun run = simlab::measureRun(
         instance->system(), *integrator, instance->initial(), subject.finalTime, limits,
         [&](const SimTK::State& state, bool last) {
             out.worstDigits = first ? instance->digits(state) : std::min(out.worstDigits, instance->digits(state));
             if (first) start = instance->conserved(state);
-            const double drift = std::abs(instance->conserved(state) - start) / subject.conservedScale;
+            const double drift = relativeDrift(std::abs(instance->conserved(state) - start), subject.conservedScale);
             out.drift = first ? 0.0 : std::max(out.drift, std::isfinite(drift) ? drift : INFINITY);
             first = false;
             if (last) out.finalDigits = instance->finalDigits(state);
-        });
+        },
+        simlab::takesFixedSteps(choice) ? choice.dt : 0.0);
     out.reached = run.reached;
     out.status = run.status;
     out.message = run.message;
@@ -149,10 +154,12 @@ double timedRun(const Subject& subject, const Point& point) {
     std::unique_ptr<SimTK::Integrator> integrator =
         simlab::integratorFor(choiceOf(point), instance->system(), subject.finalTime);
     SimTK::TimeStepper stepper(instance->system(), *integrator);
+    const simlab::RunSettings choice = choiceOf(point);
+    const double fixedStep = simlab::takesFixedSteps(choice) ? choice.dt : 0.0;
     const Clock::time_point began = Clock::now();
     stepper.initialize(instance->initial());
     while (!integrator->isSimulationOver() && stepper.getState().getTime() < subject.finalTime) {
-        stepper.stepTo(subject.finalTime);
+        stepper.stepTo(simlab::nextStepEnd(fixedStep, subject.finalTime, stepper.getState().getTime()));
     }
     return std::chrono::duration<double>(Clock::now() - began).count();
 }
@@ -217,7 +224,7 @@ nlohmann::json number(double value) { return std::isfinite(value) ? nlohmann::js
 nlohmann::json toJson(const Subject& s, const Point& p, const Outcome& o) {
     return {{"type", "point"},         {"subject", s.name},
             {"integrator", p.integrator}, {"mode", p.mode},
-            {"accuracy", number(p.accuracy)}, {"step", number(p.step)},
+            {"accuracy", number(p.namesAccuracy ? p.accuracy : 0.0)}, {"step", number(p.step)},
             {"status", o.status},       {"message", o.message},
             {"reached", number(o.reached)}, {"final_digits", number(o.finalDigits)},
             {"worst_digits", number(o.worstDigits)}, {"drift", number(o.drift)},
@@ -240,7 +247,7 @@ std::vector<Point> pointsOf(const Subject& subject, const Settings& settings) {
     for (const std::string& name : names) {
         if (settings.fixedStepsOnly) break;
         for (int exponent = 1; exponent <= 14; ++exponent) {
-            points.push_back({name, "accuracy", std::pow(10.0, -exponent), 0});
+            points.push_back({name, "accuracy", std::pow(10.0, -exponent), 0, true});
         }
     }
     // Steps from a tenth of the run down, by half decades (whole decades with --quick).
@@ -249,7 +256,10 @@ std::vector<Point> pointsOf(const Subject& subject, const Settings& settings) {
                                                                                3e-4, 1e-4, 3e-5};
     for (const std::string& name : names) {
         if (name == "CPodes") continue;  // a multistep method: its steps are its own
-        for (const double f : fractions) points.push_back({name, "fixed step", 0, f * subject.finalTime});
+        const bool names = subject.events || fixedStepUsesAccuracy(name);
+        for (const double f : fractions) {
+            points.push_back({name, "fixed step", kFixedStepAccuracy, f * subject.finalTime, names});
+        }
     }
     return points;
 }

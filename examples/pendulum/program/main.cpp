@@ -1,6 +1,7 @@
 // The `pendulum` lab program (the course's side): runs the swing written in Pendulum.cpp, prints its table as it
 // goes, writes the results file, and says how close theta and the period come to the exact elliptic swing.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -58,10 +59,9 @@ int runOnce(const Options& o) {
     const Scene& scene = o.scene;
     char banner[300];
     std::snprintf(banner, sizeof banner,
-                  "A pendulum's swing: %g kg on %g m released at %g degrees, g = %g m/s^2; %s, accuracy %g, dt %g s, "
-                  "0 <= t <= %g s",
-                  scene.mass_kg, scene.length_m, scene.releaseAngle_deg, scene.gravity_mps2, run.integrator.c_str(),
-                  run.accuracy, run.dt, run.finalTime);
+                  "A pendulum's swing: %g kg on %g m released at %g degrees, g = %g m/s^2; %s",
+                  scene.mass_kg, scene.length_m, scene.releaseAngle_deg, scene.gravity_mps2,
+                  simlab::describeProgramRun(run).c_str());
     simlab::Tabulation<Sample, pendulum::Model> tabulation;
     tabulation.columns = kColumns;
     tabulation.row = [&](const Sample& s) { return resultsRow(scene, s); };
@@ -90,9 +90,30 @@ int runOnce(const Options& o) {
                 finalDigits(scene, result.samples), result.integrator.method.c_str(), result.integrator.stepsTaken);
     const pendulum::MeasuredPeriod period = pendulum::measuredPeriod(result.samples);
     const double exactPeriod_s = pendulum::exact::period_s(scene);
-    if (std::isnan(period.period_s)) {
-        std::printf("period: exact %.10g s; the run is too short to show it (%d turning points)\n", exactPeriod_s,
-                    period.turningPoints);
+    double farthest_rad = 0;  // the largest |theta| over the run
+    for (const Sample& s : result.samples) farthest_rad = std::max(farthest_rad, std::abs(s.theta_rad));
+    if (farthest_rad > SimTK::Pi) {
+        // Released from rest below the top, the exact swing never passes it: a run that does gained energy.
+        std::printf("period: exact %.10g s; none measured: the run went over the top (|theta| reached %.4g rad, past "
+                    "pi), which a swing released from rest never does: the run gained energy (see --accuracy, "
+                    "--integrator)\n",
+                    exactPeriod_s, farthest_rad);
+    } else if (pendulum::exact::modulus(scene) == 0) {
+        std::printf("period: none: released at 0 degrees the bob hangs at rest and stays there (a small swing about "
+                    "it would take %.10g s)\n",
+                    exactPeriod_s);
+    } else if (std::isnan(period.period_s) && std::floor(last.time / (exactPeriod_s / 2)) >= 2) {
+        // Turning points came, but no sample fell between two of them: the samples are farther apart than they.
+        const double dt_s = result.samples.size() > 1 ? result.samples[1].time - result.samples[0].time : last.time;
+        std::printf("period: exact %.10g s; the samples, %g s apart, are too far apart to show it: %d turning point%s "
+                    "seen by t = %g s, where %.0f came (every half period, %.4g s); a --dt under %.4g s shows each\n",
+                    exactPeriod_s, dt_s, period.turningPoints, period.turningPoints == 1 ? "" : "s", last.time,
+                    std::floor(last.time / (exactPeriod_s / 2)), exactPeriod_s / 2, exactPeriod_s / 2);
+    } else if (std::isnan(period.period_s)) {
+        std::printf("period: exact %.10g s; the run is too short to show it: %d turning point%s by t = %g s, where "
+                    "two are needed (they come every half period, %.4g s)\n",
+                    exactPeriod_s, period.turningPoints, period.turningPoints == 1 ? "" : "s", last.time,
+                    exactPeriod_s / 2);
     } else {
         std::printf("period from %d turning points: %.10g s; exact %.10g s: %.1f accurate digits\n",
                     period.turningPoints, period.period_s, exactPeriod_s,

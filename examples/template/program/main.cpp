@@ -63,10 +63,8 @@ int runOnce(const Options& o) {
     const Scene& scene = o.scene;
     char banner[300];
     std::snprintf(banner, sizeof banner,
-                  "A block on a spring: %g kg, k = %g N/m, released at x = %g m; %s, accuracy %g, dt %g s, "
-                  "0 <= t <= %g s",
-                  scene.mass_kg, scene.stiffness_Npm, scene.releasePosition_m, run.integrator.c_str(), run.accuracy,
-                  run.dt, run.finalTime);
+                  "A block on a spring: %g kg, k = %g N/m, released at x = %g m; %s", scene.mass_kg,
+                  scene.stiffness_Npm, scene.releasePosition_m, simlab::describeProgramRun(run).c_str());
     simlab::Tabulation<Sample, mylab::Model> tabulation;
     tabulation.columns = kColumns;
     tabulation.row = [&](const Sample& s) { return resultsRow(scene, s); };

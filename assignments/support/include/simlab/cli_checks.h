@@ -21,6 +21,19 @@ inline CLI::Validator positive() {
         "POSITIVE");
 }
 
+/// For options that may take any sign but must be numbers: "--omega: must be a finite number, got nan".
+inline CLI::Validator finite() {
+    return CLI::Validator(
+        [](std::string& text) {
+            double value = 0;
+            if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value)) {
+                return "must be a finite number, got " + text;
+            }
+            return std::string();
+        },
+        "FINITE");
+}
+
 /// For options with a range: "--accuracy: must be between 1e-15 and 0.5, got 1e-20", the limits as written
 /// (CLI::Range prints them with six decimals, so 1e-15 shows as 0.000000).
 inline CLI::Validator between(double low, double high) {

@@ -56,6 +56,13 @@ void requireIntegratorName(const std::string& name);
 /// (all but SemiExplicitEuler, which always takes fixed steps).
 bool hasErrorControl(const std::string& name);
 
+/// True for an integrator whose fixed step itself reads the accuracy: Verlet. Its step is explicit in the positions
+/// and implicit in the velocities (the trapezoid rule), which Simbody solves by iteration, up to ten times, to a
+/// relative change of min(1e-4, accuracy / 10); at a fixed step the accuracy decides how well that is solved, and
+/// with it the digits the step keeps. (Any method's fixed step reads it where the model has events, whose times it
+/// localizes, and constraints, which it projects to it: the latter moves results by rounding only.)
+bool fixedStepUsesAccuracy(const std::string& name);
+
 /// A new integrator of the named kind for `system`. `fixedStep` (s) is the step size of SemiExplicitEuler,
 /// which takes it on construction; the others ignore it. Throws std::invalid_argument naming the valid
 /// choices if `name` is not one of integratorNames().

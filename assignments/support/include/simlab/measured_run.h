@@ -33,7 +33,9 @@ struct MeasureLimits {
 };
 
 /// The integrator `choice` names: at choice.accuracy, or at fixed steps of choice.dt when choice.fixedStep
-/// (SemiExplicitEuler always), set to stop at `finalTime`. Throws std::invalid_argument, naming the setting, for a
+/// (SemiExplicitEuler always), set to stop at `finalTime`. A fixed step gets choice.accuracy too, as a lab program
+/// sets it: Verlet solves its implicit velocity update to it (fixedStepUsesAccuracy), and any method localizes events
+/// by it. Throws std::invalid_argument, naming the setting, for a
 /// choice that is not one (an unknown integrator, an accuracy outside (0, 1), a step that is not positive).
 std::unique_ptr<SimTK::Integrator> integratorFor(const RunSettings& choice, const SimTK::System& system,
                                                  double finalTime);
@@ -43,9 +45,16 @@ std::unique_ptr<SimTK::Integrator> integratorFor(const RunSettings& choice, cons
 /// on the state where the run ends or passes a limit (with last = true). Stops, saying where in one line, past a
 /// limit, at a state that is not finite, or when the step size collapses (neither of which is checked).
 /// Exceptions from the model (an event handler, say) propagate.
+/// At a fixed step (`fixedStep`, s; 0 for a run with error control) each step ends at k * fixedStep, and the last at
+/// the final time, where a lab program's samples end them (RunSettings::sampleTime), rather than where adding up the
+/// steps puts it: the same run, to the last bit, as the lab program's at that step.
 MeasuredRun measureRun(const SimTK::System& system, SimTK::Integrator& integrator, const SimTK::State& initial,
                        double finalTime, const MeasureLimits& limits,
-                       const std::function<void(const SimTK::State& state, bool last)>& check);
+                       const std::function<void(const SimTK::State& state, bool last)>& check, double fixedStep = 0);
+
+/// Where the run of `choice` steps to next from `time`, `finalTime` its end: the final time, or at a fixed step
+/// (takesFixedSteps) the next whole multiple of it (RunSettings::sampleTime), as a lab program's samples end them.
+double nextStepEnd(double fixedStep, double finalTime, double time);
 
 /// A student's choice of integrator, measured on their own model: the samples at the checked states, the cost,
 /// and how the run ended.
@@ -68,8 +77,10 @@ ChoiceRun<Sample> measureChoice(const Scene& scene, Model& model, const RunSetti
     const SimTK::State initial = initialState(scene, model);
     requireSimulatedMotion(model.matter);
     const std::unique_ptr<SimTK::Integrator> integrator = integratorFor(choice, model.system, finalTime);
-    result.run = measureRun(model.system, *integrator, initial, finalTime, limits,
-                            [&](const SimTK::State& state, bool) { result.samples.push_back(read(model, state)); });
+    result.run = measureRun(
+        model.system, *integrator, initial, finalTime, limits,
+        [&](const SimTK::State& state, bool) { result.samples.push_back(read(model, state)); },
+        takesFixedSteps(choice) ? choice.dt : 0.0);
     return result;
 }
 

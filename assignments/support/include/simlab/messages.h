@@ -16,6 +16,9 @@ std::string oneLineMessage(const std::string& message, std::size_t maxLength = 2
 /// `value` in at most 6 significant digits ("%g"), for a message.
 std::string shortNumber(double value);
 
+/// A span of wall time for a progress line: "8.2 s", "41 s", "12 min", "3.4 h".
+std::string durationText(double seconds);
+
 /// `text` as HTML or XML character data or an attribute's value: &, <, >, " and ' as character references.
 std::string markupEscaped(const std::string& text);
 

@@ -91,14 +91,13 @@ private:
 /// Writes one line to the screen's stderr, even while a SolverChatter keeps the solver's.
 void tellUser(const std::string& line);
 
-/// A duration for a person: "4.2 s", "40 s", "3 min", "2.5 h".
-std::string duration(double seconds);
-
 /// Says on stderr how long a long run will take. Call at() with the simulated time as the run goes: once ~0.2 s
-/// of wall time has passed it estimates the whole run from the pace so far, and if that is over a minute prints
-/// one line saying so, then a progress line at every tenth of the run. A shorter run prints nothing. A run that
-/// has not reached its first sample after half that minute says so too (its steps are very small). The minute is
-/// SIMLAB_LONG_RUN_SECONDS where that is set (studies lower it, to hear of long runs sooner).
+/// of wall time has passed since its first sample (building the model and starting the run are not the run's pace)
+/// it estimates the whole run from the pace since then, and if that is over a minute prints one line saying so, then
+/// a progress line at every tenth of the run. A shorter run prints nothing. A run that has not reached its first
+/// sample after half that minute says so too (its steps are very small). The minute is SIMLAB_LONG_RUN_SECONDS where
+/// that is set (studies lower it, to hear of long runs sooner). `finalTime` is where the run is expected to end: for
+/// a run an event ends sooner, that end (the estimate is of the run, never of a final time it will not reach).
 class Progress {
 public:
     Progress(std::string program, double finalTime, std::string what = "this run");
@@ -112,6 +111,7 @@ private:
     double finalTime_;
     double start_;        // s, wall clock
     double longRun_ = 60; // s: a run expected to take longer is announced
+    double firstWall_ = -1, firstTime_ = 0;  // the first sample's wall clock and simulated time
     bool decided_ = false;
     bool long_ = false;
     int tenths_ = 0;      // progress lines printed
@@ -150,11 +150,19 @@ struct Tabulation {
     Scenery scenery;                                          ///< what else --animate shows
     std::function<void(Model&)> decorate;                     ///< adds the course's drawing of the bodies
     std::string program;                                      ///< for the progress lines of a long run
+    /// s: where the run is expected to end when an event ends it before the final time (the projectile's ground hit),
+    /// for the progress lines' estimate; 0: at the final time.
+    double expectedEnd = 0;
     std::string conserved;       ///< a column the run should conserve (the energy), or empty
-    double conservedGrowth = 1e6;  ///< the run fails if |conserved| grows past this many times its first value
+    /// The run fails if `conserved` moves from its first value by more than this many times its scale in the scene:
+    /// the largest of its first value's magnitude, `conservedSize` and its terms at the first sample.
+    double conservedGrowth = 1e6;
     /// The size of the terms the conserved quantity sums in a sample (for an energy, |kinetic| + |potential|), or
-    /// empty where it has no terms that cancel: near a zero, growth is judged against rounding on that scale.
+    /// empty where it has no terms that cancel: rounding on that scale is what a row's value can be trusted to.
     std::function<double(const Sample&)> conservedScale;
+    /// The scene's own size for the conserved quantity over the whole motion, where its terms at the first sample
+    /// can be zero (an apple dropped from y = 0 at rest); 0: those terms and the first value are the scale.
+    double conservedSize = 0;
 };
 
 /// One run of a lab program: open the results file (an unwritable path fails before anything runs), print the
@@ -164,9 +172,13 @@ template <class Sample, class Scene, class Model>
 RunResult<Sample> runTabulated(const Scene& scene, Model& model, const ProgramOptions& options,
                                const Tabulation<Sample, Model>& tabulation) {
     ResultsTable table(tabulation.columns, options.output, options.quiet ? nullptr : &std::cout);
-    if (!tabulation.conserved.empty()) table.watchGrowth(tabulation.conserved, tabulation.conservedGrowth);
+    if (!tabulation.conserved.empty()) {
+        table.watchGrowth(tabulation.conserved, tabulation.conservedGrowth, tabulation.conservedSize);
+    }
     std::cout << tabulation.banner << std::endl;
-    Progress progress(tabulation.program, options.run.finalTime);
+    const double end = tabulation.expectedEnd > 0 ? std::min(tabulation.expectedEnd, options.run.finalTime)
+                                                  : options.run.finalTime;
+    Progress progress(tabulation.program, end);
     RunHooks<Model> hooks;
     std::function<void()> finishAnimation;
     std::unique_ptr<ReplayRecorder> replay;
@@ -185,22 +197,33 @@ RunResult<Sample> runTabulated(const Scene& scene, Model& model, const ProgramOp
     }
     RunResult<Sample> result;
     SolverChatter chatter(options.run.integrator == "CPodes");
-    // Where the conserved column sums terms that cancel, how far they outgrow it: rounding on the terms' scale
-    // leaves only so many of its digits, which the run then says.
+    // Where the conserved column sums terms that cancel, how far they outgrow it (rounding on the terms' scale is all
+    // a row's value can be trusted to), and how far it moves over the run.
     const auto conservedAt = std::find(tabulation.columns.begin(), tabulation.columns.end(), tabulation.conserved);
-    double termsOverValue = 0, largestTerms = 0;
+    const bool watched = conservedAt != tabulation.columns.end();
+    double termsOverValue = 0, largestTerms = 0, first = NAN, largestChange = 0;
     try {
         result = run<Sample>(
             scene, model, options.run,
             [&](const Sample& s) {
                 const std::vector<double> row = tabulation.row(s);
                 const double terms = tabulation.conservedScale ? tabulation.conservedScale(s) : 0.0;
-                if (terms > 0 && conservedAt != tabulation.columns.end()) {
-                    const double value = std::abs(row[static_cast<std::size_t>(conservedAt - tabulation.columns.begin())]);
-                    termsOverValue = std::max(termsOverValue, value > 0 ? terms / value : INFINITY);
-                    largestTerms = std::max(largestTerms, terms);
+                if (watched) {
+                    const double value = row[static_cast<std::size_t>(conservedAt - tabulation.columns.begin())];
+                    if (std::isnan(first)) {
+                        first = value;
+                        // The scene's size for the quantity: its terms at the start count too (m g L, say).
+                        if (std::isfinite(terms) && terms > tabulation.conservedSize) {
+                            table.watchGrowth(tabulation.conserved, tabulation.conservedGrowth, terms);
+                        }
+                    }
+                    if (terms > 0) {
+                        termsOverValue = std::max(termsOverValue, value != 0 ? terms / std::abs(value) : INFINITY);
+                        largestTerms = std::max(largestTerms, terms);
+                    }
+                    if (std::isfinite(value - first)) largestChange = std::max(largestChange, std::abs(value - first));
                 }
-                table.add(row, terms);
+                table.add(row);
                 if (!options.replay.empty()) rows.push_back(row);
                 if (!tabulation.program.empty()) progress.at(row.front());
             },
@@ -214,14 +237,27 @@ RunResult<Sample> runTabulated(const Scene& scene, Model& model, const ProgramOp
     if (const std::string said = chatter.finish(); !said.empty()) tellUser(tabulation.program + ": " + said);
     if (result.samples.empty()) throw std::runtime_error("the simulation recorded no samples");
     std::cout << "\nResults written to " << table.path() << '\n';
-    // A double holds 15.9 digits of the terms; what they cancel to keeps 15.9 - log10(terms / value) of them.
-    const double kept = 15.9 - std::log10(termsOverValue);
-    if (termsOverValue > 0 && kept < 12) {
-        char said[320];
-        std::snprintf(said, sizeof said,
-                      "Note: %s sums terms of up to %.3g that cancel, so rounding leaves about %.1f of its digits "
-                      "(the results file prints 17; the rest are rounding).\n",
-                      tabulation.conserved.c_str(), largestTerms, std::max(0.0, kept));
+    // A double holds 15.9 digits of the terms; what they cancel to keeps 15.9 - log10(terms / value) of them. Where
+    // that leaves fewer than 12, the rows' values carry rounding of about one unit in the terms' last place, which
+    // the note gives in the column's own unit, beside how far the value moved over the run: a change well past that
+    // rounding is the integrator's drift, not rounding.
+    if (termsOverValue > 0 && 15.9 - std::log10(termsOverValue) < 12) {
+        const double rounding = 2.2e-16 * largestTerms;
+        char said[400];
+        if (largestChange > 10 * rounding) {
+            std::snprintf(said, sizeof said,
+                          "Note: %s sums terms of up to %.3g that cancel, so rounding moves each row's value by about "
+                          "%.2g (past that the 17 digits of the results file are rounding); its largest change over "
+                          "the run, %.2g, is the integrator's drift, %.2g times that rounding.\n",
+                          tabulation.conserved.c_str(), largestTerms, rounding, largestChange,
+                          largestChange / rounding);
+        } else {
+            std::snprintf(said, sizeof said,
+                          "Note: %s sums terms of up to %.3g that cancel, so rounding moves each row's value by about "
+                          "%.2g (past that the 17 digits of the results file are rounding); its largest change over "
+                          "the run, %.2g, is of that rounding's order.\n",
+                          tabulation.conserved.c_str(), largestTerms, rounding, largestChange);
+        }
         std::cout << said;
     }
     if (replay) {

@@ -19,16 +19,17 @@ public:
 
     /// One row, one value per column: to the file at full double precision (17 significant digits), to the
     /// screen rounded to fit the column. A row with an infinite or NaN value, or in which the watched column (see
-    /// watchGrowth) has grown past its bound, is not written: the file ends with a comment line ("# ...") saying
+    /// watchGrowth) has moved past its bound, is not written: the file ends with a comment line ("# ...") saying
     /// where the run broke, and add throws std::runtime_error with the same one-line message.
-    /// `scale` is the size of the terms the watched column sums in this row (0: none given): growth is then judged
-    /// against the larger of the first value and the terms' rounding (1e-12 of them), so that a quantity that
-    /// starts tiny and sums terms that cancel is not taken for one that blew up.
-    void add(const std::vector<double>& values, double scale = 0);
+    void add(const std::vector<double>& values);
 
-    /// Treat `column` (a quantity the run should conserve, such as the energy) growing to more than `factor`
-    /// times its first row's magnitude (or its terms' rounding, see add) as a failure of the run.
-    void watchGrowth(const std::string& column, double factor);
+    /// Treat `column` (a quantity the run should conserve, such as the energy) moving from its first row's value by
+    /// more than `factor` times its scale as a failure of the run. The scale is the larger of that first value's
+    /// magnitude and `scale`, the scene's own size for the quantity (for an energy, the size of the terms it sums:
+    /// m g L for a pendulum), so that a quantity that starts at or near zero is judged against the scene, never
+    /// against its own rounding. Where both are zero nothing in the scene has a size to judge by, and the column is
+    /// not watched.
+    void watchGrowth(const std::string& column, double factor, double scale = 0);
 
     /// Ends the file with the comment line "# `text`" (once; later notes are dropped).
     void note(const std::string& text);
@@ -45,6 +46,7 @@ private:
     std::size_t rows_ = 0;
     int watched_ = -1;         // the column watchGrowth watches, or -1
     double watchedFactor_ = 0;
+    double watchedScale_ = 0;  // the scene's size for it
     double watchedFirst_ = 0;  // its value in the first row
     bool noted_ = false;
 };

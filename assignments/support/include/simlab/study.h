@@ -58,6 +58,13 @@ public:
     }
 };
 
+/// A drift: |change| of the conserved quantity over `scale`, the subject's own size for it (conservedScale). Where the
+/// scene gives it no size (at rest, nothing to exchange) a change of nothing is none, and any other past measure.
+inline double relativeDrift(double change, double scale) {
+    if (scale > 0) return change / scale;
+    return change == 0 ? 0.0 : INFINITY;
+}
+
 /// A lab's scene in the study.
 struct Subject {
     std::string name;               ///< e.g. "book-intermediate"
@@ -66,7 +73,10 @@ struct Subject {
     /// hit's time and range): the study then gives that figure its own front. Empty: the final state's digits.
     std::string finalFigure;
     std::string conservedName;      ///< e.g. "energy"
-    double conservedScale = 1;      ///< the drift is the largest |change| over this
+    /// The scene has event triggers (the projectile's ground hit): at any fixed step the accuracy localizes them, so
+    /// the fixed-step rows name the accuracy they ran at.
+    bool events = false;
+    double conservedScale = 1;      ///< the drift is the largest |change| over this (relativeDrift)
     double finalTime = 1;           ///< s
     std::string reference;          ///< how the reference is computed, one line
     std::function<double()> referenceDigits;  ///< the reference's own accuracy at the final time, in digits
