@@ -241,7 +241,7 @@ struct Verifier {
                         const std::string expect = c ? (*c)["expect"].value_or(std::string()) : "";
                         if (c && !c->contains("expect")) {
                             ++open;  // any outcome it names will do: a silent or crashed run still fails the study
-                        } else if (expect != "accurate" && expect != "rejected" && expect != "trouble") {
+                        } else if (expect != "accurate" && expect != "inaccurate" && expect != "rejected" && expect != "trouble") {
                             unnamed.push_back(c ? (*c)["name"].value_or(std::string("case ") + std::to_string(count))
                                                 : std::to_string(count));
                         }
@@ -254,7 +254,7 @@ struct Verifier {
                 } else {
                     say("FAIL", "extremes: " + std::to_string(unnamed.size()) +
                                     " cases name no outcome (expect = accurate, "
-                                    "rejected or trouble), the first '" +
+                                    "inaccurate, rejected or trouble), the first '" +
                                     unnamed.front() + "'");
                 }
             } catch (const toml::parse_error& e) {
