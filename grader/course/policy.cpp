@@ -1,5 +1,6 @@
 #include "simlab/course/policy.h"
 
+#include <cstdio>
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -229,8 +230,10 @@ std::optional<std::time_t> parseTime(const std::string& text) {
 std::string utcText(std::time_t t) {
     std::tm tm{};
     gmtime_r(&t, &tm);
-    char text[32];
-    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    // The year in four digits, as parseTime reads it back (strftime's %Y writes the year 226 as "226").
+    char text[48];
+    std::snprintf(text, sizeof text, "%04d-%02d-%02dT%02d:%02d:%02dZ", tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday,
+                  tm.tm_hour, tm.tm_min, tm.tm_sec);
     return text;
 }
 

@@ -111,7 +111,7 @@ fi
 check "  and where they are, named as the output folder (not the sandbox's)" grep -q "^Written to $PWD/own: book-long-run.csv" own.out
 run_capture own_boot "$SIMLAB" study long-run biosim --quick --file BookSpin.cpp
 check "--file with the boot's view is refused in one line, exit 2" \
-  bash -c "test $(status_of own_boot) -eq 2 && test \$(wc -l <own_boot.err) -eq 1 && grep -q 'baby boot' own_boot.err"
+  bash -c "test $(status_of own_boot) -eq 2 && test \$(wc -l <own_boot.err) -eq 1 && grep -q \"biosim's long-run view is its worked example's\" own_boot.err"
 
 run_capture banana "$SIMLAB" study long-run apple --quick
 check "a lab without the view is refused in one line, exit 2" \

@@ -268,3 +268,12 @@ TEST_CASE("A negative cap, and slip days on a course with no due dates, are refu
     CHECK((p.slipDays == 3 && p.cap.max == 3 && p.cap.windowHours == 24 && p.active));
     fs::remove_all(dir);
 }
+
+TEST_CASE("A time is written as it is read back, its year in four digits", "[policy]") {
+    // Gradescope's created_at of the year 226 was kept as "226-11-20T10:00:00Z", which no reader took back.
+    const std::optional<std::time_t> early = parseTime("0226-11-20T10:00:00Z");
+    REQUIRE(early);
+    CHECK(utcText(*early) == "0226-11-20T10:00:00Z");
+    CHECK(parseTime(utcText(*early)) == early);
+    CHECK(utcText(*parseTime("2026-11-20T10:00:00Z")) == "2026-11-20T10:00:00Z");
+}
