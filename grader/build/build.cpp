@@ -299,11 +299,19 @@ const isolation::CourseSymbols& Builder::courseSymbols(const Assignment& assignm
     std::lock_guard<std::mutex> guard(lock);
     if (const auto found = known.find(key); found != known.end()) return found->second;
     isolation::CourseSymbols& symbols = known[key];
-    // Kept in the cache beside the objects' folder, by the build's key: it depends on the build alone.
-    const std::string cached = manifest_.cacheDir + "/course-symbols-" + key + ".txt";
-    std::error_code ignored;
-    fs::create_directories(manifest_.cacheDir, ignored);
-    if (fs::exists(cached)) {
+    // Kept by the build's key, with the build where it may be written (it depends on the build alone, and a new
+    // $SIMLAB_CACHE, as each class may have, would read every course library again), else in the cache beside the
+    // objects' folder.
+    const std::string name = "/course-symbols-" + key + ".txt";
+    std::vector<std::string> folders = {manifest_.cacheDir};
+    if (!manifest_.installed && manifest_.buildDir + "/cache" != manifest_.cacheDir) {
+        folders.insert(folders.begin(), manifest_.buildDir + "/cache");
+    }
+    std::string cached;
+    for (const std::string& folder : folders) {
+        if (fs::exists(folder + name)) cached = folder + name;
+    }
+    if (!cached.empty()) {
         // One line per symbol: six flags (defined, strong, inObjects, inLibraries, required, referenced), a tab,
         // the name, a tab, where it is from.
         std::istringstream lines(readFile(cached));
@@ -351,7 +359,16 @@ const isolation::CourseSymbols& Builder::courseSymbols(const Assignment& assignm
                 (s.inLibraries ? '1' : '0') + (s.required ? '1' : '0') + (s.referenced ? '1' : '0') + "\t" + name +
                 "\t" + s.from + "\n";
     }
-    writePrivateAtomically(cached, text);
+    for (const std::string& folder : folders) {
+        try {
+            std::error_code ignored;
+            fs::create_directories(folder, ignored);
+            writePrivateAtomically(folder + name, text);
+            break;
+        } catch (const std::exception&) {
+            if (folder == folders.back()) throw;  // the cache is simlab's own: it must take it
+        }
+    }
     return symbols;
 }
 
