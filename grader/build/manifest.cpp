@@ -37,8 +37,8 @@ void placeAt(nlohmann::json& j, const std::string& prefix) {
     }
 }
 
-// Where simlab keeps what it reuses between runs for an installed prefix: the user's cache, one folder per prefix
-// and version (a moved prefix starts afresh).
+// Where simlab keeps what it reuses between runs for an installed prefix (or a build this user may not write in):
+// the user's cache, one folder per prefix and version (a moved prefix starts afresh).
 std::string userCacheDir(const std::string& prefix, const std::string& version) {
     std::string base;
     if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg == '/') {
@@ -50,7 +50,7 @@ std::string userCacheDir(const std::string& prefix, const std::string& version) 
     } else {
         // Never a shared folder such as /tmp, where another user could lay out the cache before simlab does.
         throw UsageError(
-            "an installed simlab keeps its cache in $XDG_CACHE_HOME or ~/.cache: set HOME or "
+            "simlab keeps this user's cache in $XDG_CACHE_HOME or ~/.cache: set HOME or "
             "XDG_CACHE_HOME (this user has no home folder)");
     }
     return base + "/simlab/" + sha256Hex(prefix + "\n" + version).substr(0, 16);
@@ -283,7 +283,14 @@ Manifest loadManifest(const std::string& path) {
                                          t.at("links").get<std::vector<std::string>>()});
             }
         }
-        m.cacheDir = m.installed ? userCacheDir(m.prefix, m.version) : m.buildDir + "/cache";
+        // A build's cache is in it, for its owner; another user of the build (a TA on the course's machine), who
+        // may not write there, keeps one in their own cache folder, as for an installation.
+        const std::string buildCache = m.buildDir + "/cache";
+        const bool buildCacheOurs = ::access(buildCache.c_str(), W_OK | X_OK) == 0 ||
+                                    (::access(buildCache.c_str(), F_OK) != 0 && ::access(m.buildDir.c_str(), W_OK | X_OK) == 0);
+        m.cacheDir = m.installed ? userCacheDir(m.prefix, m.version)
+                     : buildCacheOurs ? buildCache
+                                      : userCacheDir(m.buildDir, m.version);
         if (const char* cache = std::getenv("SIMLAB_CACHE"); cache && *cache) {
             std::error_code error;
             m.cacheDir = fs::absolute(cache, error).lexically_normal().string();

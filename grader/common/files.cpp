@@ -174,8 +174,10 @@ void createPrivateFolder(const std::string& path) {
     if (::mkdir(path.c_str(), 0700) == 0) return;
     const int error = errno;
     struct stat info {};
-    if (error == EEXIST && ::lstat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode) && ::chmod(path.c_str(), 0700) == 0) {
-        return;
+    if (error == EEXIST && ::lstat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+        if (::chmod(path.c_str(), 0700) == 0) return;
+        throw std::runtime_error("cannot keep the folder " + path + " private: " + std::strerror(errno) +
+                                 (info.st_uid != ::geteuid() ? " (it is another user's)" : ""));
     }
     throw std::runtime_error("cannot create the folder " + path + ": " + std::strerror(error));
 }
