@@ -1,14 +1,17 @@
 #include "simlab/course/authoring.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
 #include <sstream>
+#include <thread>
 #include <toml++/toml.h>
 
 #include "simlab/build/build.h"
@@ -83,12 +86,27 @@ GradeReport gradeCase(const Manifest& manifest, const Assignment& lab, const Rub
     return gradeFolder(Builder(manifest), lab, rubric, dir.path() + "/student", false, false, options);
 }
 
-// What a report shows: its text, and every test's reason (a hidden test's too, as an instructor reads it) and
-// further lines (the feedback's).
+// Calls fn(0) ... fn(count - 1), `workers` at a time; fn catches what it throws.
+void forEachInParallel(std::size_t count, std::size_t workers, const std::function<void(std::size_t)>& fn) {
+    std::atomic<std::size_t> next{0};
+    std::vector<std::thread> running;
+    for (std::size_t w = 0; w < std::max<std::size_t>(1, workers); ++w) {
+        running.emplace_back([&] {
+            for (std::size_t i = next++; i < count; i = next++) fn(i);
+        });
+    }
+    for (std::thread& t : running) t.join();
+}
+
+// What a report shows: its text, and every test's reason (a hidden test's too, as an instructor reads it), alone
+// and after its outcome as results.json's output gives it, and further lines (the feedback's).
 std::string shown(const GradeReport& r) {
     std::string text = renderText(r);
     for (const TestResult& t : r.tests) {
-        if (!t.reason.empty()) text += t.name + ": " + t.reason + "\n";
+        if (!t.reason.empty()) {
+            text += t.name + ": " + t.reason + "\n";
+            text += outcomeName(t.outcome) + ": " + t.reason + "\n";  // as the test's output in results.json has it
+        }
         for (const std::string& line : t.feedback) text += line + "\n";
         if (t.figure) text += t.name + ": " + std::to_string(*t.figure) + " " + t.unit + "\n";
     }
@@ -206,21 +224,39 @@ struct Verifier {
         std::sort(cases.begin(), cases.end());
         if (cases.empty())
             say("warn", "corpus: no cases (corpus/*.toml): add the submissions you expect, with their scores");
-        for (const std::string& path : cases) {
-            const std::string name = fs::path(path).stem().string();
+        // Graded as a class is, o.judges students at a time (each with one judge), told in the cases' order.
+        struct Graded {
+            std::optional<CorpusCase> c;
+            std::optional<GradeReport> report;
+            std::string error;
+        };
+        std::vector<Graded> graded(cases.size());
+        VerifyOptions one = o;
+        one.judges = 1;
+        const std::size_t workers = std::min<std::size_t>(cases.size(), std::max(1, o.judges));
+        forEachInParallel(cases.size(), workers, [&](std::size_t i) {
             try {
-                const CorpusCase c = loadCorpusCase(lab, rubric, path);
-                const GradeReport report = gradeCase(manifest, lab, rubric, c, o);
-                const std::vector<std::string> mismatches =
-                    compareWithCase(c, report.tests, report.score(), report.status, shown(report));
-                std::string list;
-                for (const std::string& m : mismatches) list += (list.empty() ? "" : "; ") + m;
-                say(mismatches.empty() ? "ok" : "FAIL",
-                    "corpus " + name + ": " + scoreOf(report) + (mismatches.empty() ? " as expected" : ": " + list));
-                if (timedOut(report)) timedOutCases.emplace_back(c, report);
+                graded[i].c = loadCorpusCase(lab, rubric, cases[i]);
+                graded[i].report = gradeCase(manifest, lab, rubric, *graded[i].c, workers > 1 ? one : o);
             } catch (const std::exception& e) {
-                say("FAIL", "corpus " + name + ": " + e.what());
+                graded[i].error = e.what();
             }
+        });
+        for (std::size_t i = 0; i < cases.size(); ++i) {
+            const std::string name = fs::path(cases[i]).stem().string();
+            if (!graded[i].report) {
+                say("FAIL", "corpus " + name + ": " + graded[i].error);
+                continue;
+            }
+            const CorpusCase& c = *graded[i].c;
+            const GradeReport& report = *graded[i].report;
+            const std::vector<std::string> mismatches =
+                compareWithCase(c, report.tests, report.score(), report.status, shown(report));
+            std::string list;
+            for (const std::string& m : mismatches) list += (list.empty() ? "" : "; ") + m;
+            say(mismatches.empty() ? "ok" : "FAIL",
+                "corpus " + name + ": " + scoreOf(report) + (mismatches.empty() ? " as expected" : ": " + list));
+            if (timedOut(report)) timedOutCases.emplace_back(c, report);
         }
     }
 
