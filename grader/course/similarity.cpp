@@ -48,8 +48,73 @@ const std::set<std::string>& cppKeywords() {
     return words;
 }
 
+// The alternative tokens (and, or, not_eq, ...) and the digraphs (<% %> <: :> %: %:%:), each with the
+// punctuator it is: a copy that spells its braces or its logic so is read as the file it copies.
+const std::map<std::string, std::string>& alternativeTokens() {
+    static const std::map<std::string, std::string> words = {
+        {"and", "&&"},    {"and_eq", "&="}, {"bitand", "&"}, {"bitor", "|"}, {"compl", "~"},  {"not", "!"},
+        {"not_eq", "!="}, {"or", "||"},     {"or_eq", "|="}, {"xor", "^"},   {"xor_eq", "^="}};
+    return words;
+}
+
+const std::vector<std::pair<std::string, std::string>>& digraphs() {
+    static const std::vector<std::pair<std::string, std::string>> pairs = {{"%:%:", "##"}, {"<%", "{"}, {"%>", "}"},
+                                                                           {"<:", "["},    {":>", "]"}, {"%:", "#"}};
+    return pairs;
+}
+
 bool identifierStart(unsigned char c) { return std::isalpha(c) || c == '_' || c >= 0x80; }
 bool identifierPart(unsigned char c) { return std::isalnum(c) || c == '_' || c >= 0x80; }
+
+// The lines as the compiler reads them: a backslash at the end of a line (spaces after it allowed, as g++ allows
+// them) joins it to the next, so that a name or keyword cut in two is still the one token. `lineOf` gets the line
+// of the file each character came from, and one more entry for the end.
+std::string joinedLines(const std::string& source, std::vector<int>& lineOf) {
+    std::string text;
+    text.reserve(source.size());
+    lineOf.clear();
+    lineOf.reserve(source.size() + 1);
+    int line = 1;
+    for (std::size_t k = 0; k < source.size(); ++k) {
+        if (source[k] == '\\') {
+            std::size_t after = k + 1;
+            while (after < source.size() && (source[after] == ' ' || source[after] == '\t' || source[after] == '\r'))
+                ++after;
+            if (after < source.size() && source[after] == '\n') {
+                k = after;
+                ++line;
+                continue;
+            }
+        }
+        text += source[k];
+        lineOf.push_back(line);
+        line += source[k] == '\n';
+    }
+    lineOf.push_back(line);
+    return text;
+}
+
+// The length of the punctuator at `at` in `text` (1 for a character of its own); for a digraph, `spelling` gets the
+// punctuator it stands for.
+std::size_t punctuatorAt(const std::string& text, std::size_t at, std::string& spelling) {
+    // The punctuators of two and three characters, longest first.
+    static const std::vector<std::string> punctuators = {"<=>", "<<=", ">>=", "...", "->*", "::", "->", "++", "--",
+                                                         "<<",  ">>",  "<=",  ">=",  "==",  "!=", "&&", "||", "+=",
+                                                         "-=",  "*=",  "/=",  "%=",  "&=",  "|=", "^=", ".*", "##"};
+    // A digraph, but for <:: not followed by : or >, which is < and :: (std::vector<::T>).
+    const bool lessScope =
+        text.compare(at, 3, "<::") == 0 && (at + 3 >= text.size() || (text[at + 3] != ':' && text[at + 3] != '>'));
+    for (const auto& [digraph, usual] : digraphs()) {
+        if (!lessScope && text.compare(at, digraph.size(), digraph) == 0) {
+            spelling = usual;
+            return digraph.size();
+        }
+    }
+    for (const std::string& p : punctuators) {
+        if (text.compare(at, p.size(), p) == 0) return p.size();
+    }
+    return 1;
+}
 
 double medianOf(std::vector<double> values) {
     if (values.empty()) return 0;
@@ -211,23 +276,17 @@ std::string flaggedBy(const SimilarPair& pair) {
     return pair.overFloor ? "floor" : pair.overClass ? "class" : "";
 }
 
-std::vector<CppToken> cppTokens(const std::string& text) {
+std::vector<CppToken> cppTokens(const std::string& source) {
+    std::vector<int> lineOf;
+    const std::string text = joinedLines(source, lineOf);
     std::vector<CppToken> tokens;
     const std::size_t n = text.size();
     std::size_t i = 0;
-    int line = 1;
     bool lineStart = true;  // only spaces so far on this line: a '#' here begins a directive
-    auto advance = [&](std::size_t to) {
-        for (; i < to && i < n; ++i) line += text[i] == '\n';
-    };
-    // The punctuators of two and three characters, longest first.
-    static const std::vector<std::string> punctuators = {"<=>", "<<=", ">>=", "...", "->*", "::", "->", "++", "--",
-                                                         "<<",  ">>",  "<=",  ">=",  "==",  "!=", "&&", "||", "+=",
-                                                         "-=",  "*=",  "/=",  "%=",  "&=",  "|=", "^=", ".*", "##"};
+    auto advance = [&](std::size_t to) { i = std::min(to, n); };
     while (i < n) {
         const unsigned char c = static_cast<unsigned char>(text[i]);
         if (c == '\n') {
-            ++line;
             ++i;
             lineStart = true;
             continue;
@@ -245,11 +304,11 @@ std::vector<CppToken> cppTokens(const std::string& text) {
             advance(end == std::string::npos ? n : end + 2);
             continue;
         }
-        const bool directive = lineStart && c == '#';
+        const bool directive = lineStart && (c == '#' || text.compare(i, 2, "%:") == 0);
         lineStart = false;
         if (directive) {
             // A directive: #include lines are no one's work (sim_c++ skips them too); the others are read as code.
-            std::size_t at = i + 1;
+            std::size_t at = i + (c == '#' ? 1 : 2);
             while (at < n && (text[at] == ' ' || text[at] == '\t')) ++at;
             if (text.compare(at, 7, "include") == 0) {
                 std::size_t end = i;
@@ -258,8 +317,9 @@ std::vector<CppToken> cppTokens(const std::string& text) {
                 continue;
             }
         }
-        const int first = line;
+        const int first = lineOf[i];
         const std::size_t start = i;
+        std::string spelling;  // the token's usual spelling, where it was written another way
         std::string kind;
         // A string or character literal, with its prefix (u8, u, U, L, R): raw strings to their delimiter.
         std::size_t prefix = 0;
@@ -286,7 +346,9 @@ std::vector<CppToken> cppTokens(const std::string& text) {
             std::size_t at = i;
             while (at < n && identifierPart(static_cast<unsigned char>(text[at]))) ++at;
             const std::string word = text.substr(i, at - i);
-            kind = cppKeywords().count(word) ? word : "ID";
+            const auto alternative = alternativeTokens().find(word);
+            if (alternative != alternativeTokens().end()) kind = spelling = alternative->second;
+            else kind = cppKeywords().count(word) ? word : "ID";
             i = at;
         } else if (std::isdigit(c) ||
                    (c == '.' && i + 1 < n && std::isdigit(static_cast<unsigned char>(text[i + 1])))) {
@@ -303,17 +365,11 @@ std::vector<CppToken> cppTokens(const std::string& text) {
             kind = "NUM";
             i = at;
         } else {
-            std::size_t length = 1;
-            for (const std::string& p : punctuators) {
-                if (text.compare(i, p.size(), p) == 0) {
-                    length = p.size();
-                    break;
-                }
-            }
-            kind = text.substr(i, length);
+            const std::size_t length = punctuatorAt(text, i, spelling);
+            kind = spelling.empty() ? text.substr(i, length) : spelling;
             i += length;
         }
-        tokens.push_back({text.substr(start, i - start), kind, first});
+        tokens.push_back({spelling.empty() ? text.substr(start, i - start) : spelling, kind, first});
     }
     return tokens;
 }

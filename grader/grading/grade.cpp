@@ -712,22 +712,21 @@ std::string placesExposed(const Manifest& manifest) {
     if (!exposure.exposed()) return "";
     const std::string why = "in this sandbox (" + sandbox.mode + ") ";
     if (!exposure.error.empty()) return why + exposure.error + ", so hidden tests are not run: install bubblewrap";
+    // What was read first; a place passed through; or, where the walk stopped at its bound before either, the
+    // place it was in.
+    const bool tooMany = exposure.readable.empty() && exposure.passable.empty();
+    const bool passage = !tooMany && exposure.readable.empty();
+    const std::string& first = tooMany   ? exposure.boundedIn
+                               : passage ? exposure.passable.front()
+                                         : exposure.readable.front();
     if (::geteuid() != 0) {
         // A test runs as this user, and reads what this user may: no mode keeps it out.
-        return why + "a test's code runs as you and could read " + printable(exposure.readable.empty()
-                                                                                  ? exposure.passable.front()
-                                                                                  : exposure.readable.front()) +
+        return why + "a test's code runs as you and could read " + printable(first) +
                ", so hidden tests are not run: grade hidden tests as root (each test then runs as a user of its "
                "own), or where bubblewrap or Landlock runs";
     }
-    if (exposure.readable.empty() && exposure.passable.empty()) {
-        return why + "simlab's places hold more than it can try (over 500,000 files), so hidden tests are not run: "
-                     "install bubblewrap";
-    }
     // The command that closes what was read: simlab lock closes the course's places; a lab's folder, a class or
     // its grades it closes when named.
-    const bool passage = exposure.readable.empty();
-    const std::string& first = passage ? exposure.passable.front() : exposure.readable.front();
     const std::string place = isolation::placeOf(first);
     std::string named;
     for (const auto& lab : manifest.labs) {
@@ -744,12 +743,17 @@ std::string placesExposed(const Manifest& manifest) {
         }) ||
         (manifest.installed && place.rfind(manifest.prefix + "/", 0) == 0);
     if (named.empty() && !ofTheCourse) named = place;
-    const std::size_t more = passage ? 0 : exposure.readableCount - 1;
-    return why + (passage ? "a test's code could pass through " + printable(first) + " to what simlab writes there"
-                          : "a test's code could read " + printable(first)) +
-           (more > 0 ? " and " + std::to_string(more) + " more file" + (more == 1 ? "" : "s") + " of simlab's places"
+    const std::size_t more = passage || tooMany ? 0 : exposure.readableCount - 1;
+    return why +
+           (tooMany ? "simlab's places hold more files others may reach than it can try (over 500,000, in " +
+                          printable(first) + ")"
+            : passage ? "a test's code could pass through " + printable(first) + " to what simlab writes there"
+                      : "a test's code could read " + printable(first)) +
+           (more > 0 ? " and " + std::string(exposure.bounded ? "at least " : "") + std::to_string(more) +
+                           " more file" + (more == 1 ? "" : "s") + " of simlab's places"
                      : std::string()) +
-           ", so hidden tests are not run: close them with `simlab lock" + (named.empty() ? "" : " " + printable(named)) +
+           ", so hidden tests are not run: close them with `simlab lock" +
+           (named.empty() ? "" : " " + printable(named)) +
            "` (it leaves other users only what a test is lent), or install bubblewrap";
 }
 

@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <sys/xattr.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -61,6 +62,50 @@ bool inSystemFolder(const std::string& path) {
 }
 
 constexpr std::size_t kWalkBound = 500000;  // entries under the places, a net for a place that holds a disk
+
+// Every regular file under every place, as root (or simlab's user) lists them, but those under `kept`: names a
+// throwaway user could not list are tried all the same, since it may open what it cannot list. Links are not
+// followed: what one leads to is tried where it lies, if that is a place. As root, a folder others may not pass
+// through hides all below it from a user with no group, whatever their modes: it is not walked (what a student
+// left in a closed class folder, however many files, costs nothing). A walk past the bound marks `exposure`.
+std::vector<std::string> filesUnderPlaces(const std::vector<std::string>& kept, bool asRoot, Exposure& exposure) {
+    auto closedToOthers = [&](const std::string& path, const struct stat& info) {
+        // An access list may name users and groups: a folder that has one is walked.
+        return asRoot && S_ISDIR(info.st_mode) && (info.st_mode & S_IXOTH) == 0 &&
+               ::lgetxattr(path.c_str(), "system.posix_acl_access", nullptr, 0) < 0;
+    };
+    std::vector<std::string> files;
+    std::size_t entries = 0;
+    for (const std::string& place : places()) {
+        struct stat info {};
+        if (::lstat(place.c_str(), &info) != 0) continue;
+        if (S_ISREG(info.st_mode)) {
+            if (!underAny(place, kept)) files.push_back(place);
+            continue;
+        }
+        if (!S_ISDIR(info.st_mode) || closedToOthers(place, info)) continue;
+        std::error_code error;
+        for (auto it = fs::recursive_directory_iterator(place, fs::directory_options::skip_permission_denied, error);
+             !error && it != fs::recursive_directory_iterator(); it.increment(error)) {
+            if (++entries > kWalkBound) {
+                exposure.bounded = true;
+                exposure.boundedIn = place;
+                break;
+            }
+            const std::string path = it->path().string();
+            if (underAny(path, kept)) {
+                if (it->is_directory(error) && !it->is_symlink(error)) it.disable_recursion_pending();
+                continue;
+            }
+            struct stat entry {};
+            if (::lstat(path.c_str(), &entry) != 0) continue;
+            if (closedToOthers(path, entry)) it.disable_recursion_pending();
+            else if (S_ISREG(entry.st_mode)) files.push_back(path);
+        }
+        if (exposure.bounded) break;
+    }
+    return files;
+}
 
 }  // namespace
 
@@ -146,35 +191,8 @@ Exposure exposedPlaces(const std::vector<std::string>& lent) {
             kept.push_back(resolved(l));
         }
     }
-    // Every regular file under every place, as root (or simlab's user) lists them: names a throwaway user could
-    // not list are tried all the same, since it may open what it cannot list. Links are not followed: what one
-    // leads to is tried where it lies, if that is a place.
-    std::vector<std::string> files;
-    std::size_t entries = 0;
-    for (const std::string& place : places()) {
-        struct stat info {};
-        if (::lstat(place.c_str(), &info) != 0) continue;
-        if (S_ISREG(info.st_mode)) {
-            if (!underAny(place, kept)) files.push_back(place);
-            continue;
-        }
-        if (!S_ISDIR(info.st_mode)) continue;
-        std::error_code error;
-        for (auto it = fs::recursive_directory_iterator(place, fs::directory_options::skip_permission_denied, error);
-             !error && it != fs::recursive_directory_iterator(); it.increment(error)) {
-            if (++entries > kWalkBound) {
-                exposure.bounded = true;
-                break;
-            }
-            const std::string path = it->path().string();
-            if (underAny(path, kept)) {
-                if (it->is_directory(error) && !it->is_symlink(error)) it.disable_recursion_pending();
-                continue;
-            }
-            if (it->is_regular_file(error) && !it->is_symlink(error)) files.push_back(path);
-        }
-        if (exposure.bounded) break;
-    }
+    const bool asRoot = ::geteuid() == 0;
+    std::vector<std::string> files = filesUnderPlaces(kept, asRoot, exposure);
     std::sort(files.begin(), files.end());
     files.erase(std::unique(files.begin(), files.end()), files.end());
     exposure.tried = files.size();
@@ -200,7 +218,6 @@ Exposure exposedPlaces(const std::vector<std::string>& lent) {
         exposure.error = std::string("cannot try the files: ") + std::strerror(errno);
         return exposure;
     }
-    const bool asRoot = ::geteuid() == 0;
     const uid_t uid = asRoot ? freshUser() : 0;
     pid_t child = -1;
     {

@@ -10,6 +10,8 @@
 #   starter   eli's, the starter's names renamed (its parameters, the stepper), the student's own kept
 #   sly       pia's (who wrote two of the five places, in code of her own), its comments gone and every name renamed
 #   quip      quin's (who wrote each place in a few lines of her own), its comments gone and every name renamed
+#   spelt     the copy of ann's, its comments gone, spelt with digraphs, alternative tokens and lines split
+#             inside names (a copy of two files: ann's and the copy)
 # Every copy is flagged and no honest pair is: precision and recall 1.
 # shellcheck source=../smoke/lib.sh
 source "$(dirname "$0")/../smoke/lib.sh"
@@ -54,13 +56,18 @@ perl -0pe 's/SIMLAB_TODO\("build the model[^\n]*/model.apple = MobilizedBody::Sl
            s/SIMLAB_TODO\("explicit Euler[^\n]*/simlab::RunSettings r;\n    r.integrator = "ExplicitEuler";\n    r.fixedStep = true;\n    r.dt = 0.01;\n    return r;/' \
   "$SOURCE_DIR/starter/apple/NewtonsApple.cpp" >class/quin/NewtonsApple.cpp
 copy quip quin "$no_comments $starter_names s/\bs\b/x/g; s/\br\b/best/g;"
+# ann's copy spelt as the compiler reads alike: its braces and brackets as digraphs, its logic in words, and a
+# backslash-newline inside every return and every state (a copy of the copy, so of ann's too).
+copy spelt copy "$no_comments"' s/\{/<%/g; s/\}/%>/g; s/\[/<:/g; s/\]/:>/g; s/&&/and/g; s/\|\|/or/g; s/!=/not_eq/g;
+                                s/\breturn\b/ret\\\nurn/g; s/\bstate\b/st\\\nate/g;'
 grep -q 'cheapestSettings() {' <(head -40 class/reordered/NewtonsApple.cpp) || fail "the reordered copy is in its first order"
 
 run_capture labelled "${SIMLAB_MEASURED:-$SIMLAB}" similarity apple class -o out
 test "$(status_of labelled)" -eq 0 || fail "similarity failed: $(cat labelled.err)"
 # The flagged pairs, each as "a b" in name order.
 grep -E '^ +[0-9]+ %  ' labelled.out | awk '{ a = $(NF - 2); b = $(NF - 1); print (a < b ? a " " b : b " " a) }' | sort >flagged
-printf '%s\n' "ann copy" "ben renamed" "cat reordered" "dan kept" "eli starter" "pia sly" "quin quip" | sort >copies
+printf '%s\n' "ann copy" "ben renamed" "cat reordered" "dan kept" "eli starter" "pia sly" "quin quip" "ann spelt" \
+  "copy spelt" | sort >copies
 pairs=$(( $(find class -mindepth 1 -maxdepth 1 -type d | wc -l) * ($(find class -mindepth 1 -maxdepth 1 -type d | wc -l) - 1) / 2 ))
 found=$(comm -12 flagged copies | wc -l)
 read -r precision recall < <(awk -v f="$(wc -l <flagged)" -v t="$found" -v c="$(wc -l <copies)" \

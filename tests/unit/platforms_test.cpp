@@ -228,6 +228,33 @@ TEST_CASE("Similarity: C++ read as tokens, identifiers, numbers and literals by 
     CHECK((t[0].line == 2 && t[7].line == 4 && t[12].text == ">>=" && t[13].text == "1.5e-3" && t[15].line == 5));
 }
 
+TEST_CASE("Similarity: a file spelt another way the compiler reads alike is the same tokens, on its own lines",
+          "[platforms]") {
+    // The compiler joins a line that ends in a backslash to the next, and reads a digraph or an alternative token
+    // as the punctuator it stands for: a copy written so must tokenize as the file it copies.
+    const std::string plain =
+        "int f(int a[2], bool b) {\n    if (a[0] != 1 && !b || ~a[1]) { a[0] &= 3; a[1] ^= a[0] | 1; }\n"
+        "    return a[0];\n}\n";
+    const std::string spelt =
+        "int f(int a<:2:>, bool b) <%\n    if (a<:0:> not_eq 1 and not b or compl a<:1:>) <% a<:0:> and_eq 3; "
+        "a<:1:> xor_eq a<:0:> bitor 1; %>\n    ret\\\nurn a<:0:>;\n%>\n";
+    const std::vector<CppToken> p = cppTokens(plain), s = cppTokens(spelt);
+    REQUIRE(p.size() == s.size());
+    for (std::size_t k = 0; k < p.size(); ++k) {
+        INFO("token " << k << ": " << p[k].text << " and " << s[k].text);
+        CHECK(p[k].kind == s[k].kind);
+        CHECK(p[k].text == s[k].text);
+    }
+    // A splice keeps each token on the line where it starts, and what follows on the lines after the splice.
+    CHECK((s[s.size() - 7].kind == "return" && s[s.size() - 7].line == 3));  // cut over lines 3 and 4
+    CHECK(s[s.size() - 6].line == 4);                                        // a
+    CHECK(s.back().line == 5);                                               // }
+    // <:: not followed by : or > is < and ::, as in std::vector<::T>; a digraph opens a directive too.
+    std::vector<std::string> kinds;
+    for (const CppToken& t : cppTokens("std::vector<::T> v;\n%:include <x>\n%:define N 1\n")) kinds.push_back(t.kind);
+    CHECK(kinds == std::vector<std::string>{"ID", "::", "ID", "<", "::", "ID", ">", "ID", ";", "#", "ID", "ID", "NUM"});
+}
+
 TEST_CASE(
     "Similarity: the starter's code removed by its tokens, renamed or not; flagged above the class by three "
     "spreads, 50 to 100 %",

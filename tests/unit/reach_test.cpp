@@ -92,6 +92,36 @@ TEST_CASE("limits only: every file of the places that opens for a throwaway user
     CHECK(exposure.exposed());
 }
 
+TEST_CASE("limits only: below a folder others may not pass through nothing is tried, however much it holds",
+          "[reach]") {
+    // As root alone a test runs as a user with no group, whom a folder's modes keep out.
+    if (::geteuid() != 0) return;
+    simlab::engine::TempDir dir("simlab-reach-test-");
+    fs::permissions(dir.path(), fs::perms::owner_all | fs::perms::others_exec | fs::perms::others_read);
+    const std::string place = dir.path() + "/class";
+    // A student's folder, closed as simlab lock closes it, that holds many files others could read were it open;
+    // and one left open.
+    for (int i = 0; i < 50; ++i) write(place + "/bob/junk/" + std::to_string(i), 0644);
+    write(place + "/ann/NewtonsApple.cpp", 0644);
+    fs::permissions(place, fs::perms::owner_all | fs::perms::others_exec);
+    fs::permissions(place + "/bob", fs::perms::owner_all);
+    fs::permissions(place + "/bob/junk", fs::perms::owner_all | fs::perms::others_exec | fs::perms::others_read);
+    fs::permissions(place + "/ann", fs::perms::owner_all | fs::perms::others_exec | fs::perms::others_read);
+    addPlaces({place});
+    const Exposure exposure = exposedPlaces({});
+    REQUIRE(exposure.error.empty());
+    CHECK(contains(exposure.readable, place + "/ann/NewtonsApple.cpp"));
+    CHECK_FALSE(std::any_of(exposure.readable.begin(), exposure.readable.end(),
+                            [&](const std::string& f) { return f.rfind(place + "/bob/", 0) == 0; }));
+    // The files under the closed folder are not walked: what is tried is what others may reach. Opened, the
+    // folder's 50 files are tried, and read.
+    CHECK_FALSE(exposure.bounded);
+    fs::permissions(place + "/bob", fs::perms::owner_all | fs::perms::others_exec);
+    const Exposure open = exposedPlaces({});
+    CHECK(open.tried == exposure.tried + 50);
+    CHECK(open.readableCount == exposure.readableCount + 50);
+}
+
 TEST_CASE("simlab lock closes the places to others but what is lent, and leaves the group's modes", "[reach]") {
     simlab::engine::TempDir dir("simlab-reach-test-");
     const std::string source = dir.path() + "/simlab", build = source + "/build";

@@ -22,9 +22,11 @@ struct CppToken {
     int line = 0;
 };
 
-/// The tokens of C++ source `text`, comments and #include lines left out. Any bytes read: an unterminated literal
-/// or comment ends at the end of its line or the file.
-std::vector<CppToken> cppTokens(const std::string& text);
+/// The tokens of C++ source, comments and #include lines left out, read as the compiler reads them: lines joined
+/// at a backslash that ends one, digraphs (<% %> <: :> %:) and alternative tokens (and, or, not_eq, ...) as the
+/// punctuators they are, in their usual spelling. Each token has the line of the file where it starts. Any bytes
+/// read: an unterminated literal or comment ends at the end of its line or the file.
+std::vector<CppToken> cppTokens(const std::string& source);
 
 /// The default floor: a pair at or above it is flagged whatever the class. In a scaffolded lab every honest
 /// solution looks alike, so the class-relative threshold can reach 100 % and miss copies. Honest apple solutions

@@ -59,13 +59,16 @@ bool withinReach(const std::string& path, const std::vector<std::string>& lent, 
 
 /// What of simlab's places a throwaway user can read here, tried before hidden tests run where files are kept
 /// apart by their modes alone (limits only): every regular file under every place, opened as a user never used
-/// before, with no group and no capability (as root), or as the calling user (not as root).
+/// before, with no group and no capability (as root), or as the calling user (not as root). As root, nothing below
+/// a folder others may not pass through is walked: no such user reaches it.
 struct Exposure {
     std::vector<std::string> readable;  ///< files that opened, not lent, by name
     std::size_t readableCount = 0;      ///< how many
     std::size_t tried = 0;              ///< the files tried
-    bool bounded = false;               ///< the places hold more than the walk's bound (500,000 entries): the
-                                        ///< rest were not tried, and the places count as exposed
+    bool bounded = false;               ///< the places hold more than the walk's bound (500,000 entries) that
+                                        ///< others may reach: the rest were not tried, and the places count as
+                                        ///< exposed
+    std::string boundedIn;              ///< the place the walk was in when it reached its bound
     std::vector<std::string> passable;  ///< places with nothing lent below them that such a user may pass
                                         ///< through: what simlab writes there later would be readable
     std::string error;                  ///< why nothing could be tried ("" when it was)
