@@ -23,7 +23,9 @@ check "  each corpus case its expected score" \
 check "  the lab built in that user's own cache" \
   bash -c "ls -d other/home/.cache/simlab/*/labs/lab_b-* >/dev/null && test \$(stat -c %u other/home/.cache/simlab) -eq 65534"
 
-# From the folder above a lab named as its program: never onto the folder.
+# From the folder above a lab named as its program: never onto the folder. (Its own cache: a lab the build's cache
+# knew would be one of simlab's places for every other test while this one runs.)
+export SIMLAB_CACHE=$work/cache
 mkdir up && cp -r "$SOURCE_DIR/examples/pendulum" up/pendulum
 (cd up && "$SIMLAB" build ./pendulum pendulum/solution/Pendulum.cpp >../onto.out 2>../onto.err; echo $? >../onto.status)
 check "simlab build from the folder above: one line, exit 2, the lab's folder untouched" \
