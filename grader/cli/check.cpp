@@ -177,7 +177,7 @@ void runCheck(const CheckOptions& o) {
         }
     }
     if (o.format == "json") {
-        std::cout << toGradescope(report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+        std::cout << resultsJson(report);
     } else if (o.format == "classroom") {
         std::cout << classroomJson(report);
     } else {

@@ -58,7 +58,7 @@ std::string minutesAndSeconds(double seconds) {
 }
 
 std::string studentLine(const engine::StudentRecord& r, bool reused) {
-    std::string status = r.status + (r.note.empty() ? "" : ": " + r.note);
+    std::string status = engine::statusName(r.status) + (r.note.empty() ? "" : ": " + r.note);
     if (reused) status += " (unchanged)";
     if (r.pendingPoints() > 0) status += "; " + engine::points(r.pendingPoints()) + " points to grade by hand";
     char score[32];

@@ -217,13 +217,7 @@ void runAutograde(const AutogradeOptions& o) {
             writeFileAtomically(o.results, prairieLearnErrorJson(e.what()));
             throw;
         }
-        const nlohmann::json failed = {
-            {"score", 0},
-            {"output", std::string("The autograder could not grade this submission: ") + printable(e.what())},
-            {"tests", nlohmann::json::array()},
-            // Not graded: a cap on graded submissions does not count it (checkCap).
-            {"extra_data", {{"graded", false}}}};
-        writeFileAtomically(o.results, failed.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+        writeFileAtomically(o.results, resultsErrorJson(e.what()));
         throw;
     }
 }

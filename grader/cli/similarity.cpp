@@ -43,7 +43,7 @@ void runSimilarity(const SimilarityOptions& o) {
         if (e.type != EntryType::Directory || e.name[0] == '.') continue;
         const Gathered g = gatherSubmission(root + "/" + e.name, rubric, rubric.limits, false, false);
         if (g.files) files[e.name] = g.files->text;
-        else without.push_back(printable(e.name) + " (" + g.status + ")");
+        else without.push_back(printable(e.name) + " (" + statusName(g.status) + ")");
     }
     if (!without.empty()) {
         std::string list;

@@ -440,7 +440,8 @@ std::string byteSize(std::uint64_t bytes) {
 HandedIn readHandedIn(const std::string& folder, const std::string& name, std::size_t limit, bool followFolder) {
     HandedIn file;
     file.name = name;
-    auto refuse = [&](const std::string& status, const std::string& why) {
+    const SubmissionStatus unsafe = SubmissionStatus::UnsafeFile, tooLarge = SubmissionStatus::FileTooLarge;
+    auto refuse = [&](SubmissionStatus status, const std::string& why) {
         file.status = status;
         file.refusal = name + " " + why;
         return file;
@@ -448,39 +449,39 @@ HandedIn readHandedIn(const std::string& folder, const std::string& name, std::s
     const Descriptor dir(openFolder(folder, followFolder));
     if (dir.fd < 0) {
         file.found = errno != ENOENT;
-        return file.found ? refuse("unsafe file", "is in a folder that cannot be opened (" +
+        return file.found ? refuse(unsafe, "is in a folder that cannot be opened (" +
                                                       std::string(std::strerror(errno)) + ")")
                           : file;
     }
     struct stat seen {};
     if (::fstatat(dir.fd, name.c_str(), &seen, AT_SYMLINK_NOFOLLOW) != 0) return file;  // not there
     file.found = true;
-    if (!S_ISREG(seen.st_mode)) return refuse("unsafe file", "is " + whatItIs(seen.st_mode) + "; hand in the file itself");
+    if (!S_ISREG(seen.st_mode)) return refuse(unsafe, "is " + whatItIs(seen.st_mode) + "; hand in the file itself");
     if (static_cast<std::uint64_t>(seen.st_size) > limit) {
-        return refuse("file too large", "is " + byteSize(seen.st_size) + "; the limit is " + byteSize(limit));
+        return refuse(tooLarge, "is " + byteSize(seen.st_size) + "; the limit is " + byteSize(limit));
     }
     // A second name for a file others may not read (/etc/shadow, say) is not read with root's privilege.
     if (::geteuid() == 0 && seen.st_nlink > 1 && !(seen.st_mode & S_IROTH)) {
-        return refuse("unsafe file", "is a hard link to a file that others may not read; hand in a copy");
+        return refuse(unsafe, "is a hard link to a file that others may not read; hand in a copy");
     }
     const Descriptor in(::openat(dir.fd, name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC));
     struct stat opened {};
     if (in.fd < 0 || ::fstat(in.fd, &opened) != 0) {
-        return refuse("unsafe file", "cannot be read (" + std::string(std::strerror(errno)) + ")");
+        return refuse(unsafe, "cannot be read (" + std::string(std::strerror(errno)) + ")");
     }
     if (!S_ISREG(opened.st_mode) || opened.st_ino != seen.st_ino || opened.st_dev != seen.st_dev) {
-        return refuse("unsafe file", "changed while it was being read");
+        return refuse(unsafe, "changed while it was being read");
     }
     char buffer[65536];
     for (;;) {
         const ssize_t n = ::read(in.fd, buffer, sizeof buffer);
         if (n < 0 && errno == EINTR) continue;
-        if (n < 0) return refuse("unsafe file", "cannot be read (" + std::string(std::strerror(errno)) + ")");
+        if (n < 0) return refuse(unsafe, "cannot be read (" + std::string(std::strerror(errno)) + ")");
         if (n == 0) break;
         file.text.append(buffer, static_cast<std::size_t>(n));
         if (file.text.size() > limit) {
             file.text.clear();
-            return refuse("file too large", "is over the limit of " + byteSize(limit));
+            return refuse(tooLarge, "is over the limit of " + byteSize(limit));
         }
     }
     file.ok = true;

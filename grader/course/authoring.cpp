@@ -187,8 +187,8 @@ struct Verifier {
                 if (t.outcome != Outcome::Passed || t.credit < 1)
                     short_.push_back("'" + t.name + "' " + outcomeName(t.outcome) + ": " + t.reason);
             }
-            if (reference->status != "graded" || !reference->build.ok) {
-                say("FAIL", "reference: " + reference->status +
+            if (reference->status != SubmissionStatus::Graded || !reference->build.ok) {
+                say("FAIL", "reference: " + statusName(reference->status) +
                                 (reference->build.ok
                                      ? ""
                                      : ", it does not build: " + isolation::firstLines(reference->build.log, 1)));

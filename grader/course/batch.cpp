@@ -10,12 +10,12 @@
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
-#include <thread>
 #include <sys/stat.h>
 
 #include "simlab/protocol/attachments.h"
 #include "simlab/common/errors.h"
 #include "simlab/common/files.h"
+#include "simlab/common/parallel.h"
 #include "simlab/course/manual.h"
 #include "simlab/grading/report.h"
 #include "simlab/isolation/process.h"
@@ -60,7 +60,7 @@ std::vector<Attachment> attachedBeside(const std::string& dir) {
             Attachment a{e.name, ""};
             try {
                 const std::string path = dir + "/" + e.name;
-                if (fs::file_size(path) <= wire::kMaxAttachmentBytes) a.bytes = readFile(path);
+                if (fs::file_size(path) <= wire::kMaxAttachmentBytes) a.text = readFile(path);
             } catch (const std::exception&) {
                 // linked, not shown
             }
@@ -107,8 +107,9 @@ void appendHistory(const std::string& dir, const StudentRecord& r, const std::st
     const std::time_t now = std::time(nullptr);
     char when[32];
     std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-    const nlohmann::json line = {{"when", when},        {"file", r.file},  {"key", r.key}, {"status", r.status},
-                                 {"score", r.score},    {"max_score", r.maxScore},          {"why", why}};
+    const nlohmann::json line = {{"when", when},     {"file", r.file},           {"key", r.key},
+                                 {"status", statusName(r.status)},
+                                 {"score", r.score}, {"max_score", r.maxScore}, {"why", why}};
     std::string lines = fs::exists(dir + "/history.jsonl") ? readFile(dir + "/history.jsonl") : "";
     lines += line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
     writeOutputDurably(dir + "/history.jsonl", lines);
@@ -130,22 +131,24 @@ Submission findSubmission(const std::string& folder, const std::string& expected
     for (const FolderEntry& e : entries) {
         if (e.type != EntryType::Directory && isCppFile(e.name)) cpp.push_back(&e);
     }
-    auto chosen = [&](const FolderEntry& e, const std::string& status, const std::string& note) {
+    auto chosen = [&](const FolderEntry& e, SubmissionStatus status, const std::string& note) {
         return Submission{e.folder, baseName(e.name), e.name, status, note};
     };
     for (const FolderEntry* e : cpp) {
-        if (baseName(e->name) == expected) return chosen(*e, "graded", "");
+        if (baseName(e->name) == expected) return chosen(*e, SubmissionStatus::Graded, "");
     }
     for (const FolderEntry* e : cpp) {
         if (lower(baseName(e->name)) == lower(expected)) {
-            return chosen(*e, "misnamed file", "graded " + e->name + "; expected " + expected);
+            return chosen(*e, SubmissionStatus::MisnamedFile, "graded " + e->name + "; expected " + expected);
         }
     }
-    if (cpp.size() == 1) return chosen(*cpp[0], "misnamed file", "graded " + cpp[0]->name + "; expected " + expected);
-    if (cpp.empty()) return {folder, "", "", "missing file", "no " + expected + " (no C++ file at all)"};
+    if (cpp.size() == 1) {
+        return chosen(*cpp[0], SubmissionStatus::MisnamedFile, "graded " + cpp[0]->name + "; expected " + expected);
+    }
+    if (cpp.empty()) return {folder, "", "", SubmissionStatus::MissingFile, "no " + expected + " (no C++ file at all)"};
     std::string found;
     for (const FolderEntry* e : cpp) found += (found.empty() ? "" : ", ") + e->name;
-    return {folder, "", "", "missing file", "no " + expected + " (found " + found + ")"};
+    return {folder, "", "", SubmissionStatus::MissingFile, "no " + expected + " (found " + found + ")"};
 }
 
 Gathered gatherSubmission(const std::string& folder, const Rubric& rubric, const Limits& limits, bool recursive,
@@ -160,7 +163,7 @@ Gathered gatherSubmission(const std::string& folder, const Rubric& rubric, const
     const bool follow = recursive || followFolder;
     const HandedIn source = readHandedIn(g.found.folder, g.found.name, cap, follow);
     if (!source.ok) {
-        g.status = source.found ? source.status : "missing file";
+        g.status = source.found ? source.status.value_or(SubmissionStatus::UnsafeFile) : SubmissionStatus::MissingFile;
         g.note = source.found ? source.refusal : "no " + rubric.submission;
         return g;
     }
@@ -182,7 +185,7 @@ GradeReport gradeFolder(const Builder& builder, const Assignment& assignment, co
     const Gathered g = gatherSubmission(folder, rubric, limits, recursive, followFolder);
     if (!g.files) return notGradedReport(assignment, rubric, g.status, g.note, options.includeHidden);
     GradeReport report = gradeSubmission(builder, assignment, rubric, *g.files, options);
-    if (report.status == "graded") report.status = g.status;
+    if (report.status == SubmissionStatus::Graded) report.status = g.status;
     if (!g.note.empty()) report.note = g.note + (report.note.empty() ? "" : "; " + report.note);
     return report;
 }
@@ -273,7 +276,7 @@ struct ClassPlan {
 // The key of a student's grade: the basis and the bytes that will be graded, read once, with care.
 std::string submissionKey(const Hash& base, const Gathered& gathered, const Rubric& rubric) {
     Hash key = base;
-    key.add(gathered.status).add(gathered.note).add(gathered.found.shown);
+    key.add(statusName(gathered.status)).add(gathered.note).add(gathered.found.shown);
     if (gathered.files) {
         key.add(gathered.files->text);
         for (const std::string& name : rubric.extraFiles) {
@@ -419,10 +422,9 @@ public:
             }
         }
         alreadyDone_ = progress_.done;
-        std::vector<std::thread> workers;
-        const int jobs = std::max(1, std::min<int>(c_.options.jobs, static_cast<int>(plan_.pending.size())));
-        for (int k = 0; k < jobs; ++k) workers.emplace_back([this] { work(); });
-        for (std::thread& w : workers) w.join();
+        forEachInParallel(plan_.pending.size(), c_.options.jobs, [this](std::size_t i) {
+            if (!stop_) gradeOne(plan_.pending[i]);
+        });
         return setupFailure_;
     }
 
@@ -436,10 +438,6 @@ public:
     }
 
 private:
-    void work() {
-        for (std::size_t i = next_++; i < plan_.pending.size() && !stop_; i = next_++) gradeOne(plan_.pending[i]);
-    }
-
     void gradeOne(const Pending& p) {
         GradeOptions grade = c_.options.grade;
         grade.student = p.id;  // the folder's name: their own trade scene where the rubric gives each one
@@ -447,7 +445,7 @@ private:
             GradeReport report;
             if (p.gathered.files) {
                 report = gradeSubmission(c_.builder, c_.assignment, c_.rubric, *p.gathered.files, grade);
-                if (report.status == "graded") report.status = p.gathered.status;
+                if (report.status == SubmissionStatus::Graded) report.status = p.gathered.status;
                 if (!p.gathered.note.empty()) {
                     report.note = p.gathered.note + (report.note.empty() ? "" : "; " + report.note);
                 }
@@ -471,7 +469,7 @@ private:
             failed.id = p.id;
             failed.key = "retry";
             failed.content = p.content;
-            failed.status = "grader error";
+            failed.status = SubmissionStatus::GraderError;
             failed.note = e.what();
             failed.maxScore = c_.rubric.totalPoints();
             failed.assignment = c_.assignment.id;
@@ -528,7 +526,6 @@ private:
     std::mutex lock_;
     ClassProgress progress_;
     int alreadyDone_ = 0;
-    std::atomic<std::size_t> next_{0};
     std::atomic<bool> stop_{false};
     std::exception_ptr setupFailure_;
 };

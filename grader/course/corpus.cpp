@@ -70,7 +70,10 @@ CorpusCase loadCorpusCase(const Assignment& assignment, const simlab::Rubric& ru
     c.name = fs::path(path).stem().string();
     c.folder = plainName(path, percentDecoded(t["folder"].value_or(c.name)), "the folder");
     c.description = t["description"].value_or(std::string());
-    c.status = t["status"].value_or(std::string());
+    if (const std::optional<std::string> status = t["status"].value<std::string>()) {
+        c.status = statusNamed(*status);
+        if (!c.status) fail(path, "status '" + *status + "' is not one simlab names");
+    }
     c.skipped = t["skipped"].value_or(false);
     const std::string base = t["base"].value_or(std::string());
     if (base != "solution" && base != "starter") fail(path, "base must be \"solution\" or \"starter\"");
@@ -200,7 +203,7 @@ void writeCorpusCase(const CorpusCase& c, const std::string& folder, const std::
 }
 
 std::vector<std::string> compareWithCase(const CorpusCase& c, const std::vector<TestResult>& tests,
-                                         std::optional<double> score, const std::string& status,
+                                         std::optional<double> score, SubmissionStatus status,
                                          const std::string& text, bool everyTest) {
     std::vector<std::string> mismatches;
     for (const TestResult& t : tests) {
@@ -213,8 +216,8 @@ std::vector<std::string> compareWithCase(const CorpusCase& c, const std::vector<
     if (score && std::abs(*score - c.score) > 0.005) {
         mismatches.push_back("score " + points(*score) + ", expected " + points(c.score));
     }
-    if (!c.status.empty() && status != c.status)
-        mismatches.push_back("status '" + status + "', expected '" + c.status + "'");
+    if (c.status && status != *c.status)
+        mismatches.push_back("status '" + statusName(status) + "', expected '" + statusName(*c.status) + "'");
     for (const std::vector<std::string>& choice :
          everyTest ? c.reportContains : std::vector<std::vector<std::string>>{}) {
         const bool said = std::any_of(choice.begin(), choice.end(), [&](const std::string& needle) {

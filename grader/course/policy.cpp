@@ -526,7 +526,7 @@ void chargeLateness(StudentRecord& r, const LatePolicy& p, const HandIn& handIn,
 
 void applyLatePolicy(StudentRecord& r, const LatePolicy& p, const HandIn& handIn) {
     r.late = {};
-    if (!p.active || r.status == "missing file") return;
+    if (!p.active || r.status == SubmissionStatus::MissingFile) return;
     SlipAccount account;
     account.had = p.slipDays;
     if (const auto found = p.slip.find(r.id); found != p.slip.end()) account = found->second;

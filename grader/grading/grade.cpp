@@ -23,6 +23,7 @@
 
 #include "simlab/protocol/bounded_json.h"
 #include "simlab/common/errors.h"
+#include "simlab/common/parallel.h"
 #include "simlab/build/lab.h"
 #include "simlab/build/lock.h"
 #include "simlab/isolation/process.h"
@@ -339,12 +340,12 @@ TestResult interpret(const RubricTest& test, const isolation::ProcessResult& pro
         credit = verdict->passed ? 1.0 : verdict->credit;
         t.reason = verdict->passed ? verdict->reason : withThrowSite(verdict->reason, events, sites);
         t.feedback = verdict->feedback;
-        for (const wire::Attachment& file : verdict->attachments) t.attachments.emplace_back(file.name, file.text);
+        t.attachments = verdict->attachments;
         if (verdict->figure) {
             t.figure = verdict->figure->value;
             t.unit = verdict->figure->unit;
         }
-        for (const wire::BoardEntry& e : verdict->leaderboard) t.leaderboard.push_back({e.name, e.value, e.order});
+        t.leaderboard = verdict->leaderboard;
     }
     // The judge's account of the test's time (the student's process's, and the judge's own: drawing, say) and of
     // the shared questions it used: hints for sharing the next self-check's tests out, nothing scored.
@@ -618,7 +619,6 @@ std::vector<TestResult> runJudges(const Assignment& assignment, const Rubric& ru
     }
     std::vector<std::vector<TestResult>> results(judges);
     std::vector<std::string> outputs(judges);
-    std::vector<std::exception_ptr> failures(judges);
     std::mutex told;
     Stalls stalls;
     auto progress = [&](const std::string& test) {
@@ -626,23 +626,12 @@ std::vector<TestResult> runJudges(const Assignment& assignment, const Rubric& ru
         std::lock_guard<std::mutex> guard(told);
         options.progress(test);
     };
-    auto judge = [&](std::size_t k) {
-        try {
-            const std::string dir = w.root + "/judge" + std::to_string(k + 1);
-            writeJudgeFiles(dir, rubric, files);
-            results[k] = runTests(assignment, shares[k], w, dir, "j" + std::to_string(k + 1) + "-", limits, stalls,
-                                  &outputs[k], progress);
-        } catch (...) {
-            failures[k] = std::current_exception();
-        }
-    };
-    std::vector<std::thread> running;
-    for (std::size_t k = 1; k < judges; ++k) running.emplace_back(judge, k);
-    judge(0);
-    for (std::thread& t : running) t.join();
-    for (const std::exception_ptr& failure : failures) {
-        if (failure) std::rethrow_exception(failure);
-    }
+    forEachInParallel(judges, static_cast<int>(judges), [&](std::size_t k) {
+        const std::string dir = w.root + "/judge" + std::to_string(k + 1);
+        writeJudgeFiles(dir, rubric, files);
+        results[k] = runTests(assignment, shares[k], w, dir, "j" + std::to_string(k + 1) + "-", limits, stalls,
+                              &outputs[k], progress);
+    });
     std::vector<TestResult> ordered;
     for (std::size_t i = 0; i < selected.size(); ++i) ordered.push_back(results[placed[i].first][placed[i].second]);
     for (const std::string& output : outputs) *graderOutput += output;
@@ -679,7 +668,13 @@ Outcome outcomeNamed(const std::string& name) {
     throw std::invalid_argument("unknown outcome '" + name + "'");
 }
 
-GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, const std::string& status,
+SubmissionStatus buildFailure(const BuildResult& build) {
+    return build.stage == "check"  ? SubmissionStatus::ForbiddenCode
+           : build.stage == "link" ? SubmissionStatus::DidNotLink
+                                   : SubmissionStatus::DidNotCompile;
+}
+
+GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, SubmissionStatus status,
                             const std::string& note, bool includeHidden) {
     GradeReport report;
     report.assignment = assignment.id;
@@ -698,7 +693,7 @@ GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, 
         t.name = test.name;
         t.visibility = test.visibility;
         t.maxScore = test.points;
-        t.outcome = status == "missing file" ? Outcome::MissingFile : Outcome::Refused;
+        t.outcome = status == SubmissionStatus::MissingFile ? Outcome::MissingFile : Outcome::Refused;
         t.reason = note;
         report.tests.push_back(t);
     }
@@ -949,7 +944,7 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
         report.tests = runJudges(assignment, rubric, files, selected, w, limits, options, &report.graderOutput);
     } else {
         const std::string& stage = report.build.stage;
-        report.status = stage == "check" ? "forbidden code" : stage == "link" ? "did not link" : "did not compile";
+        report.status = buildFailure(report.build);
         const std::string firstReason = report.build.log.substr(0, report.build.log.find('\n'));
         for (const RubricTest* test : selected) {
             TestResult t;
@@ -957,7 +952,7 @@ GradeReport gradeSubmission(const Builder& builder, const Assignment& assignment
             t.visibility = test->visibility;
             t.maxScore = test->points;
             t.outcome = stage == "check" ? Outcome::Refused : Outcome::DidNotCompile;
-            t.reason = stage == "check" || report.build.stoppedByLimit ? firstReason : report.status;
+            t.reason = stage == "check" || report.build.stoppedByLimit ? firstReason : statusName(report.status);
             report.tests.push_back(t);
         }
     }

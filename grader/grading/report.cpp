@@ -23,8 +23,7 @@ std::string buildLine(const BuildResult& b) {
     if (b.stage == "missing") {
         std::snprintf(text, sizeof text, "nothing to build");
     } else if (!b.ok) {
-        std::snprintf(text, sizeof text, "%s",
-                      b.stage == "link" ? "did not link" : b.stage == "check" ? "forbidden code" : "did not compile");
+        std::snprintf(text, sizeof text, "%s", statusName(buildFailure(b)).c_str());
     } else if (b.cached) {
         std::snprintf(text, sizeof text, "compiled (unchanged since last time)%s, linked in %.1f s", counted.c_str(),
                       b.linkSeconds);
@@ -161,23 +160,52 @@ StudentRecord recordOf(const GradeReport& report) {
     return r;
 }
 
-nlohmann::json toGradescope(const StudentRecord& r) {
+TestAccount testAccount(const StudentRecord& r, const TestResult& t) {
+    TestAccount account{outcomeName(t.outcome), {}};
+    if (!t.reason.empty() && t.outcome != Outcome::DidNotCompile) account.line += ": " + printable(t.reason);
+    for (const std::string& line : t.feedback) account.more.push_back("- " + printable(line));
     // The compiler's first lines, as the record keeps them.
-    const std::string compiler = printable(r.compiler, true);
+    if (t.outcome == Outcome::DidNotCompile) {
+        account.more.push_back(isolation::firstLines(printable(r.compiler, true), 12));
+    }
+    return account;
+}
+
+std::string TestAccount::text() const {
+    std::string all = line;
+    for (const std::string& l : more) all += "\n" + l;
+    return all;
+}
+
+std::string recordAccount(const StudentRecord& r) {
+    std::string output = r.note.empty() ? "" : printable(r.note) + "\n";
+    if (!r.build.empty()) output += r.build + "\n";
+    if (!r.sandbox.empty()) output += "sandbox: " + r.sandbox + "\n";
+    if (!r.built || warningCount(r.compiler) > 0) output += printable(r.compiler, true);
+    const std::string left = notRunLine(r.notRunCount, r.notRunPoints);
+    if (!left.empty()) output += left + "\n";
+    const std::string manual = manualLine(r.manual);
+    if (!manual.empty()) output += manual + "\n";
+    // A late penalty (the course's policy), and the course's bank of slip days: what this lab spent, and what is
+    // left after it.
+    if (!r.late.line.empty()) {
+        output += "Lateness: " + printable(r.late.line) + "\n";
+        if (!r.late.slip.ledger.empty()) output += "Slip days: " + printable(r.late.slip.ledger) + "\n";
+    }
+    return output;
+}
+
+nlohmann::json toGradescope(const StudentRecord& r) {
     nlohmann::json tests = nlohmann::json::array(), leaderboard = nlohmann::json::array();
     for (const TestResult& t : r.tests) {
         for (const BoardEntry& e : t.leaderboard) {
             leaderboard.push_back({{"name", e.name}, {"value", e.value}, {"order", e.order}});
         }
-        std::string output = outcomeName(t.outcome);
-        if (!t.reason.empty() && t.outcome != Outcome::DidNotCompile) output += ": " + printable(t.reason);
-        for (const std::string& line : t.feedback) output += "\n- " + printable(line);
-        if (t.outcome == Outcome::DidNotCompile) output += "\n" + isolation::firstLines(compiler, 12);
         nlohmann::json test = {{"name", t.name},
                                {"score", t.score},
                                {"max_score", t.maxScore},
                                {"status", t.outcome == Outcome::Passed ? "passed" : "failed"},
-                               {"output", output},
+                               {"output", testAccount(r, t).text()},
                                {"visibility", gradescopeVisibility(t)},
                                {"extra_data", {{"outcome", outcomeName(t.outcome)}, {"seconds", t.seconds}}}};
         if (t.figure) {
@@ -186,14 +214,6 @@ nlohmann::json toGradescope(const StudentRecord& r) {
         }
         tests.push_back(test);
     }
-    std::string output = r.note.empty() ? "" : printable(r.note) + "\n";
-    if (!r.build.empty()) output += r.build + "\n";
-    if (!r.sandbox.empty()) output += "sandbox: " + r.sandbox + "\n";
-    if (!r.built || warningCount(r.compiler) > 0) output += compiler;
-    const std::string left = notRunLine(r.notRunCount, r.notRunPoints);
-    if (!left.empty()) output += left + "\n";
-    const std::string manual = manualLine(r.manual);
-    if (!manual.empty()) output += manual + "\n";
     // The items a person grades: Gradescope grades them as questions of their own beside the autograder's score.
     nlohmann::json pendingItems = nlohmann::json::array(), given = nlohmann::json::array();
     for (const ManualGrade& m : r.manual) {
@@ -208,7 +228,7 @@ nlohmann::json toGradescope(const StudentRecord& r) {
         }
     }
     nlohmann::json extra = {{"assignment", r.assignment},
-                            {"status", r.status},
+                            {"status", statusName(r.status)},
                             {"sandbox", r.sandbox},
                             {"max_score", r.maxScore},
                             {"hidden_tests_not_run", r.notRunCount},
@@ -222,11 +242,8 @@ nlohmann::json toGradescope(const StudentRecord& r) {
     }
     // A late penalty (the course's policy) takes its share of the tests' points too.
     if (!r.late.line.empty()) {
-        output += "Lateness: " + printable(r.late.line) + "\n";
         extra["late"] = {{"submitted", r.submitted}, {"hours", r.late.hours}, {"percent", r.late.percent}};
-        // The course's bank of slip days: what this lab spent, and what is left after it.
         if (const StudentRecord::Lateness::Slip& s = r.late.slip; !s.ledger.empty()) {
-            output += "Slip days: " + printable(s.ledger) + "\n";
             extra["late"]["slip_days"] = {{"used", s.used}, {"left", s.had - s.used}, {"bank", s.bank}};
         }
     }
@@ -234,7 +251,7 @@ nlohmann::json toGradescope(const StudentRecord& r) {
     // Everything is plain text (never HTML or Markdown a student's bytes could shape), valid UTF-8.
     nlohmann::json document = {{"score", score},
                                {"execution_time", static_cast<int>(std::ceil(r.seconds))},
-                               {"output", output},
+                               {"output", recordAccount(r)},
                                {"output_format", "text"},
                                {"test_output_format", "text"},
                                {"stdout_visibility", "hidden"},

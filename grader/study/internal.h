@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "simlab/common/files.h"
+#include "simlab/common/parallel.h"
 #include "simlab/integrators.h"
 #include "simlab/study/study.h"
 
@@ -23,6 +24,7 @@ namespace simlab::study {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using engine::forEachInParallel;
 
 /// A subject's header line and its points, as the study program printed them (for `study minimal`, its rows).
 struct SubjectRun {
@@ -40,11 +42,6 @@ struct SubjectRun {
 /// cut at 300 bytes; numbers are finite or null; an integrator, a mode and a status are among the known ones.
 /// Empty, with `why` saying what is wrong, for a line no study prints.
 std::optional<json> wellFormedLine(const json& line, std::string& why);
-
-/// Calls work(0), ..., work(count - 1) on `threads` threads at once (at least one), each thread taking the next
-/// index when it is free, and waits for them all. A thread whose call throws takes no more; the first exception is
-/// thrown here, once every thread has ended.
-void forEachAtOnce(std::size_t count, int threads, const std::function<void(std::size_t)>& work);
 
 /// Runs a study program, handing each line it prints to `onLine` as it comes, made well formed (a line that is not
 /// stops the study, saying what it was); what is not a JSON line (a progress line, an error) goes to our standard

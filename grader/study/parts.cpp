@@ -47,7 +47,7 @@ void measure(const StudyOptions& o, const std::vector<Part>& parts, const std::v
     std::mutex lock;
     std::atomic<int> measured{0}, reused{0};
     std::string failure;
-    forEachAtOnce(mine.size(), std::min<int>(o.jobs, static_cast<int>(mine.size())), [&](std::size_t i) {
+    forEachInParallel(mine.size(), std::min<int>(o.jobs, static_cast<int>(mine.size())), [&](std::size_t i) {
         const Part& p = parts[mine[i]];
         if (kept(o, p)) {
             ++reused;

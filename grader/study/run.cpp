@@ -94,25 +94,6 @@ std::mutex stderrLock;
 
 }  // namespace
 
-void forEachAtOnce(std::size_t count, int threads, const std::function<void(std::size_t)>& work) {
-    std::atomic<std::size_t> next{0};
-    std::mutex lock;
-    std::exception_ptr failure;
-    std::vector<std::thread> workers;
-    for (int k = 0; k < std::max(1, threads); ++k) {
-        workers.emplace_back([&] {
-            try {
-                for (std::size_t i = next++; i < count; i = next++) work(i);
-            } catch (...) {
-                std::lock_guard<std::mutex> guard(lock);
-                if (!failure) failure = std::current_exception();
-            }
-        });
-    }
-    for (std::thread& w : workers) w.join();
-    if (failure) std::rethrow_exception(failure);
-}
-
 Progress::Progress() : began_(Clock::now()), ticker_([this] { tick(); }) {}
 
 void Progress::finish(bool ended) {

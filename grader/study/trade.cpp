@@ -98,7 +98,7 @@ SubjectRun runSweeps(const std::vector<std::string>& argv, bool sandboxed, const
     std::vector<std::vector<json>> points;
     std::vector<int> statuses;
     Progress progress;
-    forEachAtOnce(kMostSweeps, cores, [&](std::size_t k) {
+    forEachInParallel(kMostSweeps, cores, [&](std::size_t k) {
         // The other runs wait for the first's subject line, or for its end, whatever ends it; none runs past the
         // sweeps it says there are.
         if (k > 0) {
@@ -188,7 +188,7 @@ void writeFronts(const StudyOptions& o, const std::vector<const engine::Assignme
     }
     if (tasks.empty()) throw engine::UsageError("no trade question here to make fronts for");
     std::mutex told;
-    forEachAtOnce(tasks.size(), std::min<int>(o.jobs, static_cast<int>(tasks.size())), [&](std::size_t i) {
+    forEachInParallel(tasks.size(), std::min<int>(o.jobs, static_cast<int>(tasks.size())), [&](std::size_t i) {
         Task& t = tasks[i];
         const simlab::trade::Question q = simlab::trade::parseQuestion(t.data.dump(), t.file.string());
         const simlab::trade::Scene& studied = (t.list == "scenes" ? q.scenes : q.variants).at(t.scene);
@@ -363,7 +363,7 @@ void studyLabs(const StudyOptions& o, const std::vector<const engine::Assignment
         int status = 0;
     };
     std::vector<LabRun> results(labs.size());
-    forEachAtOnce(labs.size(), std::min<int>(o.jobs, static_cast<int>(labs.size())), [&](std::size_t i) {
+    forEachInParallel(labs.size(), std::min<int>(o.jobs, static_cast<int>(labs.size())), [&](std::size_t i) {
         const engine::Assignment* a = labs[i];
         std::vector<std::string> argv = {studentProgram.empty() ? a->studyProgramPath : studentProgram};
         if (o.minimal) argv.push_back("--minimal");

@@ -24,9 +24,9 @@ CanvasExport canvasCsv(const std::string& column, double pointsPossible, const s
         // error, or points a person has still to give.
         if (e.folder.empty()) {
             out.noId.push_back(e.student);
-        } else if (found == byId.end() || found->second->status == "grader error") {
+        } else if (found == byId.end() || found->second->status == SubmissionStatus::GraderError) {
             out.notGraded.push_back(e.folder);
-        } else if (found->second->status == "missing file") {
+        } else if (found->second->status == SubmissionStatus::MissingFile) {
             out.missingFile.push_back(e.folder);
         } else if (found->second->pendingPoints() > 0) {
             out.manualPending.push_back(e.folder);

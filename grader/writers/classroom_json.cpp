@@ -7,7 +7,8 @@
 // over the sum of max_score. Under partial credit one runner cannot make the two agree. Two runners do: "earned"
 // (max_score the points earned; one passing entry per test that earned points, worth them) and "missed"
 // (max_score the points missed; one failing entry per test that missed points, worth 0). Both ways then give the
-// score over the assignment's points. The texts are the ones Gradescope's document holds (report.h's toGradescope).
+// score over the assignment's points. The texts are the record's account of its tests (report.h's testAccount), as
+// Gradescope's document gives them.
 #include <cmath>
 
 #include "common.h"
@@ -31,25 +32,31 @@ std::string testStatus(Outcome outcome) {
 }  // namespace
 
 std::string classroomJson(const GradeReport& report) {
-    const nlohmann::json gradescope = toGradescope(report);
-    const std::string file = report.source.empty() ? "" : " " + printable(report.source);
-    const bool built = report.build.ok;
+    StudentRecord record = recordOf(report);
+    record.file = report.source;  // the file graded, as the command that runs a test alone names it
+    return classroomJson(record);
+}
+
+std::string classroomJson(const StudentRecord& record) {
+    const std::string file = record.file.empty() ? "" : " " + printable(record.file);
+    const bool built = record.built;
     auto entry = [&](std::size_t i, const std::string& status, double score, const std::string& what) {
-        const TestResult& t = report.tests[i];
+        const TestResult& t = record.tests[i];
         return nlohmann::json{{"name", printable(t.name) + " (" + what + ")"},
                               {"status", status},
                               {"score", score},
-                              {"message", gradescope["tests"][i]["output"]},
-                              {"test_code", "build/bin/simlab check " + report.assignment + file + " --test \"" + t.name + "\""},
-                              {"filename", printable(report.source)},
+                              {"message", testAccount(record, t).text()},
+                              {"test_code",
+                               "build/bin/simlab check " + record.assignment + file + " --test \"" + t.name + "\""},
+                              {"filename", printable(record.file)},
                               {"line_no", 0},  // the reporter prints " - line N" for any other value
                               {"duration", static_cast<long>(std::lround(t.seconds * 1000))}};
     };
     // The points each test earned, every one a pass worth its points; the points each test missed, a fail (or an
     // error, where nothing ran) worth nothing. A test with part of its points is in both.
     nlohmann::json earned = nlohmann::json::array(), missed = nlohmann::json::array();
-    for (std::size_t i = 0; i < report.tests.size(); ++i) {
-        const TestResult& t = report.tests[i];
+    for (std::size_t i = 0; i < record.tests.size(); ++i) {
+        const TestResult& t = record.tests[i];
         const double lost = roundScore(t.maxScore - t.score);
         if (t.score > 0) earned.push_back(entry(i, "pass", t.score, points(t.score) + " of " + points(t.maxScore) + " points"));
         if (lost > 0) {
@@ -63,7 +70,7 @@ std::string classroomJson(const GradeReport& report) {
     };
     if (earned.empty()) earned.push_back(nothing("no points earned", "fail"));
     if (missed.empty()) missed.push_back(nothing("no points missed", "pass"));
-    const double score = report.score(), max = report.maxScore();
+    const double score = record.score, max = record.maxScore;
     const nlohmann::json earnedRunner = {{"version", 1}, {"status", built ? "pass" : "error"}, {"max_score", score},
                                          {"tests", earned}};
     const nlohmann::json missedRunner = {{"version", 1},

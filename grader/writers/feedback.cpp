@@ -14,7 +14,7 @@ Feedback feedbackOf(const Assignment& assignment, const StudentRecord& r, const 
     f.title = assignment.title;
     f.id = r.id;
     f.score = points(r.total()) + "/" + points(r.maxTotal());
-    if (r.status != "graded") f.status = r.status;
+    if (r.status != SubmissionStatus::Graded) f.status = statusName(r.status);
     f.note = r.note;
     f.late = r.late.line;
     if (r.late.percent > 0) {
@@ -23,9 +23,9 @@ Feedback feedbackOf(const Assignment& assignment, const StudentRecord& r, const 
     f.slip = r.late.slip.ledger;
     f.sandbox = r.sandbox;
     if (!r.compiler.empty()) {
-        f.compilerTitle = r.status == "did not compile" ? "The compiler's message:"
-                          : r.status == "did not link"  ? "The linker's message:"
-                          : r.status == "forbidden code" ? "Why the file was refused:"
+        f.compilerTitle = r.status == SubmissionStatus::DidNotCompile ? "The compiler's message:"
+                          : r.status == SubmissionStatus::DidNotLink    ? "The linker's message:"
+                          : r.status == SubmissionStatus::ForbiddenCode ? "Why the file was refused:"
                                                          : "The compiler's warnings:";
         f.compiler = printable(r.compiler, true);
     }

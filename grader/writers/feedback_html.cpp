@@ -68,11 +68,11 @@ std::string feedbackHtml(const Assignment& assignment, const StudentRecord& reco
     int pictures = 0;
     for (const Attachment& a : attached) {
         const std::string type = writers::pictureType(a.name);
-        if (type.empty() || a.bytes.empty()) continue;
+        if (type.empty() || a.text.empty()) continue;
         if (!pictures) out << "<h2 id=\"runs\">Your runs, drawn</h2>\n";
         ++pictures;
-        out << writers::figureHtml("picture-" + std::to_string(pictures), writers::dataUri(type, a.bytes),
-                                   type == "image/svg+xml" ? a.bytes : "", a.name, a.name);
+        out << writers::figureHtml("picture-" + std::to_string(pictures), writers::dataUri(type, a.text),
+                                   type == "image/svg+xml" ? a.text : "", a.name, a.name);
     }
 
     for (std::size_t i = 0; i < f.tests.size(); ++i) {

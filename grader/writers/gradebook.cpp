@@ -25,7 +25,8 @@ std::string gradebookCsv(const Rubric& rubric, const std::vector<StudentRecord>&
     for (const ManualItem& m : rubric.manual) out << "," << csvCell("manual (" + points(m.points) + "): " + m.name);
     out << "\n";
     for (const StudentRecord& r : records) {
-        out << csvCell(r.id) << "," << points(r.total()) << "," << points(r.maxTotal()) << "," << csvCell(r.status);
+        out << csvCell(r.id) << "," << points(r.total()) << "," << points(r.maxTotal()) << ","
+            << csvCell(statusName(r.status));
         if (late) {
             out << "," << points(r.rawTotal()) << "," << points(r.latePoints()) << "," << csvCell(r.submitted) << ","
                 << csvCell(r.late.line);

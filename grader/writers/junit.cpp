@@ -33,7 +33,7 @@ std::string junitXml(const Assignment& assignment, const std::vector<StudentReco
         suites << "  <testsuite name=\"" << xmlText(r.id) << "\" tests=\"" << r.tests.size() << "\" failures=\""
                << f << "\" errors=\"" << e << "\" time=\"" << r.seconds << "\">\n"
                << "    <properties><property name=\"score\" value=\"" << points(r.score) << "/"
-               << points(r.maxScore) << "\"/><property name=\"status\" value=\"" << xmlText(r.status)
+               << points(r.maxScore) << "\"/><property name=\"status\" value=\"" << xmlText(statusName(r.status))
                << "\"/></properties>\n"
                << cases.str() << "  </testsuite>\n";
     }

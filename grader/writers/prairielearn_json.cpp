@@ -1,6 +1,7 @@
 // results.json for PrairieLearn's external grader: its documented fields (score in [0, 1], gradable,
 // format_errors, message, output, tests[] with name, points, max_points, message, output and images), under its
-// 1 MB limit. The texts are the ones Gradescope's document holds (report.h's toGradescope), so both say the same.
+// 1 MB limit. The texts are the record's account of itself and its tests (report.h's recordAccount, testAccount),
+// as Gradescope's document gives them, so both say the same.
 #include <algorithm>
 
 #include "common.h"
@@ -15,8 +16,9 @@ namespace {
 using nlohmann::json;
 
 // A submission whose file could not be graded at all: PrairieLearn marks it invalid and charges no attempt.
-bool gradable(const GradeReport& r) {
-    return r.status != "missing file" && r.status != "unsafe file" && r.status != "file too large";
+bool gradable(const StudentRecord& r) {
+    return r.status != SubmissionStatus::MissingFile && r.status != SubmissionStatus::UnsafeFile &&
+           r.status != SubmissionStatus::FileTooLarge;
 }
 
 // `text` cut to at most `bytes` bytes, on a character boundary, saying it was cut.
@@ -31,17 +33,19 @@ std::string cut(const std::string& text, std::size_t bytes) {
 }  // namespace
 
 std::string prairieLearnJson(const GradeReport& report, std::size_t limitBytes) {
-    // Gradescope's document has every text made printable; its test outputs start with "outcome: reason".
-    const json gradescope = toGradescope(report);
+    return prairieLearnJson(recordOf(report), limitBytes);
+}
+
+std::string prairieLearnJson(const StudentRecord& record, std::size_t limitBytes) {
     json tests = json::array();
-    for (std::size_t i = 0; i < report.tests.size(); ++i) {
-        const TestResult& t = report.tests[i];
+    for (const TestResult& t : record.tests) {
         json test = {{"name", t.name}, {"points", t.score}, {"max_points", t.maxScore}};
         if (t.visibility == "visible") {
-            const std::string said = gradescope["tests"][i]["output"];
-            const std::size_t newline = said.find('\n');
-            test["message"] = said.substr(0, newline);
-            test["output"] = newline == std::string::npos ? "" : said.substr(newline + 1);
+            const TestAccount account = testAccount(record, t);
+            std::string more;
+            for (std::size_t k = 0; k < account.more.size(); ++k) more += (k == 0 ? "" : "\n") + account.more[k];
+            test["message"] = account.line;
+            test["output"] = more;
             json images = json::array();
             for (const auto& [name, contents] : t.attachments) {
                 const std::string mime = writers::pictureType(name);
@@ -56,16 +60,16 @@ std::string prairieLearnJson(const GradeReport& report, std::size_t limitBytes) 
         }
         tests.push_back(test);
     }
-    const double max = report.maxScore();
-    std::string message = "Score: " + points(report.score()) + "/" + points(max);
-    if (!report.note.empty()) message += ". " + printable(report.note);
-    json doc = {{"gradable", gradable(report)},
-                {"score", max > 0 ? std::clamp(report.score() / max, 0.0, 1.0) : 0.0},
+    const double max = record.maxScore;
+    std::string message = "Score: " + points(record.score) + "/" + points(max);
+    if (!record.note.empty()) message += ". " + printable(record.note);
+    json doc = {{"gradable", gradable(record)},
+                {"score", max > 0 ? std::clamp(record.score / max, 0.0, 1.0) : 0.0},
                 {"message", message},
-                {"output", gradescope["output"]},
+                {"output", recordAccount(record)},
                 {"tests", tests}};
-    if (!gradable(report)) {
-        doc["format_errors"] = json::array({printable(report.note.empty() ? report.status : report.note)});
+    if (!gradable(record)) {
+        doc["format_errors"] = json::array({printable(record.note.empty() ? statusName(record.status) : record.note)});
     }
 
     // Over the limit: leave out pictures, the largest first; then cut the texts ever shorter.

@@ -28,7 +28,7 @@ std::string recordJson(const StudentRecord& r) {
         {"id", r.id},
         {"key", r.key},
         {"basis", r.basis},
-        {"status", r.status},
+        {"status", statusName(r.status)},
         {"note", r.note},
         {"file", r.file},
         {"content", r.content},
@@ -56,7 +56,9 @@ std::optional<StudentRecord> readRecordJson(const std::string& text) {
         r.id = j.at("id");
         r.key = j.at("key");
         r.basis = j.value("basis", "");
-        r.status = j.at("status");
+        const std::optional<SubmissionStatus> status = statusNamed(j.at("status").get<std::string>());
+        if (!status) return std::nullopt;  // a status this simlab does not name: the student is regraded
+        r.status = *status;
         r.note = j.at("note");
         r.file = j.at("file");
         r.content = j.value("content", "");  // none from an older simlab

@@ -255,8 +255,8 @@ std::string studentsTable(const std::vector<const StudentRecord*>& rows, bool wi
             out << "</td>";
         }
         if (tests) out << "<td class=\"name\">" << htmlText(shortened(tests(*r), kNoteChars)) << "</td>";
-        if (r->status == "graded") out << "<td class=\"muted\">graded</td>";
-        else out << "<td>" << writers::outcomeBadge(r->status) << "</td>";
+        if (r->status == SubmissionStatus::Graded) out << "<td class=\"muted\">graded</td>";
+        else out << "<td>" << writers::outcomeBadge(statusName(r->status)) << "</td>";
         if (notes) out << "<td class=\"name\">" << htmlText(shortened(r->note, kNoteChars)) << "</td>";
         out << "</tr>\n";
     }
@@ -287,7 +287,7 @@ std::string badEnds(const StudentRecord& r) {
 std::vector<const StudentRecord*> withBadEnds(const std::vector<StudentRecord>& records) {
     std::vector<const StudentRecord*> rows;
     for (const StudentRecord& r : records) {
-        if (r.status == "graded" && !badEnds(r).empty()) rows.push_back(&r);
+        if (r.status == SubmissionStatus::Graded && !badEnds(r).empty()) rows.push_back(&r);
     }
     std::sort(rows.begin(), rows.end(), byScore);
     return rows;
@@ -297,7 +297,7 @@ std::vector<const StudentRecord*> withBadEnds(const std::vector<StudentRecord>& 
 std::vector<const StudentRecord*> notGraded(const std::vector<StudentRecord>& records) {
     std::vector<const StudentRecord*> rows;
     for (const StudentRecord& r : records) {
-        if (r.status != "graded") rows.push_back(&r);
+        if (r.status != SubmissionStatus::Graded) rows.push_back(&r);
     }
     std::sort(rows.begin(), rows.end(), byScore);
     return rows;
@@ -307,7 +307,7 @@ std::vector<const StudentRecord*> notGraded(const std::vector<StudentRecord>& re
 std::vector<const StudentRecord*> lowest(const std::vector<StudentRecord>& records) {
     std::vector<const StudentRecord*> rows;
     for (const StudentRecord& r : records) {
-        if (r.status == "graded" && r.total() < r.maxTotal()) rows.push_back(&r);
+        if (r.status == SubmissionStatus::Graded && r.total() < r.maxTotal()) rows.push_back(&r);
     }
     std::sort(rows.begin(), rows.end(), byScore);
     if (rows.size() > kListed) rows.resize(kListed);
@@ -390,7 +390,7 @@ std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, 
     int pendingStudents = 0;
     for (const StudentRecord& r : records) {
         scores.push_back(r.total());
-        ++statuses[r.status];
+        ++statuses[statusName(r.status)];
         pendingStudents += r.pendingPoints() > 0;
     }
     const writers::Spread spread = writers::spreadOf(scores);
@@ -405,10 +405,11 @@ std::string classReportHtml(const Assignment& assignment, const Rubric& rubric, 
     }
     out << "</p>\n<p>";
     // "graded" first, then the other statuses in alphabetical order.
+    const std::string& graded = statusName(SubmissionStatus::Graded);
     std::string counted;
-    if (statuses.count("graded")) counted = "graded: " + std::to_string(statuses["graded"]);
+    if (statuses.count(graded)) counted = graded + ": " + std::to_string(statuses[graded]);
     for (const auto& [status, count] : statuses) {
-        if (status != "graded") counted += (counted.empty() ? "" : ", ") + status + ": " + std::to_string(count);
+        if (status != graded) counted += (counted.empty() ? "" : ", ") + status + ": " + std::to_string(count);
     }
     out << htmlText(counted) << (result.skipped.empty() ? "" : "; " + plural(result.skipped.size(), "entry", "entries") +
                                                                    " of the folder skipped")

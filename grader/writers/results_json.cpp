@@ -53,4 +53,12 @@ std::string keptResultsJson(const nlohmann::json& earlier, double score, const S
     return writers::jsonText(document);
 }
 
+std::string resultsErrorJson(const std::string& why) {
+    return writers::jsonText({{"score", 0},
+                              {"output", "The autograder could not grade this submission: " + printable(why)},
+                              {"tests", nlohmann::json::array()},
+                              // Not graded: a cap on graded submissions does not count it.
+                              {"extra_data", {{"graded", false}}}});
+}
+
 }  // namespace simlab::engine

@@ -54,7 +54,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         r.outcome = Outcome::Passed;
         tests.push_back(r);
     }
-    compareWithCase(c, tests, 100.0, "graded", "report", true);
+    compareWithCase(c, tests, 100.0, SubmissionStatus::Graded, "report", true);
     try {
         writeCorpusCase(c, folder + "/class/" + c.folder, folder + "/class");
     } catch (const std::runtime_error&) {

@@ -36,7 +36,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                  {std::optional<bool>(), std::optional<bool>(true), std::optional<bool>(false)}) {
                 StudentRecord r;
                 r.id = id;
-                r.status = "graded";
+                r.status = SubmissionStatus::Graded;
                 r.submitted = when;
                 applyLatePolicy(r, policy, handInOf(when, "Canvas's file time", flaggedLate));
                 simlab::fuzz::require(r.late.percent >= 0 && r.late.percent <= 100,

@@ -21,7 +21,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     const LatePolicy policy = metadataLatePolicy(LatePolicy{}, metadata);
     StudentRecord r;
-    r.status = "graded";
+    r.status = SubmissionStatus::Graded;
     if (const std::optional<std::time_t> at = metadataTime(metadata, {"created_at"})) r.submitted = utcText(*at);
     applyLatePolicy(r, policy);
     simlab::fuzz::require(r.late.percent >= 0 && r.late.percent <= 100, "a lateness out of 0 to 100 %");

@@ -91,7 +91,7 @@ Case loadCase(const Assignment& assignment, const simlab::Rubric& rubric, const 
 void writeCase(const Case& c, const fs::path& dir, const std::string& classDir) { writeCorpusCase(c, dir.string(), classDir); }
 
 std::vector<std::string> compare(const Case& c, const std::vector<TestResult>& tests, std::optional<double> score,
-                                 const std::string& status, const std::string& text, bool everyTest = true) {
+                                 SubmissionStatus status, const std::string& text, bool everyTest = true) {
     return compareWithCase(c, tests, score, status, text, everyTest);
 }
 
@@ -325,10 +325,15 @@ void compareGraded(const Assignment& assignment, const std::vector<Case>& cases,
             r.outcome = outcomeNamed(t.at("extra_data").at("outcome"));
             tests.push_back(r);
         }
-        const std::string status = json.at("extra_data").value("status", "");
+        const std::string said = json.at("extra_data").value("status", "");
+        const std::optional<SubmissionStatus> status = statusNamed(said);
+        if (!status) {
+            problems.push_back(c.name + ": results.json's status '" + said + "' is not one simlab names");
+            continue;
+        }
         std::string seen = feedback;
         jsonStrings(json, seen);
-        std::vector<std::string> mismatches = compare(c, tests, json.at("score"), status, seen);
+        std::vector<std::string> mismatches = compare(c, tests, json.at("score"), *status, seen);
         for (const Case& other : cases) {
             if (other.name != c.name && (results + feedback).find(marker(other.name)) != std::string::npos) {
                 mismatches.push_back("its report holds " + other.name + "'s file");
@@ -442,8 +447,8 @@ int gradeAsClass(const Assignment& assignment, const simlab::Rubric& rubric, con
         }
         ++graded;
         if (ids.count(id) != 1) problems.push_back(c.name + ": " + std::to_string(ids.count(id)) + " gradebook rows");
-        if (!c.status.empty() && statusOf[id] != c.status) {
-            problems.push_back(c.name + ": status '" + statusOf[id] + "', expected '" + c.status + "'");
+        if (c.status && statusOf[id] != statusName(*c.status)) {
+            problems.push_back(c.name + ": status '" + statusOf[id] + "', expected '" + statusName(*c.status) + "'");
         }
     }
     if (ids.size() != graded) problems.push_back("the gradebook has " + std::to_string(ids.size()) + " rows");
@@ -878,7 +883,7 @@ int invariants(const Manifest& manifest, const Assignment& assignment, const sim
                        "; " + walkLine;
         }
         for (const std::string& change : hostChanges(before, hostState(watched), users)) problems.push_back(change);
-        if (made.empty()) problems.push_back("no record of the witness in the report: " + report.status);
+        if (made.empty()) problems.push_back("no record of the witness in the report: " + statusName(report.status));
         if (c.invariantRuns && !entryRan) problems.push_back("'" + c.invariantEntry + "' never ran");
         if (!c.invariantRuns && entryRan) problems.push_back("'" + c.invariantEntry + "' ran, and must not");
         if (problems.empty()) {

@@ -46,7 +46,7 @@ TEST_CASE("links, pipes and folders are refused without being followed or opened
     const HandedIn link = readHandedIn(f.dir.path(), "A.cpp", 1024, false);
     CHECK(link.found);
     CHECK_FALSE(link.ok);
-    CHECK(link.status == "unsafe file");
+    CHECK(link.status == simlab::engine::SubmissionStatus::UnsafeFile);
     CHECK(link.refusal == "A.cpp is a symbolic link; hand in the file itself");
     CHECK(link.text.empty());
     // A pipe with no writer would block a reader forever.
@@ -70,7 +70,7 @@ TEST_CASE("a file over the limit is refused unread, however large it claims to b
     Folder f;
     f.write("A.cpp", std::string(2048, 'x'));
     const HandedIn big = readHandedIn(f.dir.path(), "A.cpp", 1024, false);
-    CHECK(big.status == "file too large");
+    CHECK(big.status == simlab::engine::SubmissionStatus::FileTooLarge);
     CHECK(big.refusal == "A.cpp is 2 KiB; the limit is 1 KiB");
     // 3 GiB that take no room on disk.
     const int fd = ::open(f.path("S.cpp").c_str(), O_WRONLY | O_CREAT, 0644);

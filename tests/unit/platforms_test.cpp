@@ -84,7 +84,7 @@ TEST_CASE("PrairieLearn: score in [0, 1], the tests' points, visible pictures as
 
 TEST_CASE("PrairieLearn: no file is not gradable; a grader error neither", "[platforms]") {
     GradeReport r = report();
-    r.status = "missing file";
+    r.status = SubmissionStatus::MissingFile;
     r.note = "no NewtonsApple.cpp";
     const json doc = json::parse(prairieLearnJson(r));
     CHECK(doc["gradable"] == false);
@@ -350,14 +350,14 @@ TEST_CASE("Canvas: one column, formula-safe cells, groups, blanks for what has n
                                    "Hal,107,s7,hal,B,hal\n",
                                    "r.csv");
     StudentRecord ada, eve, zed, broken, team, hal;
-    ada.id = "ada", ada.score = 67.5, ada.maxScore = 75, ada.status = "graded";
+    ada.id = "ada", ada.score = 67.5, ada.maxScore = 75, ada.status = SubmissionStatus::Graded;
     ada.manual = {{"the schematic", 25, 20.0, "clear"}};
-    eve.id = "eve", eve.score = 0, eve.status = "missing file";
-    zed.id = "=zed", zed.score = 50, zed.status = "graded";
-    broken.id = "carol", broken.status = "grader error";
-    team.id = "team", team.score = 70, team.maxScore = 75, team.status = "graded";
+    eve.id = "eve", eve.score = 0, eve.status = SubmissionStatus::MissingFile;
+    zed.id = "=zed", zed.score = 50, zed.status = SubmissionStatus::Graded;
+    broken.id = "carol", broken.status = SubmissionStatus::GraderError;
+    team.id = "team", team.score = 70, team.maxScore = 75, team.status = SubmissionStatus::Graded;
     team.manual = {{"the schematic", 25, 25.0, ""}};
-    hal.id = "hal", hal.score = 75, hal.maxScore = 75, hal.status = "graded";
+    hal.id = "hal", hal.score = 75, hal.maxScore = 75, hal.status = SubmissionStatus::Graded;
     hal.manual = {{"the schematic", 25, std::nullopt, ""}};
     const CanvasExport made = canvasCsv("Biosimulation project (1234)", 100, roster, {ada, eve, zed, broken, team, hal});
     CHECK(made.csv == "Student,ID,SIS User ID,SIS Login ID,Section,Biosimulation project (1234)\n"

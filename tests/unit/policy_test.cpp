@@ -28,7 +28,7 @@ LatePolicy policy() {
 StudentRecord handedIn(const std::string& id, const std::string& when, const std::string& from) {
     StudentRecord r;
     r.id = id;
-    r.status = "graded";
+    r.status = SubmissionStatus::Graded;
     r.submitted = when;
     r.submittedFrom = from;
     return r;

@@ -41,7 +41,7 @@ TestResult test(const std::string& name, Outcome outcome, double score, double m
 StudentRecord hostileStudent() {
     StudentRecord r;
     r.id = "<script>alert(1)</script>";
-    r.status = "graded";
+    r.status = simlab::engine::SubmissionStatus::Graded;
     r.note = "graded <b>x</b>.cpp; \"quoted\" & 'single'";
     r.file = "NewtonsApple.cpp";
     r.score = 12.5;
@@ -178,7 +178,7 @@ TEST_CASE("report.html escapes hostile ids and links each student's feedback by 
           "[report][html]") {
     simlab::engine::ClassResult result;
     StudentRecord hostile = hostileStudent();
-    hostile.status = "did not link";
+    hostile.status = simlab::engine::SubmissionStatus::DidNotLink;
     StudentRecord spaced = hostileStudent();
     spaced.id = "ada lovelace " + kInvalidUtf8;
     spaced.score = 30;
@@ -208,7 +208,7 @@ TEST_CASE("report.html: needs a look lists every test that crashed or timed out,
     for (int i = 0; i < 11; ++i) {
         StudentRecord r;
         r.id = "low" + std::to_string(i);
-        r.status = "graded";
+        r.status = simlab::engine::SubmissionStatus::Graded;
         r.score = 10 + i;
         r.maxScore = 100;
         r.tests = {test("the fall", Outcome::Failed, r.score, 100, "")};
@@ -216,7 +216,7 @@ TEST_CASE("report.html: needs a look lists every test that crashed or timed out,
     }
     StudentRecord crashed;
     crashed.id = "crashed-at-95";
-    crashed.status = "graded";
+    crashed.status = simlab::engine::SubmissionStatus::Graded;
     crashed.score = 95;
     crashed.maxScore = 100;
     crashed.tests = {test("the fall", Outcome::Passed, 95, 95, ""), test("the trade", Outcome::Crashed, 0, 5, "SIGSEGV")};
@@ -226,7 +226,7 @@ TEST_CASE("report.html: needs a look lists every test that crashed or timed out,
     slow.tests[1] = test("the trade", Outcome::TimedOut, 0, 11, "");
     StudentRecord unbuilt;
     unbuilt.id = "unbuilt";
-    unbuilt.status = "did not compile";
+    unbuilt.status = simlab::engine::SubmissionStatus::DidNotCompile;
     unbuilt.maxScore = 100;
     unbuilt.tests = {test("the fall", Outcome::DidNotCompile, 0, 95, ""), test("the trade", Outcome::DidNotCompile, 0, 5, "")};
     result.records.push_back(crashed);
@@ -248,7 +248,7 @@ TEST_CASE("report.html draws figures that span many orders of magnitude on log a
     for (double drift : {0.0, 1.9e-14, 2e-14, 3e-10, 2.0}) {
         StudentRecord r;
         r.id = "s" + std::to_string(result.records.size());
-        r.status = "graded";
+        r.status = simlab::engine::SubmissionStatus::Graded;
         r.maxScore = 10;
         TestResult t = test("the energy stays", Outcome::Passed, 10, 10, "");
         t.figure = drift;

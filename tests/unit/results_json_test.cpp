@@ -1,6 +1,7 @@
 // results.json is written whole from a student's record: the scores it has now, the points given by hand, and
 // what the build said; record.json keeps all of that, and a record without it is read as from another version.
 #include <catch2/catch.hpp>
+#include <set>
 #include <string>
 
 #include "simlab/grading/report.h"
@@ -14,7 +15,7 @@ namespace {
 GradeReport classReport() {
     GradeReport r;
     r.assignment = "apple";
-    r.status = "graded";
+    r.status = engine::SubmissionStatus::Graded;
     r.build.ok = true;
     r.build.compileSeconds = 1.25;
     r.build.linkSeconds = 0.5;
@@ -137,4 +138,34 @@ TEST_CASE("a record whose credit is out of 0 to 1, or that names a test twice, i
     nlohmann::json twice = good;
     twice["tests"].push_back(good["tests"][0]);
     CHECK_FALSE(engine::readRecordJson(twice.dump()));
+}
+
+TEST_CASE("every status has one name, read back as itself; record.json with another is read as damaged", "[report]") {
+    using engine::SubmissionStatus;
+    std::set<std::string> names;
+    for (const SubmissionStatus status :
+         {SubmissionStatus::Graded, SubmissionStatus::MisnamedFile, SubmissionStatus::MissingFile,
+          SubmissionStatus::UnsafeFile, SubmissionStatus::FileTooLarge, SubmissionStatus::DidNotCompile,
+          SubmissionStatus::DidNotLink, SubmissionStatus::ForbiddenCode, SubmissionStatus::GraderError}) {
+        const std::string& name = engine::statusName(status);
+        CHECK(names.insert(name).second);
+        CHECK(engine::statusNamed(name) == status);
+    }
+    CHECK(names.count("did not compile"));
+    CHECK(names.count("grader error"));
+    CHECK_FALSE(engine::statusNamed("Graded"));
+    CHECK_FALSE(engine::statusNamed(""));
+
+    engine::StudentRecord r = engine::recordOf(classReport());
+    r.id = "ada";
+    r.key = "k";
+    r.status = SubmissionStatus::FileTooLarge;
+    nlohmann::json record = nlohmann::json::parse(engine::recordJson(r));
+    CHECK(record["status"] == "file too large");
+    const std::optional<engine::StudentRecord> back = engine::readRecordJson(record.dump());
+    REQUIRE(back);
+    CHECK(back->status == SubmissionStatus::FileTooLarge);
+    CHECK(nlohmann::json::parse(engine::resultsJson(r))["extra_data"]["status"] == "file too large");
+    record["status"] = "nearly graded";
+    CHECK_FALSE(engine::readRecordJson(record.dump()));
 }

@@ -1,10 +1,16 @@
 // How a self-check shares its tests out over judges: from last time's costs, so that the judges end together and
-// tests that ask the same shared questions meet in one judge, where the answer is computed once.
+// tests that ask the same shared questions meet in one judge, where the answer is computed once; and the pool that
+// runs the judges (and a class's students, and a study's runs) at once.
 #include <catch2/catch.hpp>
+#include <atomic>
+#include <chrono>
 #include <map>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "simlab/common/parallel.h"
 #include "simlab/grading/grade.h"
 
 using simlab::engine::readTestCost;
@@ -131,4 +137,40 @@ TEST_CASE("a cost is read only where its numbers are finite and not negative", "
     CHECK_FALSE(readTestCost(nlohmann::json::parse(R"({"shared": {}})")));
     CHECK_FALSE(readTestCost(nlohmann::json::parse("5")));
     CHECK_FALSE(readTestCost(nlohmann::json::parse(R"({"seconds": 1e999})", nullptr, false)));
+}
+
+TEST_CASE("the pool calls each index once, on at most its threads, and none for no work", "[share]") {
+    std::vector<std::atomic<int>> calls(200);
+    std::atomic<int> running{0}, most{0};
+    simlab::engine::forEachInParallel(calls.size(), 4, [&](std::size_t i) {
+        const int now = ++running;
+        for (int seen = most; now > seen && !most.compare_exchange_weak(seen, now);) {}
+        ++calls[i];
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+        --running;
+    });
+    for (const std::atomic<int>& c : calls) CHECK(c == 1);
+    CHECK(most <= 4);
+    CHECK(most >= 1);
+    int none = 0, one = 0;
+    simlab::engine::forEachInParallel(0, 4, [&](std::size_t) { ++none; });
+    simlab::engine::forEachInParallel(1, 0, [&](std::size_t) { ++one; });  // at least one thread
+    CHECK(none == 0);
+    CHECK(one == 1);
+}
+
+TEST_CASE("the pool throws a call's exception once every thread has ended", "[share]") {
+    std::atomic<bool> slowEnded{false};
+    std::atomic<int> calls{0};
+    auto work = [&](std::size_t i) {
+        ++calls;
+        if (i == 0) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+            slowEnded = true;
+        }
+        if (i == 1) throw std::runtime_error("index 1 failed");
+    };
+    CHECK_THROWS_WITH(simlab::engine::forEachInParallel(2, 2, work), "index 1 failed");
+    CHECK(slowEnded);
+    CHECK(calls == 2);
 }

@@ -1,8 +1,11 @@
 // Small file-system helpers the engine shares.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "simlab/common/status.h"
 
 namespace simlab::engine {
 
@@ -106,7 +109,7 @@ struct HandedIn {
     bool found = false;   ///< an entry of that name exists
     bool ok = false;      ///< read: `text` holds it
     std::string text;
-    std::string status;   ///< when found but not read: "unsafe file" or "file too large"
+    std::optional<SubmissionStatus> status;  ///< when found but not read: UnsafeFile or FileTooLarge
     std::string refusal;  ///< why, in one line: "NewtonsApple.cpp is a symbolic link; hand in the file itself"
 };
 

@@ -40,7 +40,8 @@ struct Submission {
     std::string folder;  ///< the folder that holds it: the student's, or one of its subfolders
     std::string name;    ///< its file name; empty when none was found
     std::string shown;   ///< its path relative to the student's folder, as reports show it
-    std::string status;  ///< "graded", "misnamed file" (the one C++ file there is graded) or "missing file"
+    SubmissionStatus status = SubmissionStatus::MissingFile;  ///< Graded, MisnamedFile (the one C++ file there is
+                                                              ///< graded) or MissingFile
     std::string note;    ///< e.g. "graded apple.cpp; expected NewtonsApple.cpp"
 };
 
@@ -50,11 +51,11 @@ Submission findSubmission(const std::string& folder, const std::string& expected
                           bool followFolder = false);
 
 /// A student's folder made ready to grade: the file found and read with the rubric's extra files, or why not
-/// (status "missing file", "unsafe file" or "file too large", with a one-line note).
+/// (status missing file, unsafe file or file too large, with a one-line note).
 struct Gathered {
     Submission found;
     std::optional<SubmissionFiles> files;  ///< empty when there is nothing to grade
-    std::string status;                    ///< found.status, or why nothing is graded
+    SubmissionStatus status = SubmissionStatus::MissingFile;  ///< found.status, or why nothing is graded
     std::string note;
 };
 Gathered gatherSubmission(const std::string& folder, const Rubric& rubric, const Limits& limits, bool recursive,

@@ -68,7 +68,7 @@ struct CorpusCase {
     std::string description;
     std::map<std::string, CorpusFile> files;  // what the student hands in
     double score = 0;
-    std::string status;
+    std::optional<SubmissionStatus> status;  // the gradebook's status for it, where the case says
     bool skipped = false;
     std::vector<std::vector<std::string>> reportContains;  // each: any one of these
     std::vector<std::string> reportLacks;
@@ -93,7 +93,7 @@ void writeCorpusCase(const CorpusCase& c, const std::string& dir, const std::str
 /// What differs between a case's expectations and a grade: outcomes, the score, texts the report must show (with
 /// `everyTest`: a grade of only some tests shows only some texts).
 std::vector<std::string> compareWithCase(const CorpusCase& c, const std::vector<TestResult>& tests,
-                                         std::optional<double> score, const std::string& status,
+                                         std::optional<double> score, SubmissionStatus status,
                                          const std::string& text, bool everyTest = true);
 
 }  // namespace simlab::engine

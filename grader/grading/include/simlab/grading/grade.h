@@ -13,7 +13,9 @@
 
 #include "simlab/build/build.h"
 #include "simlab/common/files.h"
+#include "simlab/common/status.h"
 #include "simlab/build/manifest.h"
+#include "simlab/protocol/verdict.h"
 #include "simlab/rubric/rubric.h"
 
 namespace simlab::engine {
@@ -30,12 +32,12 @@ std::string outcomeName(Outcome outcome);
 /// The outcome of that name; throws std::invalid_argument for another.
 Outcome outcomeNamed(const std::string& name);
 
-/// An entry of Gradescope's leaderboard a test gave: a figure it measured, ranked "asc" (lowest first) or "desc".
-struct BoardEntry {
-    std::string name;
-    double value = 0;
-    std::string order;
-};
+/// An entry of Gradescope's leaderboard a test gave: a figure it measured, ranked "asc" (lowest first) or "desc",
+/// as the judge's verdict holds it.
+using wire::BoardEntry;
+/// A file a test made for the student's feedback (a drawing of the model): its name and its bytes, as the judge's
+/// verdict holds it.
+using wire::Attachment;
 
 struct TestResult {
     std::string name;
@@ -55,8 +57,7 @@ struct TestResult {
     /// where this test computed it, 0 where an earlier test of its judge had.
     std::map<std::string, double> shared;
     std::string output;                 ///< what the student's process printed (cut short), for instructors
-    /// Files the test made for the student's feedback (a drawing of the model): name and contents.
-    std::vector<std::pair<std::string, std::string>> attachments;
+    std::vector<Attachment> attachments;  ///< files the test made for the student's feedback
 };
 
 struct GradeReport {
@@ -69,8 +70,7 @@ struct GradeReport {
     double notRunPoints = 0;
     std::vector<ManualItem> manual; ///< the rubric's items graded by a person: pending, not in score()
     double seconds = 0;
-    std::string status = "graded";  ///< or "misnamed file", "missing file", "unsafe file", "file too large",
-                                    ///< "did not compile", "forbidden code", "did not link"
+    SubmissionStatus status = SubmissionStatus::Graded;
     std::string note;               ///< about the files: "graded apple.cpp; expected NewtonsApple.cpp"
     std::string graderOutput;       ///< what the judge printed (Catch2's account of the tests), for instructors
     std::string sandbox;            ///< the sandbox it ran in, one line (isolation::SandboxSupport::summary)
@@ -146,9 +146,13 @@ std::string placesExposed(const Manifest& manifest);
 /// Round a score to hundredths, as reports show it.
 double roundScore(double points);
 
-/// The report of a submission that was not graded (status "missing file", "unsafe file", "file too large"):
+/// The status of a build that failed: forbidden code (the object check refused it), did not link, or did not
+/// compile.
+SubmissionStatus buildFailure(const BuildResult& build);
+
+/// The report of a submission that was not graded (status missing file, unsafe file, file too large):
 /// every selected test scores 0 with the note as its reason.
-GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, const std::string& status,
+GradeReport notGradedReport(const Assignment& assignment, const Rubric& rubric, SubmissionStatus status,
                             const std::string& note, bool includeHidden);
 
 }  // namespace simlab::engine

@@ -24,8 +24,7 @@ struct StudentRecord {
     std::string id;
     std::string key;     ///< what the grade was made from; a different key means regrade
     std::string basis;   ///< the part of the key that is not the student's: the grader, the rubric's tests, limits
-    std::string status;  ///< graded, misnamed file, missing file, unsafe file, file too large, did not compile,
-                         ///< forbidden code, did not link, grader error
+    SubmissionStatus status = SubmissionStatus::Graded;
     std::string note;
     std::string file;    ///< the file graded, relative to the student's folder
     std::string content;  ///< a short hash of what was graded (the files' bytes): manual.csv's file column

@@ -6,7 +6,8 @@
 //     feedback.md            feedback_markdown.cpp  feedbackMarkdown
 //     feedback.html          feedback_html.cpp      feedbackHtml
 //     report.html            report_html.cpp        classReportHtml
-//     results.json           results_json.cpp       resultsJson (the document is report.h's toGradescope)
+//     results.json           results_json.cpp       resultsJson, resultsErrorJson (the document is report.h's
+//                                                     toGradescope)
 //     record.json            record_json.cpp        recordJson, readRecordJson
 //     output.txt             output_text.cpp        testOutputText
 //     PrairieLearn's         prairielearn_json.cpp  prairieLearnJson, prairieLearnErrorJson
@@ -47,16 +48,10 @@ std::string junitXml(const Assignment& assignment, const std::vector<StudentReco
 std::string feedbackMarkdown(const Assignment& assignment, const StudentRecord& record,
                              const std::vector<ManualItem>& manual = {}, const std::vector<std::string>& attached = {});
 
-/// A file a test drew for the student's feedback (a plot of their run, a drawing of their model): its name, as it
-/// lies beside the feedback, and its bytes.
-struct Attachment {
-    std::string name;
-    std::string bytes;
-};
-
 /// The same feedback as a self-contained HTML page (inline style, no script, nothing fetched): the same facts as
-/// feedbackMarkdown, each test's measured figure where it has one, and the pictures among `attached` (SVG, PNG)
-/// shown in the page as data URIs; the other files are linked.
+/// feedbackMarkdown, each test's measured figure where it has one, and the pictures among `attached` (SVG, PNG:
+/// the files the tests drew, by their names beside the feedback) shown in the page as data URIs; the other files
+/// are linked.
 std::string feedbackHtml(const Assignment& assignment, const StudentRecord& record,
                          const std::vector<ManualItem>& manual = {}, const std::vector<Attachment>& attached = {});
 
@@ -90,6 +85,10 @@ std::string resultsJson(const StudentRecord& record, const SubmissionsNote& note
 /// object, else none), with that `score`, and the note.
 std::string keptResultsJson(const nlohmann::json& earlier, double score, const SubmissionsNote& note);
 
+/// results.json when simlab could not grade at all: score 0, no tests, why in its output, and extra_data.graded
+/// false (a cap on graded submissions does not count it).
+std::string resultsErrorJson(const std::string& why);
+
 /// record.json: the record as simlab keeps it to resume a class.
 std::string recordJson(const StudentRecord& record);
 /// The record that `text` holds; empty if it is damaged or from another version (the student is regraded).
@@ -103,6 +102,8 @@ std::string testOutputText(const GradeReport& report);
 /// max_points, message, output and, for visible tests, the pictures they drew as images (data URIs). Hidden tests
 /// show their points and outcome only. Never longer than `limitBytes` (PrairieLearn takes 1 MB): pictures are
 /// left out first, the largest first, then the texts are cut.
+std::string prairieLearnJson(const StudentRecord& record, std::size_t limitBytes = 1000000);
+/// prairieLearnJson(recordOf(report)).
 std::string prairieLearnJson(const GradeReport& report, std::size_t limitBytes = 1000000);
 /// PrairieLearn's results.json when simlab could not grade at all: not gradable (no attempt is charged), and why.
 std::string prairieLearnErrorJson(const std::string& why);
@@ -113,6 +114,8 @@ std::string prairieLearnErrorJson(const std::string& why);
 /// table and the points it records for Classroom agree (classroom_json.cpp says why). Each: version 1, status
 /// (pass, fail, or error when nothing was built), max_score, and tests[] with name, status, score, message,
 /// test_code (the command that runs the test alone), filename, line_no and duration (ms).
+std::string classroomJson(const StudentRecord& record);
+/// classroomJson(recordOf(report)).
 std::string classroomJson(const GradeReport& report);
 
 /// Canvas's gradebook import for one assignment column, from the class's records and the roster.
