@@ -1,7 +1,6 @@
 #include "simlab/course/authoring.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -11,13 +10,13 @@
 #include <regex>
 #include <set>
 #include <sstream>
-#include <thread>
 #include <toml++/toml.h>
 
 #include "simlab/build/build.h"
 #include "simlab/build/lab.h"
 #include "simlab/common/errors.h"
 #include "simlab/common/files.h"
+#include "simlab/common/parallel.h"
 #include "simlab/common/text.h"
 #include "simlab/course/batch.h"
 #include "simlab/course/corpus.h"
@@ -84,18 +83,6 @@ GradeReport gradeCase(const Manifest& manifest, const Assignment& lab, const Rub
     options.judges = o.judges;
     options.limits = limits;
     return gradeFolder(Builder(manifest), lab, rubric, dir.path() + "/student", false, false, options);
-}
-
-// Calls fn(0) ... fn(count - 1), `workers` at a time; fn catches what it throws.
-void forEachInParallel(std::size_t count, std::size_t workers, const std::function<void(std::size_t)>& fn) {
-    std::atomic<std::size_t> next{0};
-    std::vector<std::thread> running;
-    for (std::size_t w = 0; w < std::max<std::size_t>(1, workers); ++w) {
-        running.emplace_back([&] {
-            for (std::size_t i = next++; i < count; i = next++) fn(i);
-        });
-    }
-    for (std::thread& t : running) t.join();
 }
 
 // What a report shows: its text, and every test's reason (a hidden test's too, as an instructor reads it), alone
@@ -234,7 +221,7 @@ struct Verifier {
         VerifyOptions one = o;
         one.judges = 1;
         const std::size_t workers = std::min<std::size_t>(cases.size(), std::max(1, o.judges));
-        forEachInParallel(cases.size(), workers, [&](std::size_t i) {
+        forEachInParallel(cases.size(), static_cast<int>(workers), [&](std::size_t i) {
             try {
                 graded[i].c = loadCorpusCase(lab, rubric, cases[i]);
                 graded[i].report = gradeCase(manifest, lab, rubric, *graded[i].c, workers > 1 ? one : o);
