@@ -53,8 +53,10 @@ if [[ ${1:-} == --changed ]]; then
   kept=()
   for unit in "${units[@]}"; do
     for file in "${changed[@]}"; do
-      # A unit is the source itself, or a batch of a unity build that includes it.
-      if [[ $unit == "$file" ]] || grep -qF "\"$file\"" "$unit" 2>/dev/null; then kept+=("$unit"); break; fi
+      # A unit is the source itself, or a batch that includes it (by its path relative to the batch: simlab_batches).
+      if [[ $unit == "$file" ]] || grep -qF "\"$(realpath -ms --relative-to="$(dirname "$unit")" "$file")\"" "$unit" 2>/dev/null; then
+        kept+=("$unit"); break
+      fi
       # A changed header: every unit, as the full pass would.
       [[ $file == *.h ]] && { kept+=("$unit"); break; }
     done
