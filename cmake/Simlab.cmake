@@ -369,13 +369,18 @@ function(simlab_add_assignment id)
   target_include_directories(${id}_grader_tests PRIVATE ${labs_dir})
   target_include_directories(${id}_probe PRIVATE ${labs_dir})
   # Everything the manifest entry below names is built with it, so that `--target <id>_grader` alone makes a
-  # tree that grades, links a floor and builds the lab program from a submission.
-  add_custom_target(${id}_grader ALL DEPENDS ${id}-judge ${id}_probe ${id}_program_main ${pch_depends})
-  add_dependencies(${id}_grader ${id}_grader_tests)
+  # tree that grades, links a floor and builds the lab program from a submission; `--target <id>_grading`, one
+  # that grades (the lab program's objects left out: the sanitizer's tree, tests/sanitize).
+  add_custom_target(${id}_grading DEPENDS ${id}-judge ${id}_probe ${pch_depends})
+  add_dependencies(${id}_grading ${id}_grader_tests)
   if(NOT SIMLAB_KIT)  # simlab's own targets: built here, or installed ready (a lab built out of the tree)
-    add_dependencies(${id}_grader simlab_probe_main simlab_probe simlab_support_objects simlab_sanitizer_defaults
-                     simlab_harness simlab_observe_local simlab_rubric simlab_plot simlab_program simlab_support
-                     simlab-probe-host)
+    add_dependencies(${id}_grading simlab_probe_main simlab_probe simlab_support_objects simlab_sanitizer_defaults
+                     simlab_harness simlab_observe_local simlab_rubric simlab_plot simlab_support simlab-probe-host)
+  endif()
+  add_custom_target(${id}_grader ALL DEPENDS ${id}_program_main)
+  add_dependencies(${id}_grader ${id}_grading)
+  if(NOT SIMLAB_KIT)
+    add_dependencies(${id}_grader simlab_program)
   endif()
 
   # The probe's course side: linked before the student's object, whole, so that the student can add to it but

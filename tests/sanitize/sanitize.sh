@@ -17,10 +17,11 @@ run_capture configure cmake -S "$SOURCE_DIR" -B "$tree" -DCMAKE_BUILD_TYPE=Debug
 check "the sanitizer tree configures (Debug, -fsanitize=address,undefined, ${clang:-the default compiler})" \
   test "$(status_of configure)" -eq 0
 [[ $(status_of configure) -eq 0 ]] || tail -n 20 configure.err
-# Only what the checks below run: the unit tests, the corpus runner and each lab's grader (its judge and every
-# object and library a probe is linked from), not the studies, the lab programs or the test tools.
+# Only what the checks below run: the unit tests, the corpus runner and what grading each lab needs (its judge and
+# every object and library a probe is linked from: <lab>_grading), not the studies, the lab programs or the test
+# tools.
 graders=()
-for lab in apple projectile book biosim; do graders+=("${lab}_grader"); done
+for lab in apple projectile book biosim; do graders+=("${lab}_grading"); done
 run_capture build cmake --build "$tree" -j "$jobs" --target unit_tests simlab-corpus "${graders[@]}"
 check "and builds" test "$(status_of build)" -eq 0
 if [[ $(status_of build) -ne 0 ]]; then grep -m 20 -E 'error|Error' build.out build.err; finish; fi
