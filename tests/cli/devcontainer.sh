@@ -104,5 +104,7 @@ if [[ ${#volume[@]} -gt 0 ]]; then
   check "  the check's own stage adds ccache and libraries alone to the students' image (${added% })" \
     ccache_and_libraries "$added"
   grep '^ccache: ' setup.log | sed 's/^/    /'
+else
+  echo "    no ccache of the build's to lend: the setup compiled every object"
 fi
 finish
