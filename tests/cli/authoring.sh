@@ -73,6 +73,11 @@ check "the student bundle carries the lab without its solution, hidden tests or 
   bash -c "test $(status_of student) -eq 0 && test -f bundle/labs/pendulum/starter/Pendulum.cpp &&
     test ! -e bundle/labs/pendulum/solution && test ! -e bundle/labs/pendulum/grading/hidden.cpp &&
     test ! -e bundle/labs/pendulum/corpus && test -f bundle/scripts/setup"
+# Nor any line of them under another name: every file of the bundle looked through (the look cli/package-secrets
+# gives the course's packages; the lab in labs/ is examples/pendulum's copy, whose secret lines it knows).
+run_capture look python3 "$SOURCE_DIR/tests/tools/package_secrets.py" "$SOURCE_DIR" bundle
+sed 's/^/    /' look.out
+check "  nor any line of its hidden tests or solution, whatever the file" test "$(status_of look)" -eq 0
 
 # A new lab from the template, as docs/authors.md starts one: it verifies as written, and a bare name that is no
 # course lab's is its folder.
