@@ -46,7 +46,9 @@ void addStudy(CLI::App& app) {
     trade->add_option("--repeats", options->repeats, "timed runs per point, the fastest kept (default 3)")
         ->check(CLI::Range(1, 100));
     trade->add_flag("!--no-plots", options->plots, "write trade.csv and the table only");
-    trade->add_option("--jobs,-j", options->jobs, "labs studied at once, one core each (with all)")
+    trade->add_option("--jobs,-j", options->jobs,
+                      "study programs run at once, one core each: a lab's sweeps side by side (with --shard and "
+                      "--assemble, its parts; with --fronts, its scenes)")
         ->check(CLI::Range(1, 64))
         ->capture_default_str();
     trade->add_option("--file", options->file,

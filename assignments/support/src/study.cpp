@@ -403,18 +403,32 @@ void runMinimal(const std::string& lab, const Subject& subject, const Settings& 
     }
 }
 
-void runSubject(const std::string& lab, const Subject& subject, const Settings& settings) {
-    subject.make();  // a model that cannot be built (a SIMLAB_TODO, say) stops the study here, saying why
-    const double referenceDigits = subject.referenceDigits();
-    std::vector<Point> points = pointsOf(subject, settings);
-    // The sweeps: each integrator's run of accuracies, or of fixed steps, where the points' integrator or mode changes.
+/// A scene's study as one run measures it: its points in order, and where each sweep (an integrator's accuracies,
+/// or its fixed steps) begins.
+struct Plan {
+    std::vector<Point> points;
     std::vector<std::size_t> sweeps;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        if (i == 0 || points[i].integrator != points[i - 1].integrator || points[i].mode != points[i - 1].mode) {
-            sweeps.push_back(i);
-        }
+};
+
+Plan planOf(const Subject& subject, const Settings& settings) {
+    Plan plan{pointsOf(subject, settings), {}};
+    for (std::size_t i = 0; i < plan.points.size(); ++i) {
+        const std::vector<Point>& p = plan.points;
+        if (i == 0 || p[i].integrator != p[i - 1].integrator || p[i].mode != p[i - 1].mode) plan.sweeps.push_back(i);
     }
-    // The subject line counts the whole study's points and sweeps, whichever sweep this run measures.
+    if (settings.sweep >= 0 && static_cast<std::size_t>(settings.sweep) >= plan.sweeps.size()) {
+        throw std::runtime_error("--sweep " + std::to_string(settings.sweep) + ": the study has only " +
+                                 std::to_string(plan.sweeps.size()) + " sweeps (0 to " +
+                                 std::to_string(plan.sweeps.size() - 1) + ")");
+    }
+    return plan;
+}
+
+/// The subject line, which counts the whole study's points and sweeps, whichever sweep this run measures. The
+/// model is built first: one that cannot be (a SIMLAB_TODO, say) stops the study here, saying why.
+void printSubject(const std::string& lab, const Subject& subject, const Settings& settings, const Plan& plan) {
+    subject.make();
+    const double referenceDigits = subject.referenceDigits();
     std::cout << nlohmann::json{{"type", "subject"},       {"lab", lab},
                                 {"subject", subject.name}, {"figure", subject.figure},
                                 {"final_figure", subject.finalFigure},
@@ -423,19 +437,19 @@ void runSubject(const std::string& lab, const Subject& subject, const Settings& 
                                 {"cap", settings.cap},     {"max_evaluations", settings.maxEvaluations},
                                 {"repeats", settings.repeats},
                                 {"starts", 1 + subject.moreStarts.size()},
-                                {"points", points.size()}, {"sweeps", sweeps.size()}}
+                                {"points", plan.points.size()}, {"sweeps", plan.sweeps.size()}}
                      .dump()
               << std::endl;
+}
+
+/// The points of `plan` this run measures (all, or --sweep's), one line each.
+void runSubject(const Subject& subject, const Settings& settings, const Plan& plan) {
+    std::vector<Point> points = plan.points;
     const std::size_t total = points.size();
     if (settings.sweep >= 0) {
         const auto k = static_cast<std::size_t>(settings.sweep);
-        if (k >= sweeps.size()) {
-            throw std::runtime_error("--sweep " + std::to_string(k) + ": the study has only " +
-                                     std::to_string(sweeps.size()) + " sweeps (0 to " +
-                                     std::to_string(sweeps.size() - 1) + ")");
-        }
-        const std::size_t end = k + 1 < sweeps.size() ? sweeps[k + 1] : points.size();
-        points = std::vector<Point>(points.begin() + static_cast<std::ptrdiff_t>(sweeps[k]),
+        const std::size_t end = k + 1 < plan.sweeps.size() ? plan.sweeps[k + 1] : points.size();
+        points = std::vector<Point>(points.begin() + static_cast<std::ptrdiff_t>(plan.sweeps[k]),
                                     points.begin() + static_cast<std::ptrdiff_t>(end));
     }
     // Progress, for a person watching: on a terminal, or where simlab asks for it (SIMLAB_PROGRESS=1: it shows
@@ -604,14 +618,32 @@ int studyMain(int argc, char** argv, const std::string& lab, const std::vector<S
         return 0;
     }
     bool found = settings.subject.empty();
+    // A run of one sweep names every scene before it measures any, so that whoever runs the sweeps side by side
+    // knows the whole study's points from its first lines; a whole run names each scene as it comes to it.
+    std::vector<std::pair<const Subject*, Plan>> named;
     for (const Subject& s : scenes) {
         if (!settings.subject.empty() && s.name != settings.subject) continue;
         found = true;
         try {
-            if (minimal) runMinimal(lab, s, settings);
-            else runSubject(lab, s, settings);
+            if (minimal) {
+                runMinimal(lab, s, settings);
+                continue;
+            }
+            named.emplace_back(&s, planOf(s, settings));
+            printSubject(lab, s, settings, named.back().second);
+            if (settings.sweep >= 0) continue;
+            runSubject(s, settings, named.back().second);
         } catch (const std::exception& e) {
             std::cerr << lab << "-study: error: " << s.name << ": " << simlab::oneLineMessage(e.what(), 200) << '\n';
+            return 1;
+        }
+    }
+    for (const auto& [s, plan] : named) {
+        if (settings.sweep < 0) break;
+        try {
+            runSubject(*s, settings, plan);
+        } catch (const std::exception& e) {
+            std::cerr << lab << "-study: error: " << s->name << ": " << simlab::oneLineMessage(e.what(), 200) << '\n';
             return 1;
         }
     }
