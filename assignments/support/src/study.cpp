@@ -38,6 +38,9 @@ struct Settings {
     /// "failed", and says so). Which points are too costly is decided by maxEvaluations alone.
     double cap = 600;
     int repeats = 3;   ///< timed runs per point; the fastest is kept
+    /// --quick (without --repeats): no timed run; a point's seconds are those its measured run's own steps took,
+    /// timed once, the checks against the reference between them left out.
+    bool timeMeasuredRun = false;
     std::string subject;
     std::vector<std::string> integrators;  ///< only these (empty: every one)
     bool fixedStepsOnly = false;           ///< only the fixed-step sweeps
@@ -71,7 +74,8 @@ struct Outcome {
     double worstDigits = NAN;  ///< the fewest over the steps it took (up to `reached`)
     double drift = NAN;        ///< largest |conserved - its start| / the subject's scale, over the same steps
     int stepsTaken = 0, stepsAttempted = 0, evaluations = 0;
-    double seconds = NAN;      ///< fastest timed repeat
+    double seconds = NAN;      ///< fastest timed repeat (timeMeasuredRun: the measured run's)
+    double measuredSeconds = NAN;  ///< the measured run's (first start's) own steps, its checks left out
     int repeats = 0;
 };
 
@@ -143,6 +147,7 @@ void measure(const Subject& subject, const Point& point, const Settings& setting
     out.stepsTaken = run.integrator.stepsTaken;
     out.stepsAttempted = run.integrator.stepsAttempted;
     out.evaluations = run.integrator.realizations;
+    out.measuredSeconds = run.stepSeconds;
 }
 
 /// Points dearer than this are timed once: their one run is long enough to time.
@@ -212,7 +217,12 @@ void measureAndTime(const Subject& subject, const Point& point, const Settings& 
             measure(from, point, settings, other);
             keepWorst(out, other, k + 1);
         }
-        if (out.status == "ok") timeRepeats(subject, point, settings, out);
+        if (out.status == "ok" && settings.timeMeasuredRun) {
+            out.seconds = out.measuredSeconds;
+            out.repeats = 1;
+        } else if (out.status == "ok") {
+            timeRepeats(subject, point, settings, out);
+        }
     } catch (const std::exception& e) {
         out.status = "failed";
         out.message = simlab::oneLineMessage(e.what(), 200);
@@ -436,6 +446,7 @@ void printSubject(const std::string& lab, const Subject& subject, const Settings
                                 {"reference", subject.reference},     {"reference_digits", number(referenceDigits)},
                                 {"cap", settings.cap},     {"max_evaluations", settings.maxEvaluations},
                                 {"repeats", settings.repeats},
+                                {"timing", settings.timeMeasuredRun ? "measured run" : "repeats"},
                                 {"starts", 1 + subject.moreStarts.size()},
                                 {"points", plan.points.size()}, {"sweeps", plan.sweeps.size()}}
                      .dump()
@@ -539,7 +550,9 @@ int studyMain(int argc, char** argv, const std::string& lab, const std::vector<S
     CLI::App app{"The work-precision study of the " + lab + " lab's scenes, one JSON object per line (run it with "
                  "`simlab study trade " + lab + "`).", lab + "-study"};
     app.set_version_flag("--version", lab + "-study (simlab " SIMLAB_VERSION ")", "print the program's version and exit");
-    app.add_flag("--quick", settings.quick, "fewer step sizes, one timed repeat and a cap of 2e5 evaluations");
+    app.add_flag("--quick", settings.quick,
+                 "fewer step sizes, a cap of 1e5 evaluations, and each point timed once, on its measured run (no "
+                 "timed runs unless --repeats is given)");
     app.add_option("--max-evaluations", settings.maxEvaluations, "the cost cap: evaluations one point may take")
         ->check(between(100.0, 1e9))
         ->capture_default_str();
@@ -610,8 +623,11 @@ int studyMain(int argc, char** argv, const std::string& lab, const std::vector<S
         }
     }
     if (settings.quick) {
-        if (app.count("--max-evaluations") == 0) settings.maxEvaluations = 2e5;
-        if (app.count("--repeats") == 0) settings.repeats = 1;
+        if (app.count("--max-evaluations") == 0) settings.maxEvaluations = 1e5;
+        if (app.count("--repeats") == 0) {
+            settings.repeats = 1;
+            settings.timeMeasuredRun = true;
+        }
     }
     if (list) {
         for (const Subject& s : scenes) std::cout << s.name << ": " << s.figure << '\n';
