@@ -174,9 +174,10 @@ std::vector<SubjectRun> runSweeps(const std::vector<std::string>& argv, bool san
         runs.push_back(std::move(run));
     }
     for (std::map<std::string, std::vector<json>>& sweep : points) {
-        for (const auto& [name, some] : sweep) {
-            if (!some.empty() && std::none_of(subjects.begin(), subjects.end(),
-                                              [&](const json& s) { return text(s["subject"]) == name; })) {
+        for (const auto& entry : sweep) {
+            const std::string& name = entry.first;
+            if (!entry.second.empty() && std::none_of(subjects.begin(), subjects.end(),
+                                                      [&](const json& s) { return text(s["subject"]) == name; })) {
                 throw std::runtime_error(program + " printed a point of a scene it did not name (" + name +
                                          "): the study stops");
             }
