@@ -32,10 +32,12 @@ void addStudy(CLI::App& app) {
         "cheapest setting for 4 to 12 digits.");
     trade->add_option("lab", options->lab, "the lab's id (simlab list), or all")->required();
     trade->add_option("--output,-o", options->output, "folder for trade.csv and the plots")->capture_default_str();
-    trade->add_flag("--quick", options->quick, "fewer step sizes, one timed repeat, a cap of 2e5 evaluations");
+    trade->add_flag("--quick", options->quick,
+                    "fewer step sizes, a cap of 1e5 evaluations, and each point timed once, on its measured run "
+                    "(no timed runs of its own unless --repeats is given)");
     trade
         ->add_option("--max-evaluations", options->maxEvaluations,
-                     "the cost cap: evaluations one point may take (default 5e5; 2e5 with --quick; with --question, "
+                     "the cost cap: evaluations one point may take (default 5e5; 1e5 with --quick; with --question, "
                      "the grader's cap on an answer, or this if lower)")
         ->check(simlab::between(100.0, 1e9));
     trade
@@ -46,7 +48,9 @@ void addStudy(CLI::App& app) {
     trade->add_option("--repeats", options->repeats, "timed runs per point, the fastest kept (default 3)")
         ->check(CLI::Range(1, 100));
     trade->add_flag("!--no-plots", options->plots, "write trade.csv and the table only");
-    trade->add_option("--jobs,-j", options->jobs, "labs studied at once, one core each (with all)")
+    trade->add_option("--jobs,-j", options->jobs,
+                      "study programs run at once, one core each: a lab's sweeps side by side (with --shard and "
+                      "--assemble, its parts; with --fronts, its scenes)")
         ->check(CLI::Range(1, 64))
         ->capture_default_str();
     trade->add_option("--file", options->file,

@@ -97,7 +97,9 @@ std::vector<std::string> plot(const fs::path& dir, const SubjectRun& run) {
     const std::pair<const char*, const char*> axes[] = {{"evaluations", "15"}, {"time", "16"}};
     for (const auto& [axis, column] : axes) {
         gp << "set xlabel '"
-           << (std::string(axis) == "time" ? "seconds (fastest repeat)" : "evaluations of the equations of motion")
+           << (std::string(axis) != "time"                            ? "evaluations of the equations of motion"
+               : text(run.subject["timing"]) == "measured run" ? "seconds (the measured run, timed once)"
+                                                               : "seconds (fastest repeat)")
            << "'\nset title '" << subject << ": digits against " << axis << "'\n";
         for (const char* format : {"pngcairo size 960,600", "svg size 960,600"}) {
             const std::string file =
@@ -224,6 +226,18 @@ void printFigureTable(std::ostream& out, std::vector<const json*> ok, double ref
     }
 }
 
+/// How the subject's seconds were timed, a line of its table's note.
+std::string timedNote(const json& subject) {
+    if (text(subject["timing"]) == "measured run") {
+        return "  timed: once, the measured run's own steps (its checks against the reference left out): rougher than "
+               "the full study's seconds\n";
+    }
+    const double repeats = subject["repeats"].is_number() ? subject["repeats"].get<double>() : 1;
+    return repeats > 1 ? "  timed: each point's fastest of up to " + number(json(repeats), "%.0f") +
+                             " runs to the end, reporting only there (trade.csv's repeats column says how many)\n"
+                       : std::string("  timed: each point's one run to the end, reporting only there\n");
+}
+
 /// A lab's study table: the subject and how its figures were measured, then a table and front for each figure.
 void printTable(std::ostream& out, const SubjectRun& run, const std::vector<double>& targets) {
     const json& s = run.subject;
@@ -238,7 +252,7 @@ void printTable(std::ostream& out, const SubjectRun& run, const std::vector<doub
         << "thousand, spread over the run)"
         << (starts > 1 ? ", the worst of " + number(json(starts), "%.0f") + " starts" : "")
         << ", each setting's evaluations counted by Simbody\n"
-        << "  replay: the lab program takes a row's steps at its setting with --dt equal to the final time (a fixed "
+        << timedNote(s) << "  replay: the lab program takes a row's steps at its setting with --dt equal to the final time (a fixed "
         << "step: --fixed-step --dt STEP, and --accuracy where the row names one); a smaller --dt ends steps at its "
         << "samples\n";
     std::vector<const json*> ok, failed;

@@ -46,7 +46,7 @@ std::optional<json> wellFormedLine(const json& line, std::string& why) {
     if (!plainWord) return fail("a subject named '" + engine::printable(subject.substr(0, 80)) + "'");
     out["subject"] = subject;
     if (type == "subject") {
-        for (const char* key : {"lab", "figure", "final_figure", "conserved", "reference"}) textField(key);
+        for (const char* key : {"lab", "figure", "final_figure", "conserved", "reference", "timing"}) textField(key);
         for (const char* key :
              {"final_time", "reference_digits", "cap", "max_evaluations", "repeats", "starts", "points", "sweeps"}) {
             numberField(key);

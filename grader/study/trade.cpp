@@ -85,20 +85,22 @@ double questionCap(const engine::Assignment& a, const simlab::trade::Question& q
 /// The most sweeps a study program may say its study has.
 constexpr std::size_t kMostSweeps = 1000;
 
-/// The study of a question's scene, one sweep (the study program's --sweep: an integrator's accuracies or its fixed
-/// steps) per run of `argv`, as many runs at once as the machine has cores, with a progress line every few seconds.
-/// The first sweep's subject line says how many sweeps and points the study has; each sweep's points are kept in
-/// its place, so that they come in the order one run prints them.
-SubjectRun runSweeps(const std::vector<std::string>& argv, bool sandboxed, const std::string& lab, int cores) {
+/// A study in its sweeps (the study program's --sweep: an integrator's accuracies or its fixed steps, for each of its
+/// scenes), one run of `argv` per sweep, `jobs` runs at once, with a progress line every few seconds. Each run names
+/// every scene first; the first run's lines say how many sweeps and points each scene has, and the scenes come in
+/// its order, each scene's points in the order one run prints them.
+std::vector<SubjectRun> runSweeps(const std::vector<std::string>& argv, bool sandboxed, const std::string& lab,
+                                  int jobs) {
     std::mutex lock;
     std::condition_variable counted;
-    std::optional<json> subject;
-    std::size_t sweeps = 0;
+    std::vector<json> subjects;  // the first run's scenes
+    std::size_t sweeps = 0, total = 0;
     bool firstEnded = false;
-    std::vector<std::vector<json>> points;
+    std::string odd;                                            // what a run printed that no study does
+    std::vector<std::map<std::string, std::vector<json>>> points;  // each sweep's points, by scene
     std::vector<int> statuses;
     Progress progress;
-    forEachInParallel(kMostSweeps, cores, [&](std::size_t k) {
+    forEachInParallel(kMostSweeps, jobs, [&](std::size_t k) {
         // The other runs wait for the first's subject line, or for its end, whatever ends it; none runs past the
         // sweeps it says there are.
         if (k > 0) {
@@ -108,7 +110,7 @@ SubjectRun runSweeps(const std::vector<std::string>& argv, bool sandboxed, const
         }
         std::vector<std::string> args = argv;
         args.insert(args.end(), {"--sweep", std::to_string(k)});
-        std::vector<json> mine;
+        std::map<std::string, std::vector<json>> mine;
         struct Ended {
             std::function<void()> tell;
             ~Ended() { tell(); }
@@ -120,25 +122,34 @@ SubjectRun runSweeps(const std::vector<std::string>& argv, bool sandboxed, const
         }};
         const int status = runStudyProgram(args, sandboxed, [&](const json& j) {
             if (text(j["type"]) == "point") {
-                mine.push_back(j);
+                mine[text(j["subject"])].push_back(j);
                 progress.pointDone();
                 return;
             }
             if (text(j["type"]) != "subject" || k != 0) return;
             // What a student's program says is data: counts out of reason stop the study below.
             const double n = j["sweeps"].is_number() ? j["sweeps"].get<double>() : 0;
-            const double total = j["points"].is_number() ? j["points"].get<double>() : 0;
+            const double count = j["points"].is_number() ? j["points"].get<double>() : 0;
             std::lock_guard<std::mutex> guard(lock);
-            if (subject || !(n >= 1 && n <= static_cast<double>(kMostSweeps) && total >= n && total <= 100000)) return;
-            subject = j;
-            sweeps = static_cast<std::size_t>(n);
-            points.resize(sweeps);
-            statuses.assign(sweeps, 0);
-            progress.setTotal(static_cast<std::size_t>(total));
-            counted.notify_all();
+            const bool named = std::any_of(subjects.begin(), subjects.end(),
+                                           [&](const json& s) { return s["subject"] == j["subject"]; });
+            if (named || !(n >= 1 && n <= static_cast<double>(kMostSweeps) && count >= n && count <= 100000) ||
+                (sweeps > 0 && n != static_cast<double>(sweeps)) || subjects.size() >= 100) {
+                if (odd.empty()) odd = "a scene's subject line out of reason (" + text(j["subject"]) + ")";
+                return;
+            }
+            subjects.push_back(j);
+            total += static_cast<std::size_t>(count);
+            progress.setTotal(total);
+            if (sweeps == 0) {
+                sweeps = static_cast<std::size_t>(n);
+                points.resize(sweeps);
+                statuses.assign(sweeps, 0);
+                counted.notify_all();
+            }
         });
         std::lock_guard<std::mutex> guard(lock);
-        if (!subject) {
+        if (sweeps == 0) {
             statuses.assign(1, status);
             return;
         }
@@ -150,15 +161,30 @@ SubjectRun runSweeps(const std::vector<std::string>& argv, bool sandboxed, const
             throw std::runtime_error("the study of " + lab + " stopped with status " + std::to_string(status));
         }
     }
-    if (!subject) {
-        throw std::runtime_error(fs::path(argv.front()).filename().string() +
-                                 " did not say how many points and sweeps "
-                                 "its study has");
+    const std::string program = fs::path(argv.front()).filename().string();
+    if (subjects.empty()) throw std::runtime_error(program + " did not say how many points and sweeps its study has");
+    if (!odd.empty()) throw std::runtime_error(program + " printed " + odd + ": the study stops");
+    std::vector<SubjectRun> runs;
+    for (const json& subject : subjects) {
+        SubjectRun run{subject, {}, {}};
+        for (std::map<std::string, std::vector<json>>& sweep : points) {
+            std::vector<json>& mine = sweep[text(subject["subject"])];
+            run.points.insert(run.points.end(), mine.begin(), mine.end());
+        }
+        runs.push_back(std::move(run));
+    }
+    for (std::map<std::string, std::vector<json>>& sweep : points) {
+        for (const auto& entry : sweep) {
+            const std::string& name = entry.first;
+            if (!entry.second.empty() && std::none_of(subjects.begin(), subjects.end(),
+                                                      [&](const json& s) { return text(s["subject"]) == name; })) {
+                throw std::runtime_error(program + " printed a point of a scene it did not name (" + name +
+                                         "): the study stops");
+            }
+        }
     }
     progress.finish(true);
-    SubjectRun run{*subject, {}, {}};
-    for (std::vector<json>& sweep : points) run.points.insert(run.points.end(), sweep.begin(), sweep.end());
-    return run;
+    return runs;
 }
 
 /// `simlab study trade LAB --fronts`: every scene of the lab's trade question (and of its hidden variants, where the
@@ -348,34 +374,43 @@ void studyQuestion(const StudyOptions& o, const engine::Assignment& a, const std
     // The table's rows: the digits asked, and each whole digit past them that the grader reads the front at.
     std::vector<double> targets;
     for (int past = 0; past <= static_cast<int>(std::floor(beyond + 1e-9)); ++past) targets.push_back(q.digits + past);
-    writeTrade(o, dir, {runSweeps(argv, !studentProgram.empty(), a.id, cores)}, targets);
+    writeTrade(o, dir, runSweeps(argv, !studentProgram.empty(), a.id, cores), targets);
 }
 
-/// Each lab's study program on a core of its own (--jobs at once), each measuring its points one at a time; the
-/// labs' tables and files into `dir`.
+/// The labs' studies into `dir`: each lab's sweeps side by side, `jobs` runs at once, the labs one after another;
+/// for `study minimal`, each lab's study program on a core of its own (`jobs` at once), each measuring its points one
+/// at a time.
 void studyLabs(const StudyOptions& o, const std::vector<const engine::Assignment*>& labs,
-               const std::string& studentProgram, const fs::path& dir) {
-    std::vector<SubjectRun> runs;
-    std::vector<json> minimalRows;
-    struct LabRun {
-        std::vector<SubjectRun> runs;
-        std::vector<json> minimal;
-        int status = 0;
-    };
-    std::vector<LabRun> results(labs.size());
-    forEachInParallel(labs.size(), std::min<int>(o.jobs, static_cast<int>(labs.size())), [&](std::size_t i) {
-        const engine::Assignment* a = labs[i];
+               const std::string& studentProgram, const fs::path& dir, int jobs) {
+    auto argvOf = [&](const engine::Assignment* a) {
         std::vector<std::string> argv = {studentProgram.empty() ? a->studyProgramPath : studentProgram};
         if (o.minimal) argv.push_back("--minimal");
         if (o.quick) argv.push_back("--quick");
         if (o.cap > 0) argv.insert(argv.end(), {"--cap", std::to_string(o.cap)});
         if (o.maxEvaluations > 0) argv.insert(argv.end(), {"--max-evaluations", std::to_string(o.maxEvaluations)});
         if (o.repeats > 0) argv.insert(argv.end(), {"--repeats", std::to_string(o.repeats)});
+        return argv;
+    };
+    if (!o.minimal) {
+        std::vector<SubjectRun> runs;
+        for (const engine::Assignment* a : labs) {
+            if (labs.size() > 1) std::cerr << "  " << a->id << ":\n";
+            const std::vector<SubjectRun> lab = runSweeps(argvOf(a), !studentProgram.empty(), a->id, jobs);
+            runs.insert(runs.end(), lab.begin(), lab.end());
+        }
+        writeTrade(o, dir, runs);
+        return;
+    }
+    std::vector<json> minimalRows;
+    struct LabRun {
+        std::vector<json> minimal;
+        int status = 0;
+    };
+    std::vector<LabRun> results(labs.size());
+    forEachInParallel(labs.size(), std::min<int>(jobs, static_cast<int>(labs.size())), [&](std::size_t i) {
         LabRun& r = results[i];
-        r.status = runStudyProgram(argv, !studentProgram.empty(), [&r](const json& j) {
-            if (text(j["type"]) == "subject") r.runs.push_back({j, {}, {}});
-            else if (text(j["type"]) == "point" && !r.runs.empty()) r.runs.back().points.push_back(j);
-            else if (text(j["type"]) == "minimal") r.minimal.push_back(j);
+        r.status = runStudyProgram(argvOf(labs[i]), !studentProgram.empty(), [&r](const json& j) {
+            if (text(j["type"]) == "minimal") r.minimal.push_back(j);
         });
     });
     for (std::size_t i = 0; i < labs.size(); ++i) {
@@ -383,14 +418,9 @@ void studyLabs(const StudyOptions& o, const std::vector<const engine::Assignment
             throw std::runtime_error("the study of " + labs[i]->id + " stopped with status " +
                                      std::to_string(results[i].status));
         }
-        runs.insert(runs.end(), results[i].runs.begin(), results[i].runs.end());
         minimalRows.insert(minimalRows.end(), results[i].minimal.begin(), results[i].minimal.end());
     }
-    if (o.minimal) {
-        writeMinimal(dir, minimalRows);
-        return;
-    }
-    writeTrade(o, dir, runs);
+    writeMinimal(dir, minimalRows);
 }
 
 }  // namespace
@@ -434,7 +464,7 @@ void runTrade(const StudyOptions& o, const CommandLine& command) {
         studyQuestion(o, *labs.front(), student.path, dir, command.cores);
         return;
     }
-    studyLabs(o, labs, student.path, dir);
+    studyLabs(o, labs, student.path, dir, o.jobs);
 }
 
 }  // namespace simlab::study

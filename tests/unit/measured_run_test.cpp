@@ -1,8 +1,10 @@
 // A measured run (the work-precision study's and the trade question's): what it checks, where it stops, and the
 // judge's check of the counts a student's process reports.
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "Simbody.h"
@@ -63,6 +65,25 @@ TEST_CASE("a measured run checks t = 0, its own steps and the last state, and en
     CHECK(checks <= run.integrator.stepsTaken + 1);
     CHECK(worst < 1e-9);  // a second-order motion: RungeKuttaMerson follows it to round-off
     CHECK(run.integrator.realizations >= run.integrator.stepsAttempted);
+}
+
+TEST_CASE("a measured run's step seconds are its integrator's alone: the time its checks take is left out") {
+    Fall fall;
+    auto integrator = simlab::integratorFor(choice("RungeKuttaMerson", 1e-8), fall.system, 2.0);
+    using Clock = std::chrono::steady_clock;
+    Clock::duration checking{};
+    const Clock::time_point began = Clock::now();
+    const simlab::MeasuredRun run = simlab::measureRun(
+        fall.system, *integrator, fall.initial, 2.0, simlab::MeasureLimits{}, [&](const State&, bool) {
+            const Clock::time_point start = Clock::now();
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));  // a check dearer than the steps
+            checking += Clock::now() - start;
+        });
+    const double whole = std::chrono::duration<double>(Clock::now() - began).count();
+    const double checks = std::chrono::duration<double>(checking).count();
+    CHECK(run.status == "ok");
+    CHECK(run.stepSeconds > 0);
+    CHECK(run.stepSeconds + checks <= whole);
 }
 
 TEST_CASE("a measured run stops past its cap of evaluations, says where, and checks the state it stopped at") {

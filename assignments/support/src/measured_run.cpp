@@ -2,6 +2,7 @@
 
 #include <time.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -79,14 +80,20 @@ MeasuredRun measureRun(const SimTK::System& system, SimTK::Integrator& integrato
     integrator.setReturnEveryInternalStep(true);
     SimTK::TimeStepper stepper(system, integrator);
     stepper.setReportAllSignificantStates(true);
+    using Clock = std::chrono::steady_clock;
+    Clock::duration stepping{};
+    Clock::time_point start = Clock::now();
     stepper.initialize(initial);
+    stepping += Clock::now() - start;
     check(stepper.getState(), false);
     const double every = finalTime / limits.checks;
     double nextCheck = every;
     const double began = cpuSeconds();
     while (true) {
         const double before = stepper.getState().getTime();
+        start = Clock::now();
         stepper.stepTo(nextStepEnd(fixedStep, finalTime, before));
+        stepping += Clock::now() - start;
         const SimTK::State& state = stepper.getState();
         out.reached = state.getTime();
         if (!finite(state)) {
@@ -120,6 +127,7 @@ MeasuredRun measureRun(const SimTK::System& system, SimTK::Integrator& integrato
         }
     }
     out.integrator = statsOf(integrator);
+    out.stepSeconds = std::chrono::duration<double>(stepping).count();
     return out;
 }
 

@@ -38,6 +38,9 @@ struct Settings {
     /// "failed", and says so). Which points are too costly is decided by maxEvaluations alone.
     double cap = 600;
     int repeats = 3;   ///< timed runs per point; the fastest is kept
+    /// --quick (without --repeats): no timed run; a point's seconds are those its measured run's own steps took,
+    /// timed once, the checks against the reference between them left out.
+    bool timeMeasuredRun = false;
     std::string subject;
     std::vector<std::string> integrators;  ///< only these (empty: every one)
     bool fixedStepsOnly = false;           ///< only the fixed-step sweeps
@@ -71,7 +74,8 @@ struct Outcome {
     double worstDigits = NAN;  ///< the fewest over the steps it took (up to `reached`)
     double drift = NAN;        ///< largest |conserved - its start| / the subject's scale, over the same steps
     int stepsTaken = 0, stepsAttempted = 0, evaluations = 0;
-    double seconds = NAN;      ///< fastest timed repeat
+    double seconds = NAN;      ///< fastest timed repeat (timeMeasuredRun: the measured run's)
+    double measuredSeconds = NAN;  ///< the measured run's (first start's) own steps, its checks left out
     int repeats = 0;
 };
 
@@ -143,6 +147,7 @@ void measure(const Subject& subject, const Point& point, const Settings& setting
     out.stepsTaken = run.integrator.stepsTaken;
     out.stepsAttempted = run.integrator.stepsAttempted;
     out.evaluations = run.integrator.realizations;
+    out.measuredSeconds = run.stepSeconds;
 }
 
 /// Points dearer than this are timed once: their one run is long enough to time.
@@ -212,7 +217,12 @@ void measureAndTime(const Subject& subject, const Point& point, const Settings& 
             measure(from, point, settings, other);
             keepWorst(out, other, k + 1);
         }
-        if (out.status == "ok") timeRepeats(subject, point, settings, out);
+        if (out.status == "ok" && settings.timeMeasuredRun) {
+            out.seconds = out.measuredSeconds;
+            out.repeats = 1;
+        } else if (out.status == "ok") {
+            timeRepeats(subject, point, settings, out);
+        }
     } catch (const std::exception& e) {
         out.status = "failed";
         out.message = simlab::oneLineMessage(e.what(), 200);
@@ -403,18 +413,32 @@ void runMinimal(const std::string& lab, const Subject& subject, const Settings& 
     }
 }
 
-void runSubject(const std::string& lab, const Subject& subject, const Settings& settings) {
-    subject.make();  // a model that cannot be built (a SIMLAB_TODO, say) stops the study here, saying why
-    const double referenceDigits = subject.referenceDigits();
-    std::vector<Point> points = pointsOf(subject, settings);
-    // The sweeps: each integrator's run of accuracies, or of fixed steps, where the points' integrator or mode changes.
+/// A scene's study as one run measures it: its points in order, and where each sweep (an integrator's accuracies,
+/// or its fixed steps) begins.
+struct Plan {
+    std::vector<Point> points;
     std::vector<std::size_t> sweeps;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        if (i == 0 || points[i].integrator != points[i - 1].integrator || points[i].mode != points[i - 1].mode) {
-            sweeps.push_back(i);
-        }
+};
+
+Plan planOf(const Subject& subject, const Settings& settings) {
+    Plan plan{pointsOf(subject, settings), {}};
+    for (std::size_t i = 0; i < plan.points.size(); ++i) {
+        const std::vector<Point>& p = plan.points;
+        if (i == 0 || p[i].integrator != p[i - 1].integrator || p[i].mode != p[i - 1].mode) plan.sweeps.push_back(i);
     }
-    // The subject line counts the whole study's points and sweeps, whichever sweep this run measures.
+    if (settings.sweep >= 0 && static_cast<std::size_t>(settings.sweep) >= plan.sweeps.size()) {
+        throw std::runtime_error("--sweep " + std::to_string(settings.sweep) + ": the study has only " +
+                                 std::to_string(plan.sweeps.size()) + " sweeps (0 to " +
+                                 std::to_string(plan.sweeps.size() - 1) + ")");
+    }
+    return plan;
+}
+
+/// The subject line, which counts the whole study's points and sweeps, whichever sweep this run measures. The
+/// model is built first: one that cannot be (a SIMLAB_TODO, say) stops the study here, saying why.
+void printSubject(const std::string& lab, const Subject& subject, const Settings& settings, const Plan& plan) {
+    subject.make();
+    const double referenceDigits = subject.referenceDigits();
     std::cout << nlohmann::json{{"type", "subject"},       {"lab", lab},
                                 {"subject", subject.name}, {"figure", subject.figure},
                                 {"final_figure", subject.finalFigure},
@@ -422,20 +446,21 @@ void runSubject(const std::string& lab, const Subject& subject, const Settings& 
                                 {"reference", subject.reference},     {"reference_digits", number(referenceDigits)},
                                 {"cap", settings.cap},     {"max_evaluations", settings.maxEvaluations},
                                 {"repeats", settings.repeats},
+                                {"timing", settings.timeMeasuredRun ? "measured run" : "repeats"},
                                 {"starts", 1 + subject.moreStarts.size()},
-                                {"points", points.size()}, {"sweeps", sweeps.size()}}
+                                {"points", plan.points.size()}, {"sweeps", plan.sweeps.size()}}
                      .dump()
               << std::endl;
+}
+
+/// The points of `plan` this run measures (all, or --sweep's), one line each.
+void runSubject(const Subject& subject, const Settings& settings, const Plan& plan) {
+    std::vector<Point> points = plan.points;
     const std::size_t total = points.size();
     if (settings.sweep >= 0) {
         const auto k = static_cast<std::size_t>(settings.sweep);
-        if (k >= sweeps.size()) {
-            throw std::runtime_error("--sweep " + std::to_string(k) + ": the study has only " +
-                                     std::to_string(sweeps.size()) + " sweeps (0 to " +
-                                     std::to_string(sweeps.size() - 1) + ")");
-        }
-        const std::size_t end = k + 1 < sweeps.size() ? sweeps[k + 1] : points.size();
-        points = std::vector<Point>(points.begin() + static_cast<std::ptrdiff_t>(sweeps[k]),
+        const std::size_t end = k + 1 < plan.sweeps.size() ? plan.sweeps[k + 1] : points.size();
+        points = std::vector<Point>(points.begin() + static_cast<std::ptrdiff_t>(plan.sweeps[k]),
                                     points.begin() + static_cast<std::ptrdiff_t>(end));
     }
     // Progress, for a person watching: on a terminal, or where simlab asks for it (SIMLAB_PROGRESS=1: it shows
@@ -525,7 +550,9 @@ int studyMain(int argc, char** argv, const std::string& lab, const std::vector<S
     CLI::App app{"The work-precision study of the " + lab + " lab's scenes, one JSON object per line (run it with "
                  "`simlab study trade " + lab + "`).", lab + "-study"};
     app.set_version_flag("--version", lab + "-study (simlab " SIMLAB_VERSION ")", "print the program's version and exit");
-    app.add_flag("--quick", settings.quick, "fewer step sizes, one timed repeat and a cap of 2e5 evaluations");
+    app.add_flag("--quick", settings.quick,
+                 "fewer step sizes, a cap of 1e5 evaluations, and each point timed once, on its measured run (no "
+                 "timed runs unless --repeats is given)");
     app.add_option("--max-evaluations", settings.maxEvaluations, "the cost cap: evaluations one point may take")
         ->check(between(100.0, 1e9))
         ->capture_default_str();
@@ -596,22 +623,43 @@ int studyMain(int argc, char** argv, const std::string& lab, const std::vector<S
         }
     }
     if (settings.quick) {
-        if (app.count("--max-evaluations") == 0) settings.maxEvaluations = 2e5;
-        if (app.count("--repeats") == 0) settings.repeats = 1;
+        if (app.count("--max-evaluations") == 0) settings.maxEvaluations = 1e5;
+        if (app.count("--repeats") == 0) {
+            settings.repeats = 1;
+            settings.timeMeasuredRun = true;
+        }
     }
     if (list) {
         for (const Subject& s : scenes) std::cout << s.name << ": " << s.figure << '\n';
         return 0;
     }
     bool found = settings.subject.empty();
+    // A run of one sweep names every scene before it measures any, so that whoever runs the sweeps side by side
+    // knows the whole study's points from its first lines; a whole run names each scene as it comes to it.
+    std::vector<std::pair<const Subject*, Plan>> named;
     for (const Subject& s : scenes) {
         if (!settings.subject.empty() && s.name != settings.subject) continue;
         found = true;
         try {
-            if (minimal) runMinimal(lab, s, settings);
-            else runSubject(lab, s, settings);
+            if (minimal) {
+                runMinimal(lab, s, settings);
+                continue;
+            }
+            named.emplace_back(&s, planOf(s, settings));
+            printSubject(lab, s, settings, named.back().second);
+            if (settings.sweep >= 0) continue;
+            runSubject(s, settings, named.back().second);
         } catch (const std::exception& e) {
             std::cerr << lab << "-study: error: " << s.name << ": " << simlab::oneLineMessage(e.what(), 200) << '\n';
+            return 1;
+        }
+    }
+    for (const auto& [s, plan] : named) {
+        if (settings.sweep < 0) break;
+        try {
+            runSubject(*s, settings, plan);
+        } catch (const std::exception& e) {
+            std::cerr << lab << "-study: error: " << s->name << ": " << simlab::oneLineMessage(e.what(), 200) << '\n';
             return 1;
         }
     }

@@ -23,6 +23,8 @@ struct MeasuredRun {
     std::string message;        ///< one line, for any status but "ok"
     double reached = 0;         ///< s of simulated time
     IntegratorStats integrator;
+    /// Wall seconds the integrator took: its initialization and its steps, the checks between them left out.
+    double stepSeconds = 0;
 };
 
 /// Where a measured run stops short.

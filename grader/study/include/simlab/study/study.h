@@ -26,7 +26,7 @@ struct StudyOptions {
     double maxEvaluations = 0;  // 0: the study program's default
     double cap = 0;             // 0: the study program's default
     int repeats = 0;            // 0: the study program's default
-    int jobs = 2;               // labs studied at once
+    int jobs = 2;               // study programs run at once, one core each
     bool plots = true;
     std::string file;       ///< a student file to study instead of the reference solution
     bool question = false;  ///< the trade question's scene (grading/trade-question.json), as the grader measures it
