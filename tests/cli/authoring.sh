@@ -10,6 +10,9 @@
 source "$(dirname "$0")/../smoke/lib.sh"
 chmod 0755 "$work"  # without bubblewrap, the sandbox's throwaway users read the prefix and the lab's build
 export HOME=$work/home XDG_CACHE_HOME=$work/cache
+# Every build here is this user's: the labs' through the build's ccache (lab_objects, tests/smoke/lib.sh), so that the
+# new lab takes the precompiled header the example's build made.
+[[ ${#lab_objects[@]} -eq 0 ]] || export "${lab_objects[@]}"
 mkdir -p "$HOME" "$XDG_CACHE_HOME"
 chmod 0711 "$HOME" "$XDG_CACHE_HOME"
 
@@ -57,7 +60,7 @@ check "and run_autograder grades with the lab's folder" grep -qx 'assignment=lab
 root=$work/autograder
 mkdir -p "$root/source" "$root/submission" "$root/results"
 unzip -q autograder.zip -d "$root/source"
-shared_objects "$root/source"
+shared_objects "$work"
 SIMLAB_SKIP_APT=1 SIMLAB_JOBS=2 SIMLAB_CMAKE_ARGS="$shared_objects" "$root/source/setup.sh" >setup.log 2>&1
 check "setup.sh builds simlab and the lab" bash -c "test $? -eq 0 && test -x '$root/source/build/bin/simlab'" ||
   tail -20 setup.log

@@ -77,9 +77,10 @@ mkdir -p "$work/labs" && cp -r "$SOURCE_DIR/examples/pendulum" "$lab"
 (cd "$lab" && git init -q && git add -A && git -c user.name=author -c user.email=author@example.edu commit -qm lab)
 chmod -R go-rwx "$lab/grading/hidden.cpp" "$lab/solution" "$lab/corpus"
 walk_case=$SOURCE_DIR/tests/corpus/pendulum/invariants/reach-walk.toml
+# (Its build's objects, compiled once, are cli/lab-any-user's too: lab_objects, tests/smoke/lib.sh.)
 lab_mode() {  # lab_mode NAME MODE [NAME=VALUE...]: the walk from the lab of one's own
   local name=$1 mode=$2; shift 2
-  run_capture "$name" env SIMLAB_CACHE="$work/cache" "$@" "$CORPUS" invariants "$lab" "$walk_case"
+  run_capture "$name" env SIMLAB_CACHE="$work/cache" "${lab_objects[@]}" "$@" "$CORPUS" invariants "$lab" "$walk_case"
   grep -E '^(sandbox|limits only|OK|FAILED|    )' "$name.out" | sed 's/^/    /'
   check "$name: the sandbox is $mode" grep -q "^sandbox: $mode" "$name.out"
   check "$name: nothing read outside what a test may read, the lab's history included" test "$(status_of "$name")" -eq 0
@@ -100,7 +101,7 @@ if [[ -z $build_closed && $(id -u) -eq 0 ]]; then
   check "lab-limits: simlab refuses hidden tests, naming a file the walk read and the command that closes it" \
     bash -c "grep -qE '^limits only: simlab refuses hidden tests here: .* could read /.*close them with .simlab lock' lab-limits.out &&
       grep -qE 'walk: .* [1-9][0-9]* outside what a test may read \(simlab refuses' lab-limits.out"
-  run_capture refuse-lab env SIMLAB_CACHE="$work/cache" SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1 \
+  run_capture refuse-lab env SIMLAB_CACHE="$work/cache" "${lab_objects[@]}" SIMLAB_NO_BUBBLEWRAP=1 SIMLAB_NO_LANDLOCK=1 \
     "$SIMLAB" check "$lab" "$SOURCE_DIR/examples/pendulum/solution/Pendulum.cpp" --all
   check "simlab check --all refuses there in one line (exit 2)" \
     bash -c "test $(status_of refuse-lab) -eq 2 && test \$(grep -c . refuse-lab.err) -eq 1 && grep -q 'hidden tests are not run' refuse-lab.err"

@@ -24,14 +24,16 @@ check "  the lab built in that user's own cache" \
   bash -c "ls -d other/home/.cache/simlab/*/labs/lab_b-* >/dev/null && test \$(stat -c %u other/home/.cache/simlab) -eq 65534"
 
 # From the folder above a lab named as its program: never onto the folder. (Its own cache: a lab the build's cache
-# knew would be one of simlab's places for every other test while this one runs.)
+# knew would be one of simlab's places for every other test while this one runs. Its layout is cli/isolation's,
+# whose lab build's objects it takes: lab_objects, tests/smoke/lib.sh.)
 export SIMLAB_CACHE=$work/cache
-mkdir up && cp -r "$SOURCE_DIR/examples/pendulum" up/pendulum
-(cd up && "$SIMLAB" build ./pendulum pendulum/solution/Pendulum.cpp >../onto.out 2>../onto.err; echo $? >../onto.status)
+mkdir labs && cp -r "$SOURCE_DIR/examples/pendulum" labs/pendulum
+(cd labs && env "${lab_objects[@]}" "$SIMLAB" build ./pendulum pendulum/solution/Pendulum.cpp >../onto.out 2>../onto.err
+ echo $? >../onto.status)
 check "simlab build from the folder above: one line, exit 2, the lab's folder untouched" \
   bash -c "test $(status_of onto) -eq 2 && test \$(grep -c '^simlab: error: ' onto.err) -eq 1 &&
-    grep -q \"'pendulum' is a folder, not where a program can be written: give -o PATH\" onto.err && test -d up/pendulum/grading"
-(cd up && "$SIMLAB" build ./pendulum pendulum/solution/Pendulum.cpp -o swing >../built.out 2>../built.err; echo $? >../built.status)
+    grep -q \"'pendulum' is a folder, not where a program can be written: give -o PATH\" onto.err && test -d labs/pendulum/grading"
+(cd labs && env "${lab_objects[@]}" "$SIMLAB" build ./pendulum pendulum/solution/Pendulum.cpp -o swing >../built.out 2>../built.err; echo $? >../built.status)
 check "  and with -o it builds the program there, which runs" \
-  bash -c "test $(status_of built) -eq 0 && up/swing --help | grep -q '^Usage: pendulum'"
+  bash -c "test $(status_of built) -eq 0 && labs/swing --help | grep -q '^Usage: pendulum'"
 finish

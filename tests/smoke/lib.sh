@@ -49,3 +49,15 @@ shared_objects() {
   # shellcheck disable=SC2034  # read by the scripts that source this file
   shared_objects=-DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 }
+
+# lab_objects: NAME=VALUE settings (for env) under which an author's lab, which simlab builds with CMake in its
+# cache, compiles through ccache, in the build's cache, paths under $work hashed as relative to the compiler's
+# folder: tests that build the same lab in the same layout under their own $work (the lab in $work/labs/NAME, its
+# build in SIMLAB_CACHE=$work/cache, this build's simlab) compile it once between them. For commands run as this
+# user: another cannot write the cache. Empty without ccache.
+lab_objects=()
+if command -v ccache >/dev/null && [[ -n ${BIN_DIR:-} ]]; then
+  # shellcheck disable=SC2034  # read by the scripts that source this file
+  lab_objects=(CMAKE_CXX_COMPILER_LAUNCHER=ccache "CCACHE_DIR=$BIN_DIR/../ccache" "CCACHE_BASEDIR=$work" CCACHE_NOHASHDIR=1
+               "CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime")
+fi
