@@ -195,6 +195,21 @@ function(simlab_compile_submission object source id)
     VERBATIM)
 endfunction()
 
+# simlab_course_objects(<var> <target> <files...>): in <var>, the objects of <target> (an object library of the
+# current folder) compiled from <files>, as a generator expression.
+function(simlab_course_objects var target)
+  set(names "")
+  foreach(file IN LISTS ARGN)
+    get_filename_component(path ${file} ABSOLUTE BASE_DIR ${CMAKE_CURRENT_SOURCE_DIR})
+    file(RELATIVE_PATH name ${CMAKE_CURRENT_SOURCE_DIR} ${path})
+    string(REPLACE "../" "__/" name ${name})  # CMake's name for a source above the folder
+    string(REGEX REPLACE "([.+])" "\\\\\\1" name ${name})
+    list(APPEND names ${name})
+  endforeach()
+  list(JOIN names "|" regex)
+  set(${var} "$<FILTER:$<TARGET_OBJECTS:${target}>,INCLUDE,\\.dir/(${regex})\\.o$>" PARENT_SCOPE)
+endfunction()
+
 # simlab_add_assignment(<id>
 #   TITLE <text>             what `simlab` calls it
 #   SOURCE <file name>       the one file a student writes
@@ -283,9 +298,6 @@ function(simlab_add_assignment id)
   get_property(compile GLOBAL PROPERTY SIMLAB_COMPILE_${id})
   get_property(pch_depends GLOBAL PROPERTY SIMLAB_PCH_DEPENDS_${id})
 
-  add_library(${id}_program_main OBJECT ${A_MAIN})
-  target_link_libraries(${id}_program_main PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
-  simlab_use_pch(${id}_program_main)
   # The course's side includes its lab's files as "<id>/program/exact.h": from the folder that holds the lab's, or,
   # where the folder is named otherwise (a copy of examples/pendulum in my_lab/), from one of the build's where
   # <id> leads to it.
@@ -296,7 +308,52 @@ function(simlab_add_assignment id)
     file(MAKE_DIRECTORY ${labs_dir})
     file(CREATE_LINK ${dir} ${labs_dir}/${id} SYMBOLIC)
   endif()
+
+  # A course source that more than one side names (MAIN, PROBE, TESTS, STUDY: biosim's stepping loop, declaration
+  # checks and schematic) is compiled once, in <id>_course, as every side's own sources are (position-independent,
+  # with the course's precompiled header), and each side that names it takes its object from there: <side>_own
+  # are the side's own sources, <side>_course its objects of <id>_course. A side that names only such sources
+  # compiles them itself.
+  set(sides MAIN PROBE TESTS STUDY)
+  set(A_TESTS ${tests})  # the hidden ones among them
+  set(seen "")
+  set(shared "")
+  foreach(side IN LISTS sides)
+    set(files ${A_${side}})
+    list(REMOVE_DUPLICATES files)
+    foreach(file IN LISTS files)
+      if(file IN_LIST seen AND NOT file IN_LIST shared)
+        list(APPEND shared ${file})
+      endif()
+      list(APPEND seen ${file})
+    endforeach()
+  endforeach()
+  foreach(side IN LISTS sides)
+    set(${side}_own ${A_${side}})
+    set(${side}_course "")
+    set(named ${A_${side}})
+    if(shared)
+      list(REMOVE_ITEM ${side}_own ${shared})
+    endif()
+    if(NOT ${side}_own)
+      set(${side}_own ${A_${side}})
+    elseif(NOT "${named}" STREQUAL "${${side}_own}")
+      list(REMOVE_ITEM named ${${side}_own})
+      simlab_course_objects(${side}_course ${id}_course ${named})
+    endif()
+  endforeach()
+  if(shared)
+    add_library(${id}_course OBJECT ${shared})
+    target_link_libraries(${id}_course PRIVATE simlab_support ${Simbody_LIBRARIES})
+    simlab_use_pch(${id}_course)
+    target_include_directories(${id}_course PRIVATE ${labs_dir})
+  endif()
+
+  add_library(${id}_program_main OBJECT ${MAIN_own})
+  target_link_libraries(${id}_program_main PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
+  simlab_use_pch(${id}_program_main)
   target_include_directories(${id}_program_main PRIVATE ${labs_dir})
+  set(program_objects $<TARGET_OBJECTS:${id}_program_main> ${MAIN_course})
 
   set_property(GLOBAL APPEND PROPERTY SIMLAB_LAB_PROGRAMS "${id} ${A_PROGRAM} ${A_SOURCE}")  # simlab_write_editor_labs
   # The lab program, built from the student file in this tree (the starter unless told otherwise) ...
@@ -304,7 +361,7 @@ function(simlab_add_assignment id)
   set(object ${CMAKE_CURRENT_BINARY_DIR}/${A_PROGRAM}_student.o)
   # With line tables and variables for a debugger (VS Code's launch configuration): the graded object is not this one.
   simlab_compile_submission(${object} ${SIMLAB_${id}_SOURCE} ${id} -g)
-  add_executable(${A_PROGRAM} $<TARGET_OBJECTS:${id}_program_main> ${object})
+  add_executable(${A_PROGRAM} ${program_objects} ${object})
   target_link_libraries(${A_PROGRAM} PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
   # For editors, the student file as a translation unit of compile_commands.json with the folders it includes from
   # (clangd and VS Code's C/C++ read it there; the custom command above is not listed). Never built.
@@ -317,7 +374,7 @@ function(simlab_add_assignment id)
   if(EXISTS ${solution})
     set(object ${CMAKE_CURRENT_BINARY_DIR}/${A_PROGRAM}_reference.o)
     simlab_compile_submission(${object} ${solution} ${id})
-    add_executable(${A_PROGRAM}-reference $<TARGET_OBJECTS:${id}_program_main> ${object})
+    add_executable(${A_PROGRAM}-reference ${program_objects} ${object})
     target_link_libraries(${A_PROGRAM}-reference PRIVATE simlab_program simlab_support ${Simbody_LIBRARIES})
     if(A_EXAMPLE)
       set_target_properties(${A_PROGRAM}-reference PROPERTIES OUTPUT_NAME ${A_EXAMPLE})
@@ -334,14 +391,14 @@ function(simlab_add_assignment id)
   set(study_program "")
   set(study_objects "")
   if(A_STUDY)
-    add_library(${id}_study_main OBJECT ${A_STUDY})
+    add_library(${id}_study_main OBJECT ${STUDY_own})
     target_link_libraries(${id}_study_main PRIVATE simlab_study simlab_protocol simlab_support ${Simbody_LIBRARIES})
     simlab_use_pch(${id}_study_main)
     target_include_directories(${id}_study_main PRIVATE ${labs_dir})
     simlab_study_target(${id}_study_main)
-    set(study_objects $<TARGET_OBJECTS:${id}_study_main>)
+    set(study_objects $<TARGET_OBJECTS:${id}_study_main> ${STUDY_course})
     if(solution)
-      add_executable(${A_PROGRAM}-study $<TARGET_OBJECTS:${id}_study_main> ${CMAKE_CURRENT_BINARY_DIR}/${A_PROGRAM}_reference.o)
+      add_executable(${A_PROGRAM}-study ${study_objects} ${CMAKE_CURRENT_BINARY_DIR}/${A_PROGRAM}_reference.o)
       target_link_libraries(${A_PROGRAM}-study PRIVATE simlab_study simlab_program simlab_support ${Simbody_LIBRARIES})
       simlab_study_target(${A_PROGRAM}-study)
       if(A_EXAMPLE)
@@ -355,14 +412,15 @@ function(simlab_add_assignment id)
   # included) and decides every verdict; the probe, linked per submission from the course's objects below and the
   # student's object, answers the judge's requests for observations. The tests are an object library so that
   # every Catch2 TEST_CASE registration stays in the link (an archive would drop them).
-  add_library(${id}_grader_tests OBJECT ${tests} ${trade_texts})
+  add_library(${id}_grader_tests OBJECT ${TESTS_own} ${trade_texts})
   target_include_directories(${id}_grader_tests PRIVATE ${trade_dir})
   target_link_libraries(${id}_grader_tests PRIVATE simlab_harness simlab_support Catch2::Catch2 ${Simbody_LIBRARIES})
-  add_executable(${id}-judge $<TARGET_OBJECTS:${id}_grader_tests> $<TARGET_OBJECTS:simlab_sanitizer_defaults>)
+  add_executable(${id}-judge $<TARGET_OBJECTS:${id}_grader_tests> ${TESTS_course}
+                            $<TARGET_OBJECTS:simlab_sanitizer_defaults>)
   target_link_libraries(${id}-judge PRIVATE simlab_harness simlab_observe_remote simlab_rubric simlab_support
                                             Catch2::Catch2WithMain ${Simbody_LIBRARIES})
   set_target_properties(${id}-judge PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/judges)
-  add_library(${id}_probe OBJECT ${A_PROBE})
+  add_library(${id}_probe OBJECT ${PROBE_own})
   target_link_libraries(${id}_probe PRIVATE simlab_probe simlab_support ${Simbody_LIBRARIES})
   set_target_properties(${id}_probe PROPERTIES POSITION_INDEPENDENT_CODE ON)
   simlab_use_pch(${id}_grader_tests ${id}_probe)
@@ -373,6 +431,9 @@ function(simlab_add_assignment id)
   # that grades (the lab program's objects left out: the sanitizer's tree, tests/sanitize).
   add_custom_target(${id}_grading DEPENDS ${id}-judge ${id}_probe ${pch_depends})
   add_dependencies(${id}_grading ${id}_grader_tests)
+  if(shared)
+    add_dependencies(${id}_grading ${id}_course)
+  endif()
   if(NOT SIMLAB_KIT)  # simlab's own targets: built here, or installed ready (a lab built out of the tree)
     add_dependencies(${id}_grading simlab_probe_main simlab_probe simlab_support_objects simlab_sanitizer_defaults
                      simlab_harness simlab_observe_local simlab_rubric simlab_plot simlab_support simlab-probe-host)
@@ -386,21 +447,15 @@ function(simlab_add_assignment id)
   # The probe's course side: linked before the student's object, whole, so that the student can add to it but
   # never replace any of it. The probe is a shared object that the probe's host loads (simlab-probe-host).
   set(probe_objects $<TARGET_OBJECTS:simlab_probe_main> $<TARGET_OBJECTS:simlab_probe>
-                    $<TARGET_OBJECTS:${id}_probe> $<TARGET_OBJECTS:simlab_support_objects>)
+                    $<TARGET_OBJECTS:${id}_probe> ${PROBE_course} $<TARGET_OBJECTS:simlab_support_objects>)
   # The benchmark's floor: the tests and the probe in one program, the student's code called directly. A course
-  # source both sides compile (biosim's declaration.cpp) is linked once.
-  set(shared_sources "")
-  foreach(file IN LISTS A_PROBE)
-    if(file IN_LIST A_TESTS)
-      get_filename_component(name ${file} NAME)
-      string(REPLACE "." "\\." name ${name})
-      list(APPEND shared_sources ${name})
-    endif()
-  endforeach()
-  set(probe_for_floor $<TARGET_OBJECTS:${id}_probe>)
-  if(shared_sources)
-    list(JOIN shared_sources "|" shared_regex)
-    set(probe_for_floor "$<FILTER:$<TARGET_OBJECTS:${id}_probe>,EXCLUDE,/(${shared_regex})\\.o$>")
+  # source both sides name (biosim's declaration.cpp) is linked once.
+  set(floor_course "")
+  set(named ${A_PROBE} ${A_TESTS})
+  list(REMOVE_DUPLICATES named)
+  list(REMOVE_ITEM named ${TESTS_own} ${PROBE_own})
+  if(named)
+    simlab_course_objects(floor_course ${id}_course ${named})
   endif()
   # How the precompiled header is made (an installed simlab makes it again where it is installed).
   get_property(pch_header GLOBAL PROPERTY SIMLAB_PCH_HEADER_${id})
@@ -443,8 +498,9 @@ function(simlab_add_assignment id)
   simlab_json_set_generated_list(json probe_objects ${probe_objects})
   simlab_json_set_generated_list(json floor_objects
     $<TARGET_OBJECTS:${id}_grader_tests> $<TARGET_OBJECTS:simlab_harness> $<TARGET_OBJECTS:simlab_observe_local>
-    $<TARGET_OBJECTS:simlab_probe> ${probe_for_floor} $<TARGET_OBJECTS:simlab_support_objects>)
-  simlab_json_set_generated_list(json program_objects $<TARGET_OBJECTS:${id}_program_main>)
+    $<TARGET_OBJECTS:simlab_probe> $<TARGET_OBJECTS:${id}_probe> ${floor_course}
+    $<TARGET_OBJECTS:simlab_support_objects>)
+  simlab_json_set_generated_list(json program_objects ${program_objects})
   simlab_json_set_generated_list(json study_objects ${study_objects})
   simlab_json_set_string(json build_dir "${CMAKE_CURRENT_BINARY_DIR}")
   set_property(GLOBAL APPEND PROPERTY SIMLAB_ASSIGNMENTS ${id})

@@ -8,6 +8,8 @@
 
 #include "book/program/exact.h"
 
+namespace book_exact_test {
+
 namespace {
 
 using State = std::array<double, 3>;
@@ -99,3 +101,5 @@ TEST_CASE("the linear growth rate about the intermediate axis is about 4.08 rad/
     // lambda = w0 sqrt((Ib - Ia)(Ic - Ib) / (Ia Ic)) with Ia = Iyy, Ib = Ixx, Ic = Izz and w0 = 7 rad/s.
     CHECK(book::exact::linearGrowthRate(book::Scene{}, 7.0) == Approx(4.078).epsilon(1e-3));
 }
+
+}  // namespace book_exact_test

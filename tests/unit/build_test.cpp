@@ -10,6 +10,8 @@
 #include "simlab/build/manifest.h"
 #include "simlab/isolation/process.h"
 
+namespace build_test {
+
 using namespace simlab::engine;
 using namespace simlab::isolation;
 namespace fs = std::filesystem;
@@ -84,3 +86,5 @@ TEST_CASE("the sandbox refuses the kernel keyring and new namespaces, and lets t
     CHECK(result.exitCode == 0);
     CHECK(result.output == "add_key refused\nunshare refused\nthread ran\n");
 }
+
+}  // namespace build_test

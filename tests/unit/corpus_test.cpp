@@ -7,6 +7,8 @@
 #include "simlab/common/files.h"
 #include "simlab/course/corpus.h"
 
+namespace corpus_test {
+
 using namespace simlab::engine;
 
 namespace {
@@ -45,3 +47,5 @@ TEST_CASE("a corpus case names its student's folder and files by one plain name 
     CHECK_THAT(refusal("[[file]]\nname = \"NewtonsApple.cpp\"\nrename = \"a/b\"\n"),
                Contains("a file's new name 'a/b' is not one plain name"));
 }
+
+}  // namespace corpus_test

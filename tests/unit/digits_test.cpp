@@ -5,6 +5,8 @@
 
 #include "simlab/digits.h"
 
+namespace digits_test {
+
 using simlab::accuracyDigits;
 using simlab::kMaxDigits;
 
@@ -36,3 +38,5 @@ TEST_CASE("an exact value of zero needs a scale", "[digits]") {
     CHECK(accuracyDigits(3.92e-9, 0.0, 39.2) == Approx(10.0).margin(1e-6));
     CHECK(accuracyDigits(0.0, 0.0, 39.2) == kMaxDigits);
 }
+
+}  // namespace digits_test

@@ -10,6 +10,8 @@
 #include "simlab/isolation/elf.h"
 #include "simlab/common/files.h"
 
+namespace elf_test {
+
 using namespace simlab::engine;
 using namespace simlab::isolation;
 
@@ -136,3 +138,5 @@ TEST_CASE("a name whose demangled text would grow past bounds stays mangled, and
     CHECK(demangle("_ZN6simlab13describeModelEv") == "simlab::describeModel()");
     CHECK(demangle("_ZNSt6vectorIdSaIdEE9push_backEOd") == "std::vector<double, std::allocator<double> >::push_back(double&&)");
 }
+
+}  // namespace elf_test

@@ -7,6 +7,8 @@
 
 #include "simlab/isolation/process.h"
 
+namespace engine_test {
+
 using simlab::isolation::ProcessRequest;
 using simlab::isolation::ProcessResult;
 using simlab::isolation::runProcess;
@@ -117,3 +119,5 @@ TEST_CASE("a program that cannot be executed is reported, not run", "[process]")
     CHECK_FALSE(result.started);
     CHECK(result.error == "simlab: cannot execute the program: No such file or directory");
 }
+
+}  // namespace engine_test

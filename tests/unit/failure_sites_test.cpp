@@ -11,6 +11,8 @@
 #include "simlab/common/files.h"
 #include "simlab/grading/failure_sites.h"
 
+namespace failure_sites_test {
+
 using namespace simlab::engine;
 
 TEST_CASE("a probe's frames are read as data: a short list of small whole numbers or nothing", "[failure-sites]") {
@@ -174,3 +176,5 @@ TEST_CASE("a probe's twin with line tables names the student's line, and only a 
     REQUIRE(mapped.count(at + 8) == 1);
     CHECK(mapped.count(1) == 0);
 }
+
+}  // namespace failure_sites_test

@@ -6,6 +6,8 @@
 #include "simlab/harness/grading.h"
 #include "simlab/harness/testing.h"
 
+namespace figures_test {
+
 using simlab::accuracyDigits;
 using simlab::grading::at;
 using simlab::grading::compared;
@@ -65,3 +67,5 @@ TEST_CASE("the largest drift keeps its comparison and NaN is the worst drift", "
     CHECK(std::isinf(drift.figure()));
     CHECK(drift.point().rfind("E(3) = ", 0) == 0);
 }
+
+}  // namespace figures_test

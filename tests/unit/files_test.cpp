@@ -11,6 +11,8 @@
 
 #include "simlab/common/files.h"
 
+namespace files_test {
+
 namespace fs = std::filesystem;
 using simlab::engine::HandedIn;
 using simlab::engine::readHandedIn;
@@ -111,3 +113,5 @@ TEST_CASE("an output is written as the umask gives it, and written again keeps t
     CHECK((info.st_mode & 0777) == 0644);  // a file of simlab's own: 0644 whatever the umask
     ::umask(before);
 }
+
+}  // namespace files_test

@@ -6,6 +6,8 @@
 #include "simlab/digits.h"
 #include "simlab/integrators.h"
 
+namespace integrators_test {
+
 using namespace SimTK;
 
 namespace {
@@ -92,3 +94,5 @@ TEST_CASE("tighter accuracy buys digits with steps for an error-controlled first
     CHECK(tight.digits > loose.digits + 1.0);
     CHECK(tight.steps > 10 * loose.steps);
 }
+
+}  // namespace integrators_test

@@ -10,6 +10,8 @@
 #include "Simbody.h"
 #include "simlab/measured_run.h"
 
+namespace measured_run_test {
+
 using namespace SimTK;
 
 namespace {
@@ -187,3 +189,5 @@ TEST_CASE("counts a student's process reports for its choice must add up") {
     run.run.integrator.realizations = 2;
     CHECK_THAT(simlab::inconsistencyOf(run), Catch::Contains("cannot all be true"));
 }
+
+}  // namespace measured_run_test

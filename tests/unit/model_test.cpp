@@ -4,6 +4,8 @@
 #include "Simbody.h"
 #include "simlab/model_info.h"
 
+namespace model_test {
+
 using namespace SimTK;
 
 namespace {
@@ -64,3 +66,5 @@ TEST_CASE("mobilizers are named as Simbody spells them", "[model]") {
     CHECK(info.mobilizers[3].kind == "Weld");
     CHECK(info.degreesOfFreedom() == 1 + 3 + 3 + 0);
 }
+
+}  // namespace model_test

@@ -10,6 +10,7 @@
 #include "simlab/todo.h"
 #include "transport.h"
 
+namespace observe_test {
 namespace {
 
 std::deque<std::string> gScripted;  // the answers the fake probe gives, in order; $ID is the request's number
@@ -22,26 +23,28 @@ void replaceAll(std::string& text, const std::string& from, const std::string& t
 }
 
 }  // namespace
+}  // namespace observe_test
 
 namespace simlab::observe::detail {
 
 std::string exchange(const std::string& request, std::size_t limit) {
-    if (gScripted.empty()) throw ProcessEnded("the student's process ended before it answered");
-    std::string answer = gScripted.front();
-    gScripted.pop_front();
+    if (observe_test::gScripted.empty()) throw ProcessEnded("the student's process ended before it answered");
+    std::string answer = observe_test::gScripted.front();
+    observe_test::gScripted.pop_front();
     const int id = nlohmann::json::parse(request)["id"];
-    replaceAll(answer, "$ID", std::to_string(id));
-    replaceAll(answer, "$OTHER", std::to_string(id + 1));
+    observe_test::replaceAll(answer, "$ID", std::to_string(id));
+    observe_test::replaceAll(answer, "$OTHER", std::to_string(id + 1));
     if (answer.size() > limit) throw BadReport("an answer longer than the rubric's limit");
     return answer;
 }
 
 void beginTest(const std::string&) {}
 
-std::string drain() { return gExtra; }
+std::string drain() { return observe_test::gExtra; }
 
 }  // namespace simlab::observe::detail
 
+namespace observe_test {
 namespace {
 
 using namespace simlab::observe;
@@ -165,3 +168,5 @@ TEST_CASE("the probe answers with data, or with the exception and its type", "[p
     CHECK(nlohmann::json::parse(simlab::probe::answer(R"({"id": 6, "kind": "test-bytes"})"))["threw"]["message"] ==
           "\xEF\xBF\xBD\xEF\xBF\xBD");
 }
+
+}  // namespace observe_test

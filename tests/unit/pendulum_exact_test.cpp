@@ -10,6 +10,8 @@
 #include "pendulum/program/exact.h"
 #include "pendulum/program/period.h"
 
+namespace pendulum_exact_test {
+
 namespace {
 
 using State = std::array<double, 2>;  // theta, theta'
@@ -127,3 +129,5 @@ TEST_CASE("the period the samples show is the exact one, at any amplitude down t
         CHECK(std::abs(measured.period_s - exact_s) < 1e-6 * exact_s);
     }
 }
+
+}  // namespace pendulum_exact_test

@@ -17,6 +17,8 @@
 #include "simlab/common/text.h"
 #include "simlab/writers/writers.h"
 
+namespace platforms_test {
+
 using namespace simlab::engine;
 using nlohmann::json;
 
@@ -581,3 +583,5 @@ TEST_CASE("Gradescope: an id longer than a folder name can be is cut, and told a
     }
     CHECK(readFile(dir.path() + "/class/" + students[1].id + "/NewtonsApple.cpp") == "// submission_2\n");
 }
+
+}  // namespace platforms_test

@@ -11,6 +11,8 @@
 #include "simlab/common/errors.h"
 #include "simlab/course/policy.h"
 
+namespace policy_test {
+
 using namespace simlab::engine;
 namespace fs = std::filesystem;
 
@@ -277,3 +279,5 @@ TEST_CASE("A time is written as it is read back, its year in four digits", "[pol
     CHECK(parseTime(utcText(*early)) == early);
     CHECK(utcText(*parseTime("2026-11-20T10:00:00Z")) == "2026-11-20T10:00:00Z");
 }
+
+}  // namespace policy_test

@@ -15,6 +15,8 @@
 #include "simlab/common/files.h"
 #include "simlab/isolation/reach.h"
 
+namespace reach_test {
+
 namespace fs = std::filesystem;
 using namespace simlab::isolation;
 
@@ -185,3 +187,5 @@ TEST_CASE("a folder a stopped run left behind is swept, one a live run holds is 
     CHECK(fs::is_directory(live.path()));
     CHECK(fs::exists(live.path() + ".held"));
 }
+
+}  // namespace reach_test

@@ -9,6 +9,8 @@
 #include "simlab/writers/writers.h"
 #include "../../grader/writers/common.h"
 
+namespace report_pages_test {
+
 namespace {
 
 using simlab::engine::Outcome;
@@ -278,3 +280,5 @@ TEST_CASE("pictures go inside a page as base64 data URIs", "[report][html]") {
     CHECK(simlab::engine::writers::pictureType("run.png") == "image/png");
     CHECK(simlab::engine::writers::pictureType("tree.dot").empty());
 }
+
+}  // namespace report_pages_test

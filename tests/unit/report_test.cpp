@@ -5,6 +5,8 @@
 #include "simlab/course/batch.h"
 #include "simlab/grading/report.h"
 
+namespace report_test {
+
 namespace {
 
 simlab::engine::GradeReport projectReport() {
@@ -61,3 +63,5 @@ TEST_CASE("a project's feedback names its drawings and its pending items", "[rep
     CHECK_THAT(graded, Catch::Contains("Graded by hand, 5 points pending:\n\n- the schematic is clear: 7/10 (label the knee)\n"
                                        "- the paragraph describes the system: pending (5)\n"));
 }
+
+}  // namespace report_test

@@ -7,6 +7,8 @@
 #include "simlab/grading/report.h"
 #include "simlab/writers/writers.h"
 
+namespace results_json_test {
+
 namespace engine = simlab::engine;
 using engine::GradeReport;
 
@@ -169,3 +171,5 @@ TEST_CASE("every status has one name, read back as itself; record.json with anot
     record["status"] = "nearly graded";
     CHECK_FALSE(engine::readRecordJson(record.dump()));
 }
+
+}  // namespace results_json_test

@@ -7,6 +7,8 @@
 #include "simlab/common/files.h"
 #include "simlab/rubric/rubric.h"
 
+namespace rubric_test {
+
 namespace {
 
 // Writes `text` to a rubric file of a folder of its own (tests run side by side) and loads it.
@@ -129,3 +131,5 @@ TEST_CASE("[variants] turns on each student's own trade scene, with the course's
                       Contains("unknown key 'shuffle' in [variants]"));
     CHECK_THROWS_WITH(loadText(kHeader + "variants = 3\n" + test), Contains("'variants' must be a table"));
 }
+
+}  // namespace rubric_test

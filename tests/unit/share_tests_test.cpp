@@ -13,6 +13,8 @@
 #include "simlab/common/parallel.h"
 #include "simlab/grading/grade.h"
 
+namespace share_tests_test {
+
 using simlab::engine::readTestCost;
 using simlab::engine::shareTests;
 using simlab::engine::TestCost;
@@ -174,3 +176,5 @@ TEST_CASE("the pool throws a call's exception once every thread has ended", "[sh
     CHECK(slowEnded);
     CHECK(calls == 2);
 }
+
+}  // namespace share_tests_test

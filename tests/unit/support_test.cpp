@@ -25,6 +25,8 @@
 #include "simlab/run_settings.h"
 #include "simlab/todo.h"
 
+namespace support_test {
+
 TEST_CASE("samples fall on multiples of dt and the last one on the final time", "[settings]") {
     simlab::RunSettings run;
     run.finalTime = 4.0;
@@ -320,3 +322,5 @@ TEST_CASE("a plot says in words what it draws: each curve's ends and extremes, h
     CHECK_THAT(points, Catch::Contains("\"label\":\"the end\",\"x\":2.0,\"y\":0.4"));
     CHECK_THAT(points, Catch::Contains(",2.0],\"y\":[10.0,"));
 }
+
+}  // namespace support_test

@@ -5,6 +5,8 @@
 
 #include "simlab/system_tool.h"
 
+namespace system_tool_test {
+
 TEST_CASE("a system tool reads its input and its output comes back", "[system_tool]") {
     const simlab::SystemToolRun run = simlab::runSystemTool({"cat"}, "a line\nand another\n", 10, 1 << 20);
     CHECK(run.succeeded());
@@ -43,3 +45,5 @@ TEST_CASE("a tool that stops reading its input does not end the program (SIGPIPE
     CHECK(run.succeeded());
     CHECK(run.output == "y");
 }
+
+}  // namespace system_tool_test

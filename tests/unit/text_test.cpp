@@ -8,6 +8,8 @@
 #include "simlab/common/text.h"
 #include "simlab/writers/roster.h"
 
+namespace text_test {
+
 using namespace simlab::engine;
 using namespace std::string_literals;
 
@@ -143,3 +145,5 @@ TEST_CASE("XML text is well-formed in content and in attributes", "[text]") {
     CHECK(xmlText("\xEF\xBF\xBE\xEF\xBF\xBF") == fffd(2));         // U+FFFE, U+FFFF
     CHECK(xmlText("\x7f\xC2\x9B\xE2\x80\xAE") == "\x7f\xC2\x9B\xE2\x80\xAE");  // allowed in XML 1.0, kept
 }
+
+}  // namespace text_test

@@ -8,6 +8,8 @@
 #include "simlab/common/files.h"
 #include "simlab/trade_question.h"
 
+namespace trade_question_test {
+
 using simlab::work_precision::Point;
 
 namespace {
@@ -142,3 +144,5 @@ TEST_CASE("the apple's and the projectile's pools of students' scenes each diffe
         }
     }
 }
+
+}  // namespace trade_question_test

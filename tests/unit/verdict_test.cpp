@@ -5,6 +5,8 @@
 #include <catch2/catch.hpp>
 #include <string>
 
+namespace verdict_test {
+
 using simlab::wire::ChannelFailure;
 using simlab::wire::endRecord;
 using simlab::wire::isEndRecord;
@@ -121,3 +123,5 @@ TEST_CASE("a malformed verdict is refused, naming its field", "[wire]") {
     // A judge of an older simlab gives no leaderboard: read as none.
     CHECK(readVerdict(with(good, "leaderboard", none)).leaderboard.empty());
 }
+
+}  // namespace verdict_test
