@@ -60,11 +60,17 @@ bundled=$FIXTURES/bundle/build/bin/simlab
 check "  simlab, each lab's program and judge, and the worked example's program" bash -c \
   "for f in bin/simlab bin/apple bin/projectile bin/book bin/project bin/babyboot judges/apple-judge judges/biosim-judge; do
      test -x '$FIXTURES/bundle/build/'\$f || exit 1; done"
-check "  and no study program or object" python3 - "$FIXTURES/bundle/build/simlab-build.json" <<'PY'
+# (A course source the study shares with the program or the probe, <id>_course's, is built for them.)
+check "  and no study program or object of the study's own" python3 - "$FIXTURES/bundle/build/simlab-build.json" <<'PY'
 import json, os, sys
 m = json.load(open(sys.argv[1]))
-built = [p for a in m["assignments"] for p in a["study_objects"] + [a["study_program_path"]] if p and os.path.exists(p)]
+built = []
+for a in m["assignments"]:
+    shared = set(a["program_objects"]) | set(a["probe_objects"])
+    built += [p for p in a["study_objects"] + [a["study_program_path"]] if p and p not in shared and os.path.exists(p)]
 assert not built, built
+assert any(a["study_objects"] and not set(a["study_objects"]) <= set(a["program_objects"]) | set(a["probe_objects"])
+           for a in m["assignments"]), "no study object of a study's own to look for"
 PY
 run_capture starter "$bundled" check apple
 check "the bundle's simlab checks its starter: 0/76" grep -q '^Score: 0/76$' starter.out
