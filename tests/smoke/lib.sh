@@ -9,7 +9,23 @@ cd "$work" || exit 1
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 pass() { echo "ok: $*"; }
 check() { local what=$1; shift; if "$@"; then pass "$what"; else fail "$what"; fi; }
-finish() { [[ $failures -eq 0 ]] && echo "all checks passed" && exit 0; echo "$failures check(s) failed"; exit 1; }
+# A failed script keeps what its commands printed (each NAME.out, .err and .status of run_capture below, the first
+# MB of each) in the build's Testing/failed/<script>-<pid>, open to its owner alone, and says where: a failure in a
+# long run can be read after it.
+keep_outputs() {
+  [[ -n ${BIN_DIR:-} ]] || return 0
+  local kept file
+  kept=$(cd "$BIN_DIR/.." && pwd)/Testing/failed/$(basename "$0" .sh)-$$
+  (umask 077 && mkdir -p "$kept") || return 0
+  for file in "$work"/*.out "$work"/*.err "$work"/*.status; do
+    [[ -f $file ]] && head -c 1048576 "$file" >"$kept/${file##*/}"
+  done
+  echo "what its commands printed: $kept"
+}
+finish() {
+  [[ $failures -eq 0 ]] && echo "all checks passed" && exit 0
+  echo "$failures check(s) failed"; keep_outputs; exit 1
+}
 
 # run_capture NAME CMD...: runs CMD, keeping its stdout, stderr and status in $NAME.out, $NAME.err, $NAME.status
 run_capture() {
