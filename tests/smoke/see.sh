@@ -75,42 +75,53 @@ if ! command -v xvfb-run >/dev/null || ! command -v import >/dev/null; then
   echo "skipped: --animate needs xvfb-run and ImageMagick (scripts/install-deps installs both)"
   finish
 fi
+# Pixels of one colour (within 12 %) in an image; the strongly coloured pixels of one. Kept in a file: shoot.sh, run
+# by xvfb-run's sh, reads them too.
+cat > colours.sh <<'COLOURS'
+pixels_of() {
+  convert "$1" -fuzz 2% -fill black -opaque white -fuzz 12% -fill white -opaque "$2" -fuzz 0 -fill black +opaque white \
+    -format '%[fx:round(mean*w*h)]' info:
+}
+coloured() { convert "$1" -colorspace HSL -channel G -separate +channel -threshold 50% -format '%[fx:round(mean*w*h)]' info:; }
+COLOURS
+# shellcheck source=/dev/null
+source colours.sh
 cat > shoot.sh <<'SHOOT'
 #!/usr/bin/env bash
-# shoot.sh NAME GAP PROGRAM ARGS...: runs PROGRAM with --animate and takes two screenshots GAP s apart once the
-# visualizer's window is on the (otherwise black) screen.
-name=$1 gap=$2; shift 2
+# shoot.sh NAME GAP DRAWN PROGRAM ARGS...: runs PROGRAM with --animate and takes two screenshots GAP s apart, the first
+# once the visualizer has drawn its scene: the screen (black until the window shows) holds more than four colours and
+# DRAWN, a shell condition on the screenshot ($shot), holds. A busy machine draws the first frames late; the scene is
+# waited for while the program runs (at most 30 s), not for a fixed time.
+name=$1 gap=$2 drawn=$3; shift 3
+# shellcheck source=/dev/null
+source ./colours.sh
 "$@" --animate --quiet --output "$name.txt" >"$name.anim.out" 2>"$name.anim.err" &
 program=$!
-for _ in $(seq 1 100); do
-  import -window root "$name-1.png" 2>/dev/null
-  [[ $(convert "$name-1.png" -format %k info: 2>/dev/null || echo 0) -gt 4 ]] && break
+shot=$name-1.png
+for _ in $(seq 1 150); do
+  import -window root "$shot" 2>/dev/null
+  [[ $(convert "$shot" -format %k info: 2>/dev/null || echo 0) -gt 4 ]] && eval "$drawn" && break
+  kill -0 $program 2>/dev/null || break
   sleep 0.2
 done
-sleep 0.5
-import -window root "$name-1.png"
 sleep "$gap"
 import -window root "$name-2.png"
 wait $program
 SHOOT
 chmod +x shoot.sh
-# Pixels of one colour (within 12 %) in an image.
-pixels_of() {
-  convert "$1" -fuzz 2% -fill black -opaque white -fuzz 12% -fill white -opaque "$2" -fuzz 0 -fill black +opaque white \
-    -format '%[fx:round(mean*w*h)]' info:
-}
 shoot() { xvfb-run -a -s "-screen 0 1024x768x24" ./shoot.sh "$@" >/dev/null 2>&1; }
 
-shoot apple 1.5 "$bin/apple-reference" --final-time 6
+label='test "$(pixels_of "$shot" "#800000")" -gt 50'
+shoot apple 1.5 "$label" "$bin/apple-reference" --final-time 6
 check "apple --animate: the apple's label is on screen ($(pixels_of apple-1.png '#800000') pixels)" \
   awk "BEGIN { exit !($(pixels_of apple-1.png '#800000') > 50) }"
 check "  and it falls ($(differing apple-1.png apple-2.png) pixels change)" awk "BEGIN { exit !($(differing apple-1.png apple-2.png) > 200) }"
-shoot projectile 1.5 "$bin/projectile-reference"
+# The projectile's scene is drawn once its ground (brown) fills the lower part of the window.
+shoot projectile 1.5 'test "$(pixels_of "$shot" "#836237")" -gt 100000' "$bin/projectile-reference"
 check "projectile --animate: the ball's trail and label are on screen, and move ($(differing projectile-1.png projectile-2.png) pixels change)" \
   awk "BEGIN { exit !($(differing projectile-1.png projectile-2.png) > 200) }"
-shoot book 1.5 "$bin/book-reference" --spin intermediate --final-time 10
 # The book's background is white and its axes grey: the strongly coloured pixels are its faces.
-coloured() { convert "$1" -colorspace HSL -channel G -separate +channel -threshold 50% -format '%[fx:round(mean*w*h)]' info:; }
+shoot book 1.5 'test "$(coloured "$shot")" -gt 3000' "$bin/book-reference" --spin intermediate --final-time 10
 faces1=$(coloured book-1.png) faces2=$(coloured book-2.png)
 check "book --animate: the book is on screen, its faces coloured ($faces1 and $faces2 coloured pixels)" \
   awk "BEGIN { exit !($faces1 > 3000 && $faces2 > 3000) }"

@@ -783,6 +783,10 @@ std::vector<Record> records(const std::string& text) {
     return found;
 }
 
+// The wall-clock net of an invariant's test (a rubric's is 30 s or so): the walk's reads of the whole system, beside
+// other work, without the grade stalling.
+constexpr double kInvariantWallSeconds = 180;
+
 // Grades each case with the object check off, in the sandbox this machine and its environment give
 // (SIMLAB_NO_BUBBLEWRAP, SIMLAB_NO_LANDLOCK, SIMLAB_NO_TEST_SERVER; a capability set from setpriv; an installed
 // simlab's manifest from SIMLAB_MANIFEST), on one test, and reads the witness's records from the report: who each
@@ -825,6 +829,13 @@ int invariants(const Manifest& manifest, const Assignment& assignment, const sim
         GradeOptions options;
         options.checkObject = false;
         options.onlyTests = {rubric.tests.front().name};
+        // A walk lists every folder of the system a test can reach (some 20,000 folders, 170,000 files), reading
+        // them from disk where no cache holds them: on a machine busy with other work that can outlast the rubric's
+        // wall-clock net for a student's test while using a few seconds of CPU. The net is widened; the CPU limit,
+        // which is what a runaway test meets, stays the rubric's.
+        simlab::Limits limits = rubric.limits;
+        limits.wallSeconds = std::max(limits.wallSeconds, kInvariantWallSeconds);
+        options.limits = limits;
         const GradeReport report =
             gradeFolder(Builder(manifest), assignment, rubric, dir.path() + "/student", false, false, options);
         const std::string text = renderText(report);
