@@ -91,7 +91,7 @@ cat > shoot.sh <<'SHOOT'
 # shoot.sh NAME GAP DRAWN PROGRAM ARGS...: runs PROGRAM with --animate and takes two screenshots GAP s apart, the first
 # once the visualizer has drawn its scene: the screen (black until the window shows) holds more than four colours and
 # DRAWN, a shell condition on the screenshot ($shot), holds. A busy machine draws the first frames late; the scene is
-# waited for while the program runs (at most 30 s), not for a fixed time.
+# waited for while the program runs (150 tries, some 45 s), not for a fixed time.
 name=$1 gap=$2 drawn=$3; shift 3
 # shellcheck source=/dev/null
 source ./colours.sh
