@@ -5,8 +5,20 @@
 source "$(dirname "$0")/../smoke/lib.sh"
 
 students=16
-# The student-file compiler: clang (its driver and its -cc1 process), or GCC's cc1plus where simlab is built for GCC.
-compiler_running() { pgrep -x 'clang|clang\+\+(-[0-9]+)?|cc1plus' >/dev/null; }
+# compiler_running PID: the student-file compiler - clang (its driver and its -cc1 process), or GCC's cc1plus where
+# simlab is built for GCC - runs below process PID (this test's simlab; a sandbox's processes are its descendants
+# too), whatever other tests compile beside it.
+compiler_running() {
+  ps -e -o pid=,ppid=,comm= | awk -v root="$1" '
+    { parent[$1] = $2; name[$1] = $3 }
+    END {
+      for (p in name) {
+        if (name[p] !~ /^(clang|clang\+\+(-[0-9]+)?|cc1plus)$/) continue
+        for (q = parent[p]; q > 1; q = parent[q]) if (q == root) exit 0
+      }
+      exit 1
+    }'
+}
 export TMPDIR=$PWD/tmp  # simlab's work folders: this test's own, to look for what is left
 mkdir -p "$TMPDIR"
 make_class() {  # make_class DIR TAG: distinct copies of the reference, so each one compiles
@@ -16,9 +28,9 @@ make_class() {  # make_class DIR TAG: distinct copies of the reference, so each 
   done
 }
 rows() { tail -n +2 "$1/gradebook.csv" 2>/dev/null; }
-wait_for_compiler() {  # wait_for_compiler GRADES: until two students are recorded and a compiler runs (at most 120 s)
-  for _ in $(seq 6000); do
-    [[ $(rows "$1" | wc -l) -ge 2 ]] && compiler_running && return 0
+wait_for_compiler() {  # wait_for_compiler GRADES PID: until two students are recorded and a compiler runs below PID
+  for _ in $(seq 6000); do  # (at most 120 s)
+    [[ $(rows "$1" | wc -l) -ge 2 ]] && compiler_running "$2" && return 0
     sleep 0.02
   done
   return 1
@@ -35,7 +47,7 @@ for sig in INT TERM; do
   "$SIMLAB" grade apple class-$sig --out grades-$sig --jobs 2 >first-$sig.out 2>first-$sig.err </dev/null &
   batch=$!
   found=0
-  wait_for_compiler grades-$sig || found=$?
+  wait_for_compiler grades-$sig $batch || found=$?
   kill -$sig $batch
   check "SIG$sig: a compiler was running when the signal came" test $found -eq 0
   wait $batch
@@ -57,7 +69,7 @@ make_class class-twice twice
 export SIMLAB_CACHE=$PWD/cache-twice
 "$SIMLAB" grade apple class-twice --out grades-twice --jobs 2 >twice.out 2>twice.err </dev/null &
 batch=$!
-wait_for_compiler grades-twice
+wait_for_compiler grades-twice $batch
 kill -INT $batch
 sleep 0.05
 start=$(date +%s%N)

@@ -22,16 +22,28 @@ keep_outputs() {
   done
   echo "what its commands printed: $kept"
 }
+# The steps of 5 s or more (run_capture's), longest first, in one line: where a slow test spends its time.
+slow_steps() {
+  local entry line=""
+  while read -r entry; do
+    line+=", ${entry#* } $((${entry%% *} / 10)).$((${entry%% *} % 10)) s"
+  done < <(printf '%s\n' "${step_tenths[@]}" | sort -rn | awk '$1 >= 50')
+  [[ -z $line ]] || echo "steps of 5 s or more: ${line#, }"
+}
 finish() {
+  slow_steps
   [[ $failures -eq 0 ]] && echo "all checks passed" && exit 0
   echo "$failures check(s) failed"; keep_outputs; exit 1
 }
 
 # run_capture NAME CMD...: runs CMD, keeping its stdout, stderr and status in $NAME.out, $NAME.err, $NAME.status
+# (and its wall-clock time, in tenths of a second, for slow_steps)
+step_tenths=()
 run_capture() {
-  local name=$1; shift
+  local name=$1 started=${EPOCHREALTIME/[.,]/}; shift
   "$@" >"$name.out" 2>"$name.err" </dev/null
   echo $? >"$name.status"
+  step_tenths+=("$(((${EPOCHREALTIME/[.,]/} - started) / 100000)) $name")
 }
 status_of() { cat "$1.status"; }
 
