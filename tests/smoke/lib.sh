@@ -2,6 +2,7 @@
 set -uo pipefail
 
 failures=0
+script_started=${EPOCHREALTIME/[.,]/}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work" || exit 1
@@ -30,8 +31,20 @@ slow_steps() {
   done < <(printf '%s\n' "${step_tenths[@]}" | sort -rn | awk '$1 >= 50')
   [[ -z $line ]] || echo "steps of 5 s or more: ${line#, }"
 }
+# The test's time in one line: its wall-clock time and its CPU time (user and system: its shell's and that of every
+# command it waited for, as bash's `times` counts them; a daemon it started is not counted). On a machine whose cores
+# are all busy, the CPU time is what a test costs the suite; a test whose CPU time is a small part of its run waits.
+time_spent() {
+  times >"$work/.times" 2>/dev/null || return 0
+  local cpu wall
+  wall=$(((${EPOCHREALTIME/[.,]/} - script_started) / 100000))
+  cpu=$(tr , . <"$work/.times" | awk '{ for (i = 1; i <= NF; i++) { split($i, t, "m"); sub("s", "", t[2]); s += 60 * t[1] + t[2] } }
+                                     END { printf "%.1f", s }')
+  echo "time: $((wall / 10)).$((wall % 10)) s, $cpu s of it CPU time (the test's and every command's it waited for)"
+}
 finish() {
   slow_steps
+  time_spent
   [[ $failures -eq 0 ]] && echo "all checks passed" && exit 0
   echo "$failures check(s) failed"; keep_outputs; exit 1
 }
