@@ -38,8 +38,10 @@ time_spent() {
   times >"$work/.times" 2>/dev/null || return 0
   local cpu wall
   wall=$(((${EPOCHREALTIME/[.,]/} - script_started) / 100000))
-  cpu=$(tr , . <"$work/.times" | awk '{ for (i = 1; i <= NF; i++) { split($i, t, "m"); sub("s", "", t[2]); s += 60 * t[1] + t[2] } }
-                                     END { printf "%.1f", s }')
+  # Four fields, 0m1.234s: the shell's user and system time, then its waited-for children's.
+  cpu=$(tr , . <"$work/.times" |
+        awk '{ for (i = 1; i <= NF; i++) { split($i, t, "m"); sub("s", "", t[2]); s += 60 * t[1] + t[2] } }
+             END { printf "%.1f", s }')
   echo "time: $((wall / 10)).$((wall % 10)) s, $cpu s of it CPU time (the test's and every command's it waited for)"
 }
 finish() {
